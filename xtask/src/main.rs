@@ -1,0 +1,41 @@
+//! Project automation, run as `cargo xtask <command>` (the cargo-xtask convention: the alias lives
+//! in `.cargo/config.toml`, so nothing needs installing).
+//!
+//! `cargo xtask test` is the project's one test command: the README names it and `.ci/run` runs
+//! it. It runs every test the machine can run, says loudly what it could not run and why, and
+//! fails when a part that was required (`--require dart`, `--require python`) cannot run.
+
+mod docs;
+mod stages;
+
+use std::process::ExitCode;
+
+const HELP: &str = "\
+cargo xtask <command>
+
+commands:
+  test [--require dart|python|all]...   run every test of the workspace: the Rust crates (rapier
+                                        backend), the DART backend when DART is installed, the
+                                        Python package when its tools are installed; --require
+                                        makes a part that cannot run a failure (CI uses it)
+  help                                  this text
+";
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let result = match args.first().map(String::as_str) {
+        Some("test") => stages::test(&args[1..]),
+        Some("help") | Some("--help") | Some("-h") | None => {
+            print!("{HELP}");
+            Ok(())
+        }
+        Some(other) => Err(format!("unknown xtask command `{other}` (try `cargo xtask help`)")),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => {
+            eprintln!("xtask: error: {message}");
+            ExitCode::FAILURE
+        }
+    }
+}

@@ -1,0 +1,261 @@
+//! The stages of `cargo xtask test`: each is a command that either runs (and must pass, with at
+//! least one test executed) or is skipped with the reason and the install line that would let it
+//! run. A skipped stage that was required is a failure.
+
+use std::io::{BufRead, BufReader};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+
+/// A part of the test run that needs something a fresh machine may lack.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum Part {
+    /// The DART backend: needs Debian's libdart.
+    Dart,
+    /// The Python package: needs maturin, gymnasium and pytest.
+    Python,
+}
+
+impl Part {
+    fn name(self) -> &'static str {
+        match self {
+            Part::Dart => "dart",
+            Part::Python => "python",
+        }
+    }
+}
+
+/// The install line printed when DART is missing (the README gives the same line).
+pub const DART_INSTALL: &str = "sudo apt-get install -y libdart-dev libdart-utils-urdf-dev";
+
+/// What happened to one stage.
+enum Outcome {
+    Passed { tests: u64 },
+    Skipped { why: String },
+}
+
+/// Parses `--require dart|python|all` flags.
+fn parse_required(args: &[String]) -> Result<Vec<Part>, String> {
+    let mut required = Vec::new();
+    let mut it = args.iter();
+    while let Some(arg) = it.next() {
+        match arg.as_str() {
+            "--require" => {
+                let value = it
+                    .next()
+                    .ok_or("`--require` needs a value: dart, python or all")?;
+                match value.as_str() {
+                    "dart" => required.push(Part::Dart),
+                    "python" => required.push(Part::Python),
+                    "all" => required.extend([Part::Dart, Part::Python]),
+                    other => {
+                        return Err(format!(
+                            "`--require {other}`: unknown part (expected dart, python or all)"
+                        ));
+                    }
+                }
+            }
+            other => return Err(format!("`cargo xtask test`: unknown argument `{other}`")),
+        }
+    }
+    Ok(required)
+}
+
+/// The workspace root (xtask lives one level below it).
+pub fn workspace_root() -> PathBuf {
+    let manifest = Path::new(env!("CARGO_MANIFEST_DIR"));
+    manifest
+        .parent()
+        .map(Path::to_path_buf)
+        .unwrap_or_else(|| manifest.to_path_buf())
+}
+
+/// The package names listed as workspace members that exist on disk.
+pub fn workspace_members(root: &Path) -> Result<Vec<String>, String> {
+    let text = std::fs::read_to_string(root.join("Cargo.toml"))
+        .map_err(|e| format!("cannot read the workspace Cargo.toml: {e}"))?;
+    let manifest: toml::Table =
+        toml::from_str(&text).map_err(|e| format!("the workspace Cargo.toml is invalid: {e}"))?;
+    let members = manifest
+        .get("workspace")
+        .and_then(|w| w.get("members"))
+        .and_then(|m| m.as_array())
+        .ok_or("the workspace Cargo.toml has no [workspace] members list")?;
+    let mut names = Vec::new();
+    for member in members {
+        let dir = member
+            .as_str()
+            .ok_or("a workspace member is not a string")?;
+        let crate_toml = std::fs::read_to_string(root.join(dir).join("Cargo.toml"))
+            .map_err(|e| format!("workspace member `{dir}` has no readable Cargo.toml: {e}"))?;
+        let crate_manifest: toml::Table = toml::from_str(&crate_toml)
+            .map_err(|e| format!("`{dir}/Cargo.toml` is invalid: {e}"))?;
+        let name = crate_manifest
+            .get("package")
+            .and_then(|p| p.get("name"))
+            .and_then(|n| n.as_str())
+            .ok_or_else(|| format!("`{dir}/Cargo.toml` has no package name"))?;
+        names.push(name.to_string());
+    }
+    Ok(names)
+}
+
+/// True when Debian's DART development files are installed.
+fn dart_installed() -> bool {
+    Path::new("/usr/include/dart/config.hpp").exists()
+}
+
+/// Runs `cargo` with `args` in the workspace root, streaming its output, and returns how many
+/// tests passed (summed over every `test result:` line). A failing command is an error.
+fn cargo_test(root: &Path, args: &[&str]) -> Result<u64, String> {
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".to_string());
+    println!("\n$ cargo {}", args.join(" "));
+    let mut child = Command::new(&cargo)
+        .args(args)
+        .current_dir(root)
+        .stdout(Stdio::piped())
+        .spawn()
+        .map_err(|e| format!("cannot start cargo: {e}"))?;
+    let mut passed = 0u64;
+    if let Some(stdout) = child.stdout.take() {
+        for line in BufReader::new(stdout).lines() {
+            let line = line.map_err(|e| format!("reading cargo's output: {e}"))?;
+            println!("{line}");
+            passed += passed_count(&line);
+        }
+    }
+    let status = child
+        .wait()
+        .map_err(|e| format!("waiting for cargo: {e}"))?;
+    if !status.success() {
+        return Err(format!("`cargo {}` failed ({status})", args.join(" ")));
+    }
+    Ok(passed)
+}
+
+/// The number of passed tests on a libtest summary line (`test result: ok. 12 passed; ...`).
+fn passed_count(line: &str) -> u64 {
+    let Some(rest) = line.trim().strip_prefix("test result:") else {
+        return 0;
+    };
+    rest.split(';')
+        .filter_map(|part| part.trim().trim_start_matches("ok.").trim().strip_suffix(" passed"))
+        .filter_map(|n| n.trim().parse::<u64>().ok())
+        .sum()
+}
+
+/// `cargo xtask test`.
+pub fn test(args: &[String]) -> Result<(), String> {
+    let required = parse_required(args)?;
+    let root = workspace_root();
+    let members = workspace_members(&root)?;
+    let has = |name: &str| members.iter().any(|m| m == name);
+    let mut results: Vec<(&str, Outcome)> = Vec::new();
+
+    // Stage 1: every Rust crate that needs nothing but a Rust toolchain (rapier is the backend).
+    let mut args: Vec<&str> = vec!["test", "--workspace", "--locked"];
+    for optional in ["hyq-dart", "hyq-py"] {
+        if has(optional) {
+            args.extend(["--exclude", optional]);
+        }
+    }
+    let tests = cargo_test(&root, &args)?;
+    results.push(("rust workspace (rapier backend)", Outcome::Passed { tests }));
+
+    // Stage 2: the DART backend and everything that runs on it.
+    let dart = if !has("hyq-dart") {
+        Outcome::Skipped {
+            why: "the hyq-dart crate is not in the workspace yet".into(),
+        }
+    } else if !dart_installed() {
+        Outcome::Skipped {
+            why: format!("DART is not installed; to run these tests: {DART_INSTALL}"),
+        }
+    } else {
+        let tests = cargo_test(&root, &["test", "--locked", "-p", "hyq-dart"])?;
+        Outcome::Passed { tests }
+    };
+    results.push((Part::Dart.name(), dart));
+
+    // Stage 3: the Python package.
+    results.push((
+        Part::Python.name(),
+        Outcome::Skipped {
+            why: "the Python package is not in the workspace yet".into(),
+        },
+    ));
+
+    summarize(&results, &required)
+}
+
+/// Prints the summary table and turns a required-but-skipped part or an empty stage into an error.
+fn summarize(results: &[(&str, Outcome)], required: &[Part]) -> Result<(), String> {
+    println!("\n==== cargo xtask test: summary ====");
+    let mut problems = Vec::new();
+    for (stage, outcome) in results {
+        match outcome {
+            Outcome::Passed { tests } => {
+                println!("  {stage:<34} passed  ({tests} tests)");
+                if *tests == 0 {
+                    problems.push(format!("stage `{stage}` ran no test"));
+                }
+            }
+            Outcome::Skipped { why } => {
+                println!("  {stage:<34} NOT RUN: {why}");
+                if required.iter().any(|p| p.name() == *stage) {
+                    problems.push(format!("stage `{stage}` was required but did not run: {why}"));
+                }
+            }
+        }
+    }
+    if problems.is_empty() {
+        Ok(())
+    } else {
+        Err(problems.join("; "))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn counts_passed_tests_on_libtest_summary_lines() {
+        assert_eq!(
+            passed_count("test result: ok. 12 passed; 0 failed; 0 ignored; 0 measured"),
+            12
+        );
+        assert_eq!(passed_count("running 3 tests"), 0);
+        assert_eq!(passed_count("test foo ... ok"), 0);
+    }
+
+    #[test]
+    fn require_flags_parse_and_reject_unknown_parts() {
+        let args = |s: &[&str]| s.iter().map(|a| a.to_string()).collect::<Vec<_>>();
+        assert_eq!(
+            parse_required(&args(&["--require", "all"])),
+            Ok(vec![Part::Dart, Part::Python])
+        );
+        let err = parse_required(&args(&["--require", "matlab"])).unwrap_err();
+        assert!(err.contains("matlab"), "{err}");
+        assert!(parse_required(&args(&["--require"])).is_err());
+    }
+
+    #[test]
+    fn a_required_part_that_did_not_run_fails_the_run() {
+        let results = [(
+            "dart",
+            Outcome::Skipped {
+                why: "not installed".into(),
+            },
+        )];
+        assert!(summarize(&results, &[]).is_ok());
+        let err = summarize(&results, &[Part::Dart]).unwrap_err();
+        assert!(err.contains("dart"), "{err}");
+    }
+
+    #[test]
+    fn a_stage_that_ran_no_test_fails_the_run() {
+        let results = [("rust", Outcome::Passed { tests: 0 })];
+        assert!(summarize(&results, &[]).is_err());
+    }
+}
