@@ -1,0 +1,169 @@
+//! The one `#[cxx::bridge]` of the project: the boundary between Rust and the C++ that owns a DART
+//! world (`include/hyq_dart.h`, `src/hyq_dart.cc`).
+//!
+//! Only plain data crosses: the shared structs below, `f64`/`bool` slices and one opaque handle.
+//! This file is kept small on purpose: editing it re-runs the build script, which recompiles all
+//! C++ of the crate.
+
+// cxx expands this module into `unsafe` FFI glue; the crate's lints deny `unsafe_code`
+// everywhere else.
+#[allow(unsafe_code)]
+#[cxx::bridge(namespace = "hyq_dart")]
+pub(crate) mod ffi {
+    // ---------------------------------------------------------------------------------------
+    // Shared structs: plain data, laid out identically on both sides.
+    // ---------------------------------------------------------------------------------------
+
+    /// How a body hangs from its parent.
+    #[derive(Debug)]
+    enum JointKind {
+        /// Six-DOF floating joint to the world (only the root body).
+        Free,
+        /// One rotational DOF about `BodyDesc::axis`.
+        Revolute,
+        /// Rigidly welded to the parent.
+        Fixed,
+    }
+
+    /// Collision primitive.
+    #[derive(Debug)]
+    enum ShapeKind {
+        /// Box; `size` = half extents (m).
+        Box,
+        /// Sphere; `size[0]` = radius (m).
+        Sphere,
+        /// Capsule along the shape frame's z axis; `size[0]` = radius, `size[1]` = half the
+        /// distance between the cap centres (m).
+        Capsule,
+    }
+
+    /// A rigid transform: translation (m) and unit quaternion (w, x, y, z).
+    #[derive(Debug, Clone, Copy, PartialEq)]
+    struct Pose {
+        translation: [f64; 3],
+        rotation: [f64; 4],
+    }
+
+    /// One rigid body and the joint that attaches it to its parent.
+    #[derive(Debug, Clone)]
+    struct BodyDesc {
+        /// Body name, unique.
+        name: String,
+        /// Index of the parent body in the body list (lower than this body's index), or -1 for
+        /// the root, which must be the first body and have a `Free` joint.
+        parent: i32,
+        joint_kind: JointKind,
+        /// Joint name, unique.
+        joint_name: String,
+        /// Joint frame (= this body's frame at zero joint angle) in the parent body's frame.
+        joint_origin: Pose,
+        /// Rotation axis in this body's frame, unit length (revolute only).
+        axis: [f64; 3],
+        /// Position limits (rad, revolute only), enforced as hard constraints.
+        lower: f64,
+        upper: f64,
+        /// Viscous joint damping (N·m·s/rad, revolute only), handled by DART.
+        damping: f64,
+        /// Mass (kg), > 0.
+        mass: f64,
+        /// Centre of mass in this body's frame (m).
+        com: [f64; 3],
+        /// Inertia tensor about the centre of mass, in this body's axes (kg·m²):
+        /// ixx, iyy, izz, ixy, ixz, iyz.
+        inertia: [f64; 6],
+    }
+
+    /// One collision shape rigidly attached to a body.
+    #[derive(Debug, Clone, Copy)]
+    struct ShapeDesc {
+        /// Index of the body in the body list.
+        body: u32,
+        kind: ShapeKind,
+        size: [f64; 3],
+        /// Shape frame in the body's frame.
+        pose: Pose,
+        /// Index of the tracked link whose contact flag this shape sets, or -1.
+        tracked: i32,
+    }
+
+    /// World-wide settings.
+    #[derive(Debug, Clone, Copy)]
+    struct WorldDesc {
+        /// Physics time step (s), > 0.
+        dt: f64,
+        /// Gravity (m/s²), world frame.
+        gravity: [f64; 3],
+        /// Coulomb friction coefficient of every shape, ground included (≥ 0).
+        friction: f64,
+        /// Restitution coefficient of every shape, ground included (in [0, 1]).
+        restitution: f64,
+        /// The ground is a static box whose top face is the plane z = `ground_height`.
+        ground_height: f64,
+        /// Half the side of the ground box (m), > 0.
+        ground_half_extent: f64,
+        /// Number of tracked links (contact flags).
+        num_tracked: u32,
+    }
+
+    /// Root body state, world frame: pose of the body frame, classical linear velocity of its
+    /// origin and angular velocity.
+    #[derive(Debug, Clone, Copy, PartialEq, Default)]
+    struct BaseState {
+        position: [f64; 3],
+        /// Unit quaternion (w, x, y, z).
+        orientation: [f64; 4],
+        linear_velocity: [f64; 3],
+        angular_velocity: [f64; 3],
+    }
+
+    // ---------------------------------------------------------------------------------------
+    // Rust items exposed to C++: none. C++ never calls back into Rust.
+    // ---------------------------------------------------------------------------------------
+
+    // ---------------------------------------------------------------------------------------
+    // C++ items exposed to Rust: the opaque world handle and its methods. Every function that
+    // can fail returns `Result` (a C++ exception becomes `Err`); the readouts cannot fail.
+    // ---------------------------------------------------------------------------------------
+    unsafe extern "C++" {
+        include!("hyq-dart/include/hyq_dart.h");
+
+        /// One DART world (robot + ground), owned through `UniquePtr`.
+        type Sim;
+
+        /// Builds a world from the description; `Err` names what DART or the description refused.
+        fn new_sim(
+            bodies: &[BodyDesc],
+            shapes: &[ShapeDesc],
+            world: &WorldDesc,
+        ) -> Result<UniquePtr<Sim>>;
+
+        /// Sets root state and actuated-joint positions/velocities (revolute joints in body order)
+        /// and resets everything else to the freshly built state.
+        fn set_state(self: Pin<&mut Sim>, base: &BaseState, q: &[f64], qd: &[f64]) -> Result<()>;
+        /// Stores the actuated-joint torques applied on every following step.
+        fn set_joint_torques(self: Pin<&mut Sim>, tau: &[f64]) -> Result<()>;
+        /// Advances the world by one time step.
+        fn step(self: Pin<&mut Sim>) -> Result<()>;
+
+        /// Actuated-joint positions (rad).
+        fn joint_positions(self: &Sim, out: &mut [f64]);
+        /// Actuated-joint velocities (rad/s).
+        fn joint_velocities(self: &Sim, out: &mut [f64]);
+        /// Root body state.
+        fn base_state(self: &Sim) -> BaseState;
+        /// Per tracked link: ground contact in the last step.
+        fn contacts(self: &Sim, out: &mut [bool]);
+        /// Contact points in the last step.
+        fn num_contacts(self: &Sim) -> usize;
+        /// Simulated time since the last `set_state` (s).
+        fn time(self: &Sim) -> f64;
+    }
+}
+
+// SAFETY: a `Sim` owns its whole DART world (skeletons, shapes, solver, detector); no two `Sim`s
+// share mutable state, and DART's process-wide settings (contact and joint-limit constraint
+// parameters) are only read. Moving a `Sim` to another thread is therefore sound. It is not
+// `Sync`: DART updates cached kinematics inside `const` getters, so two threads must never read
+// the same `Sim` at once.
+#[allow(unsafe_code)]
+unsafe impl Send for ffi::Sim {}

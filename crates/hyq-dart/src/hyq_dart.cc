@@ -1,0 +1,447 @@
+// The DART world behind `hyq_dart::Sim`: built from a plain-data robot
+// description (not from DART's URDF loader, which drops <capsule>), stepped
+// with the Bullet collision detector.
+//
+// Granular DART headers only: <dart/dart.hpp> needs an extra package and
+// triples the compile time of this file.
+#include "hyq-dart/include/hyq_dart.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <dart/collision/CollisionResult.hpp>
+#include <dart/collision/bullet/BulletCollisionDetector.hpp>
+#include <dart/constraint/ConstraintSolver.hpp>
+#include <dart/dynamics/BodyNode.hpp>
+#include <dart/dynamics/BoxShape.hpp>
+#include <dart/dynamics/CapsuleShape.hpp>
+#include <dart/dynamics/FreeJoint.hpp>
+#include <dart/dynamics/Inertia.hpp>
+#include <dart/dynamics/RevoluteJoint.hpp>
+#include <dart/dynamics/ShapeNode.hpp>
+#include <dart/dynamics/Skeleton.hpp>
+#include <dart/dynamics/SphereShape.hpp>
+#include <dart/dynamics/WeldJoint.hpp>
+#include <dart/simulation/World.hpp>
+
+#include "hyq-dart/src/bridge.rs.h"
+
+// Debian's libdart is compiled for baseline x86-64, where Eigen aligns
+// fixed-size objects to 16 bytes. Eigen objects built here with another
+// alignment (AVX: 32, AVX-512: 64) and freed inside libdart crash at once
+// ("free(): invalid pointer"), so refuse to build that way.
+#if defined(__AVX__)
+#error "hyq-dart: compile the DART bridge for baseline x86-64 (no -mavx/-march=native): Debian's libdart is built that way and Eigen's alignment must match"
+#endif
+static_assert(EIGEN_MAX_STATIC_ALIGN_BYTES == 16,
+              "hyq-dart: Eigen's static alignment must be 16 bytes to match "
+              "Debian's libdart (baseline x86-64); do not build with AVX flags");
+
+namespace hyq_dart {
+
+namespace {
+
+using dart::dynamics::BodyNode;
+using dart::dynamics::ShapeNode;
+
+Eigen::Isometry3d to_isometry(const Pose& pose, const std::string& what) {
+  const auto& r = pose.rotation;
+  Eigen::Quaterniond quat(r[0], r[1], r[2], r[3]);
+  const double norm = quat.norm();
+  if (!std::isfinite(norm) || std::abs(norm - 1.0) > 1e-6) {
+    throw std::invalid_argument(what + ": rotation quaternion must have unit length, got norm " +
+                                std::to_string(norm));
+  }
+  for (double t : pose.translation) {
+    if (!std::isfinite(t)) {
+      throw std::invalid_argument(what + ": translation must be finite");
+    }
+  }
+  quat.normalize();
+  Eigen::Isometry3d tf = Eigen::Isometry3d::Identity();
+  tf.linear() = quat.toRotationMatrix();
+  tf.translation() = Eigen::Vector3d(pose.translation[0], pose.translation[1],
+                                     pose.translation[2]);
+  return tf;
+}
+
+void require(bool ok, const std::string& message) {
+  if (!ok) {
+    throw std::invalid_argument(message);
+  }
+}
+
+template <typename T>
+T* require_ptr(T* ptr, const std::string& what) {
+  if (ptr == nullptr) {
+    throw std::runtime_error("DART returned a null " + what);
+  }
+  return ptr;
+}
+
+bool finite3(const std::array<double, 3>& v) {
+  return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
+}
+
+}  // namespace
+
+struct Sim::Impl {
+  dart::simulation::WorldPtr world;
+  dart::dynamics::SkeletonPtr robot;
+  dart::dynamics::SkeletonPtr ground;
+  // The root body and its floating joint.
+  BodyNode* root = nullptr;
+  dart::dynamics::FreeJoint* root_joint = nullptr;
+  // Actuated (revolute) joints in description order; the index of each in
+  // the skeleton's generalized coordinates.
+  std::vector<dart::dynamics::Joint*> actuated;
+  std::vector<std::size_t> actuated_dof;
+  // Collision shapes that set a contact flag, and the flag they set.
+  std::vector<std::pair<const ShapeNode*, std::size_t>> tracked_shapes;
+  std::size_t num_tracked = 0;
+  // Torques applied before every step (DART zeroes forces after a step).
+  Eigen::VectorXd torques;
+  // Scratch vectors for set_state, sized once.
+  Eigen::VectorXd positions;
+  Eigen::VectorXd velocities;
+
+  // Gives the constraint solver a new Bullet detector. Bullet keeps contact
+  // manifolds and broadphase pairs between steps; a new detector drops them,
+  // which set_state needs to be bitwise equal to a freshly built world.
+  void install_fresh_detector() {
+    auto detector = dart::collision::BulletCollisionDetector::create();
+    if (!detector) {
+      throw std::runtime_error("DART returned a null BulletCollisionDetector");
+    }
+    world->getConstraintSolver()->setCollisionDetector(detector);
+  }
+};
+
+Sim::Sim(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Sim::~Sim() = default;
+
+std::unique_ptr<Sim> new_sim(rust::Slice<const BodyDesc> bodies,
+                             rust::Slice<const ShapeDesc> shapes,
+                             const WorldDesc& desc) {
+  using namespace dart::dynamics;
+
+  require(desc.dt > 0.0 && std::isfinite(desc.dt),
+          "world.dt must be finite and > 0, got " + std::to_string(desc.dt));
+  require(finite3(desc.gravity), "world.gravity must be finite");
+  require(desc.friction >= 0.0 && std::isfinite(desc.friction),
+          "world.friction must be finite and >= 0, got " + std::to_string(desc.friction));
+  require(desc.restitution >= 0.0 && desc.restitution <= 1.0,
+          "world.restitution must be in [0, 1], got " + std::to_string(desc.restitution));
+  require(std::isfinite(desc.ground_height), "world.ground_height must be finite");
+  require(desc.ground_half_extent > 0.0 && std::isfinite(desc.ground_half_extent),
+          "world.ground_half_extent must be finite and > 0");
+  require(bodies.size() > 0, "the robot needs at least one body");
+
+  auto impl = std::make_unique<Sim::Impl>();
+  impl->num_tracked = desc.num_tracked;
+  impl->robot = Skeleton::create("robot");
+  require_ptr(impl->robot.get(), "robot Skeleton");
+
+  std::vector<BodyNode*> nodes;
+  nodes.reserve(bodies.size());
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const BodyDesc& b = bodies[i];
+    const std::string name(b.name);
+    const std::string joint_name(b.joint_name);
+    const std::string what = "body '" + name + "' (joint '" + joint_name + "')";
+
+    require(b.mass > 0.0 && std::isfinite(b.mass),
+            what + ": mass must be finite and > 0, got " + std::to_string(b.mass));
+    require(finite3(b.com), what + ": centre of mass must be finite");
+    for (double v : b.inertia) {
+      require(std::isfinite(v), what + ": inertia must be finite");
+    }
+
+    BodyNode* parent = nullptr;
+    if (i == 0) {
+      require(b.parent == -1 && b.joint_kind == JointKind::Free,
+              what + ": the first body must be the root (parent -1, free joint)");
+    } else {
+      require(b.parent >= 0 && static_cast<std::size_t>(b.parent) < i,
+              what + ": parent index " + std::to_string(b.parent) +
+                  " must name an earlier body");
+      require(b.joint_kind != JointKind::Free,
+              what + ": only the root body may have a free joint");
+      parent = nodes[static_cast<std::size_t>(b.parent)];
+    }
+
+    BodyNode::Properties body_props;
+    body_props.mName = name;
+    BodyNode* node = nullptr;
+    Joint* joint = nullptr;
+    if (b.joint_kind == JointKind::Free) {
+      FreeJoint::Properties props;
+      props.mName = joint_name;
+      auto pair = impl->robot->createJointAndBodyNodePair<FreeJoint>(
+          parent, props, body_props);
+      impl->root_joint = require_ptr(pair.first, "FreeJoint for " + what);
+      joint = pair.first;
+      node = pair.second;
+    } else if (b.joint_kind == JointKind::Revolute) {
+      Eigen::Vector3d axis(b.axis[0], b.axis[1], b.axis[2]);
+      require(std::isfinite(axis.norm()) && std::abs(axis.norm() - 1.0) < 1e-6,
+              what + ": axis must have unit length");
+      require(std::isfinite(b.lower) && std::isfinite(b.upper) && b.lower < b.upper,
+              what + ": limits must be finite with lower < upper, got [" +
+                  std::to_string(b.lower) + ", " + std::to_string(b.upper) + "]");
+      require(b.damping >= 0.0 && std::isfinite(b.damping),
+              what + ": damping must be finite and >= 0");
+      RevoluteJoint::Properties props;
+      props.mName = joint_name;
+      props.mAxis = axis;
+      props.mT_ParentBodyToJoint = to_isometry(b.joint_origin, what + " joint origin");
+      props.mT_ChildBodyToJoint = Eigen::Isometry3d::Identity();
+      auto pair = impl->robot->createJointAndBodyNodePair<RevoluteJoint>(
+          parent, props, body_props);
+      joint = require_ptr(pair.first, "RevoluteJoint for " + what);
+      node = pair.second;
+      joint->setPositionLowerLimit(0, b.lower);
+      joint->setPositionUpperLimit(0, b.upper);
+      // Position limits are hard constraints, as in rapier's multibody
+      // limits. In DART 6.12 the same switch also enforces the velocity
+      // limits; the shared actuator already handles those in Rust for every
+      // backend, so DART's are lifted to infinity here.
+      joint->setVelocityLowerLimit(0, -std::numeric_limits<double>::infinity());
+      joint->setVelocityUpperLimit(0, std::numeric_limits<double>::infinity());
+      joint->setPositionLimitEnforced(true);
+      joint->setDampingCoefficient(0, b.damping);
+      joint->setActuatorType(Joint::FORCE);
+      impl->actuated.push_back(joint);
+    } else if (b.joint_kind == JointKind::Fixed) {
+      WeldJoint::Properties props;
+      props.mName = joint_name;
+      props.mT_ParentBodyToJoint = to_isometry(b.joint_origin, what + " joint origin");
+      props.mT_ChildBodyToJoint = Eigen::Isometry3d::Identity();
+      auto pair = impl->robot->createJointAndBodyNodePair<WeldJoint>(
+          parent, props, body_props);
+      joint = require_ptr(pair.first, "WeldJoint for " + what);
+      node = pair.second;
+    } else {
+      throw std::invalid_argument(what + ": unknown joint kind");
+    }
+    require_ptr(node, "BodyNode for " + what);
+    require(joint->getName() == joint_name,
+            what + ": joint name is not unique (DART renamed it to '" +
+                joint->getName() + "')");
+    require(node->getName() == name,
+            what + ": body name is not unique (DART renamed it to '" +
+                node->getName() + "')");
+
+    const auto& in = b.inertia;
+    node->setInertia(Inertia(b.mass, b.com[0], b.com[1], b.com[2], in[0], in[1], in[2],
+                             in[3], in[4], in[5]));
+    nodes.push_back(node);
+  }
+  impl->root = nodes.front();
+  for (auto* joint : impl->actuated) {
+    impl->actuated_dof.push_back(joint->getIndexInSkeleton(0));
+  }
+
+  for (std::size_t i = 0; i < shapes.size(); ++i) {
+    const ShapeDesc& s = shapes[i];
+    const std::string what = "shape " + std::to_string(i);
+    require(s.body < nodes.size(),
+            what + ": body index " + std::to_string(s.body) + " out of range");
+    require(s.tracked >= -1 && s.tracked < static_cast<int>(desc.num_tracked),
+            what + ": tracked index " + std::to_string(s.tracked) + " out of range");
+    std::shared_ptr<Shape> shape;
+    if (s.kind == ShapeKind::Box) {
+      require(s.size[0] > 0 && s.size[1] > 0 && s.size[2] > 0 && finite3(s.size),
+              what + ": box half extents must be finite and > 0");
+      shape = std::make_shared<BoxShape>(
+          2.0 * Eigen::Vector3d(s.size[0], s.size[1], s.size[2]));
+    } else if (s.kind == ShapeKind::Sphere) {
+      require(s.size[0] > 0 && std::isfinite(s.size[0]),
+              what + ": sphere radius must be finite and > 0");
+      shape = std::make_shared<SphereShape>(s.size[0]);
+    } else if (s.kind == ShapeKind::Capsule) {
+      require(s.size[0] > 0 && std::isfinite(s.size[0]) && s.size[1] >= 0 &&
+                  std::isfinite(s.size[1]),
+              what + ": capsule radius must be > 0 and half length >= 0");
+      // DART's capsule height is the distance between the cap centres.
+      shape = std::make_shared<CapsuleShape>(s.size[0], 2.0 * s.size[1]);
+    } else {
+      throw std::invalid_argument(what + ": unknown shape kind");
+    }
+    ShapeNode* sn = nodes[s.body]->createShapeNodeWith<CollisionAspect, DynamicsAspect>(shape);
+    require_ptr(sn, "ShapeNode for " + what);
+    sn->setRelativeTransform(to_isometry(s.pose, what + " pose"));
+    sn->getDynamicsAspect()->setFrictionCoeff(desc.friction);
+    sn->getDynamicsAspect()->setRestitutionCoeff(desc.restitution);
+    if (s.tracked >= 0) {
+      impl->tracked_shapes.emplace_back(sn, static_cast<std::size_t>(s.tracked));
+    }
+  }
+  // Only robot-ground pairs are checked (DART's default): the robot's own
+  // shapes overlap near the joints by design.
+  impl->robot->disableSelfCollisionCheck();
+
+  impl->ground = Skeleton::create("ground");
+  require_ptr(impl->ground.get(), "ground Skeleton");
+  auto ground_pair = impl->ground->createJointAndBodyNodePair<WeldJoint>();
+  require_ptr(ground_pair.second, "ground BodyNode");
+  const double half = desc.ground_half_extent;
+  ShapeNode* ground_shape =
+      ground_pair.second->createShapeNodeWith<CollisionAspect, DynamicsAspect>(
+          std::make_shared<BoxShape>(Eigen::Vector3d(2.0 * half, 2.0 * half, 1.0)));
+  require_ptr(ground_shape, "ground ShapeNode");
+  ground_shape->getDynamicsAspect()->setFrictionCoeff(desc.friction);
+  ground_shape->getDynamicsAspect()->setRestitutionCoeff(desc.restitution);
+  Eigen::Isometry3d ground_tf = Eigen::Isometry3d::Identity();
+  ground_tf.translation().z() = desc.ground_height - 0.5;  // top face at ground_height
+  ground_pair.first->setTransformFromParentBodyNode(ground_tf);
+  impl->ground->setMobile(false);
+
+  impl->world = dart::simulation::World::create("hyq");
+  require_ptr(impl->world.get(), "World");
+  impl->world->setGravity(Eigen::Vector3d(desc.gravity[0], desc.gravity[1], desc.gravity[2]));
+  impl->world->setTimeStep(desc.dt);
+  impl->world->addSkeleton(impl->robot);
+  impl->world->addSkeleton(impl->ground);
+
+  const auto ndofs = impl->robot->getNumDofs();
+  impl->torques = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(impl->actuated.size()));
+  impl->positions = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(ndofs));
+  impl->velocities = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(ndofs));
+
+  // Start from the description's zero pose, exactly as set_state would.
+  const std::vector<double> zeros(impl->actuated.size(), 0.0);
+  BaseState base{};
+  base.orientation = {1.0, 0.0, 0.0, 0.0};
+  auto sim = std::make_unique<Sim>(std::move(impl));
+  sim->set_state(base, rust::Slice<const double>(zeros.data(), zeros.size()),
+                 rust::Slice<const double>(zeros.data(), zeros.size()));
+  return sim;
+}
+
+void Sim::set_state(const BaseState& base, rust::Slice<const double> q,
+                    rust::Slice<const double> qd) {
+  Impl& s = *impl_;
+  const std::size_t n = s.actuated.size();
+  if (q.size() != n || qd.size() != n) {
+    throw std::invalid_argument("set_state: expected " + std::to_string(n) +
+                                " joint positions and velocities, got " +
+                                std::to_string(q.size()) + " and " + std::to_string(qd.size()));
+  }
+  Pose pose{base.position, base.orientation};
+  const Eigen::Isometry3d tf = to_isometry(pose, "set_state base pose");
+  require(finite3(base.linear_velocity) && finite3(base.angular_velocity),
+          "set_state: base velocities must be finite");
+  for (std::size_t i = 0; i < n; ++i) {
+    require(std::isfinite(q[i]) && std::isfinite(qd[i]),
+            "set_state: joint " + std::to_string(i) + " position/velocity must be finite");
+  }
+
+  // The free joint's coordinates: [rotation vector, translation] and the
+  // body-frame twist [angular; linear] of the root body's origin.
+  s.positions.setZero();
+  s.velocities.setZero();
+  s.positions.head<6>() = dart::dynamics::FreeJoint::convertToPositions(tf);
+  const Eigen::Matrix3d rt = tf.linear().transpose();
+  s.velocities.segment<3>(0) =
+      rt * Eigen::Vector3d(base.angular_velocity[0], base.angular_velocity[1],
+                           base.angular_velocity[2]);
+  s.velocities.segment<3>(3) =
+      rt * Eigen::Vector3d(base.linear_velocity[0], base.linear_velocity[1],
+                           base.linear_velocity[2]);
+  for (std::size_t i = 0; i < n; ++i) {
+    s.positions[static_cast<Eigen::Index>(s.actuated_dof[i])] = q[i];
+    s.velocities[static_cast<Eigen::Index>(s.actuated_dof[i])] = qd[i];
+  }
+
+  auto& robot = *s.robot;
+  robot.setPositions(s.positions);
+  robot.setVelocities(s.velocities);
+  robot.resetAccelerations();
+  robot.resetGeneralizedForces();
+  robot.resetCommands();
+  robot.clearExternalForces();
+  robot.clearInternalForces();
+  robot.clearConstraintImpulses();
+  s.torques.setZero();
+  s.world->reset();
+  s.world->getConstraintSolver()->clearLastCollisionResult();
+  s.install_fresh_detector();
+}
+
+void Sim::set_joint_torques(rust::Slice<const double> tau) {
+  Impl& s = *impl_;
+  if (tau.size() != s.actuated.size()) {
+    throw std::invalid_argument("set_joint_torques: expected " +
+                                std::to_string(s.actuated.size()) + " torques, got " +
+                                std::to_string(tau.size()));
+  }
+  for (std::size_t i = 0; i < tau.size(); ++i) {
+    s.torques[static_cast<Eigen::Index>(i)] = tau[i];
+  }
+}
+
+void Sim::step() {
+  Impl& s = *impl_;
+  for (std::size_t i = 0; i < s.actuated.size(); ++i) {
+    s.actuated[i]->setForce(0, s.torques[static_cast<Eigen::Index>(i)]);
+  }
+  s.world->step();
+}
+
+void Sim::joint_positions(rust::Slice<double> out) const {
+  const std::size_t n = std::min(out.size(), impl_->actuated.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    out[i] = impl_->actuated[i]->getPosition(0);
+  }
+}
+
+void Sim::joint_velocities(rust::Slice<double> out) const {
+  const std::size_t n = std::min(out.size(), impl_->actuated.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    out[i] = impl_->actuated[i]->getVelocity(0);
+  }
+}
+
+BaseState Sim::base_state() const {
+  const BodyNode* root = impl_->root;
+  const Eigen::Isometry3d& tf = root->getWorldTransform();
+  const Eigen::Quaterniond quat(tf.linear());
+  const Eigen::Vector3d v = root->getLinearVelocity();
+  const Eigen::Vector3d w = root->getAngularVelocity();
+  BaseState out{};
+  out.position = {tf.translation().x(), tf.translation().y(), tf.translation().z()};
+  out.orientation = {quat.w(), quat.x(), quat.y(), quat.z()};
+  out.linear_velocity = {v.x(), v.y(), v.z()};
+  out.angular_velocity = {w.x(), w.y(), w.z()};
+  return out;
+}
+
+void Sim::contacts(rust::Slice<bool> out) const {
+  for (auto& flag : out) {
+    flag = false;
+  }
+  const auto& result = impl_->world->getLastCollisionResult();
+  if (!result.isCollision()) {
+    return;
+  }
+  for (const auto& [shape, link] : impl_->tracked_shapes) {
+    if (link < out.size() && result.inCollision(shape)) {
+      out[link] = true;
+    }
+  }
+}
+
+std::size_t Sim::num_contacts() const {
+  return impl_->world->getLastCollisionResult().getNumContacts();
+}
+
+double Sim::time() const { return impl_->world->getTime(); }
+
+}  // namespace hyq_dart
