@@ -62,8 +62,9 @@ const fn row(
     }
 }
 
-/// The spec's §3 table verbatim: 39 rows of index, name, min, max and the estimated-range flag.
-pub const SPEC_TABLE: [ObservationRow; 39] = [
+/// The spec's §3 table verbatim: 39 rows of index, name, min, max and the estimated-range flag
+/// (a `static`, so that every reader borrows the one copy).
+pub static SPEC_TABLE: [ObservationRow; 39] = [
     row(0, "lf_haa_angle", -1.22173, 0.436332, false),
     row(1, "lf_hfe_angle", -0.872665, 1.22173, false),
     row(2, "lf_kfe_angle", -2.44346, -0.349066, false),
