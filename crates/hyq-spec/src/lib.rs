@@ -9,9 +9,8 @@
 //!
 //! The spec is `000_fed6b28d2b6c7065.txt`; where it is ambiguous or contradicts itself the
 //! project follows its rulings. Every place the code departs from the printed spec, or fills a
-//! gap in it, is listed with its reason and the test that shows it in
-//! [docs/spec-deviations.md](https://example.invalid/hyq-env/blob/main/docs/spec-deviations.md)
-//! (`docs/spec-deviations.md` in the repository).
+//! gap in it, is listed with its reason and the test that shows it in the repository's
+//! `docs/spec-deviations.md`, which these docs include as [`spec_deviations`].
 //!
 //! # Modules and spec sections
 //!
@@ -28,6 +27,7 @@
 //! | [`termination`] | §6 | reached, joint limit, fell, timeout; [`Terminations`] |
 //! | [`step`] | §4–§6 composed | [`EpisodeRules::evaluate_step`] |
 //! | [`printed`] | eqs. (2), (4), §6.2 | the printed forms the rulings replace (tests only) |
+//! | [`spec_deviations`] | all | every departure from the printed spec, why, and its test |
 //!
 //! # Example
 //!
@@ -72,6 +72,11 @@ pub mod reward;
 pub mod robot;
 pub mod step;
 pub mod termination;
+
+/// The project's page of deviations from the printed spec (`docs/spec-deviations.md`), included
+/// here so that it reads beside the code it describes.
+#[doc = include_str!("../../../docs/spec-deviations.md")]
+pub mod spec_deviations {}
 
 /// The linear-algebra crate of this API's positions and orientations, re-exported so that
 /// callers use the same version.
