@@ -17,7 +17,8 @@
 //!
 //! In TOML every field is optional (a missing field takes its default), unknown fields are
 //! rejected, and the three reward scalings take a number or the string `"off"`:
-//! `exp_rew_scaling = "off"` is how to unset k_exp, whose default is set, since TOML has no null.
+//! `exp_rew_scaling = "off"` is how to unset k_exp, whose default is set, since TOML has no null
+//! (formats that have one, such as JSON, also accept `null`).
 //! Deserialising validates every value; so does [`TaskConfig::validate`], which
 //! [`crate::EpisodeRules::new`] runs on any configuration built in code. An invalid value is an
 //! error naming the field and the value.
@@ -267,6 +268,13 @@ impl<'de> Deserialize<'de> for Scaling {
             }
             fn visit_u64<E: de::Error>(self, v: u64) -> Result<Scaling, E> {
                 Ok(Scaling(Some(v as f64)))
+            }
+            // Formats with a null (JSON, Python's None through a binding) may unset with it too.
+            fn visit_unit<E: de::Error>(self) -> Result<Scaling, E> {
+                Ok(Scaling(None))
+            }
+            fn visit_none<E: de::Error>(self) -> Result<Scaling, E> {
+                Ok(Scaling(None))
             }
             fn visit_str<E: de::Error>(self, v: &str) -> Result<Scaling, E> {
                 if v == OFF {

@@ -73,6 +73,24 @@ fn off_unsets_a_scaling_and_numbers_set_it() {
 }
 
 #[test]
+fn json_null_also_unsets_a_scaling() {
+    let c: Result<TaskConfig, _> =
+        serde_json::from_str(r#"{"exp_rew_scaling": null, "base_rew_scaling": 1}"#);
+    let c = c.map_err(|e| e.to_string());
+    assert_eq!(
+        c,
+        Ok(TaskConfig {
+            exp_rew_scaling: None,
+            base_rew_scaling: Some(1.0),
+            ..TaskConfig::default()
+        })
+    );
+    let e: Result<TaskConfig, _> = serde_json::from_str(r#"{"accepted_error": -1.0}"#);
+    let message = e.err().map(|e| e.to_string()).unwrap_or_default();
+    assert!(message.contains("accepted_error = -1"), "{message}");
+}
+
+#[test]
 fn the_height_penalty_is_a_table_of_three_fields() {
     let text = "[height_penalty]\nnominal_height_m = 0.62\ntolerance_m = 0.1\nrate_per_m = 2.0\n";
     let expected = HeightPenalty {

@@ -44,14 +44,13 @@ fn check_spans(spans: &[&str]) -> usize {
                 check_test_exists(f, name);
                 checked += 1;
             }
-        } else if let Some(f) = file {
-            if span
+        } else if let Some(f) = file
+            && span
                 .chars()
                 .all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_')
-            {
-                check_test_exists(f, span);
-                checked += 1;
-            }
+        {
+            check_test_exists(f, span);
+            checked += 1;
         }
     }
     checked

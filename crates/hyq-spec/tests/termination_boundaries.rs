@@ -54,6 +54,46 @@ fn face_offset(eps: f64, kind: u8, negative: bool) -> f64 {
     if negative { -o } else { o }
 }
 
+/// The §6.2 test at and around its two edges θ_min + ε and θ_max − ε, and at `theta` (any angle).
+fn check_joint_limit(range: JointRange, eps: f64, theta: f64) {
+    let (low_edge, high_edge) = (range.lower() + eps, range.upper() - eps);
+    // At the edges and beyond: reached.
+    assert_eq!(joint_at_limit(low_edge, range, eps), Some(LimitSide::Lower));
+    assert_eq!(
+        joint_at_limit(low_edge - 1e-3, range, eps),
+        Some(LimitSide::Lower)
+    );
+    assert_eq!(
+        joint_at_limit(high_edge, range, eps),
+        Some(LimitSide::Upper)
+    );
+    assert_eq!(
+        joint_at_limit(high_edge + 1e-3, range, eps),
+        Some(LimitSide::Upper)
+    );
+    // One float inside either edge: not reached.
+    assert_eq!(joint_at_limit(low_edge.next_up(), range, eps), None);
+    assert_eq!(joint_at_limit(high_edge.next_down(), range, eps), None);
+    // Anywhere: reached exactly outside the open interval between the edges.
+    let expected = if theta <= low_edge {
+        Some(LimitSide::Lower)
+    } else if theta >= high_edge {
+        Some(LimitSide::Upper)
+    } else {
+        None
+    };
+    assert_eq!(
+        joint_at_limit(theta, range, eps),
+        expected,
+        "θ = {theta}, range {range:?}, ε = {eps}"
+    );
+}
+
+/// timeout ⇔ t ≥ t_max.
+fn check_timeout(t: u64, t_max: u64) {
+    assert_eq!(timed_out(t, t_max), t >= t_max, "t = {t}, t_max = {t_max}");
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 2048, ..ProptestConfig::default() })]
 
@@ -90,25 +130,12 @@ proptest! {
             (-3.0f64..3.0, 0.05f64..3.0).prop_map(|(lo, width)| (lo, lo + width)),
         ],
         eps in prop_oneof![Just(0.01), Just(0.0), 0.0f64..0.02],
-        inside in 0.0f64..=1.0,
+        fraction in prop_oneof![0.0f64..=1.0, -0.1f64..1.1],
     ) {
         let (lower, upper) = range;
         let range = JointRange::new(lower, upper).map_err(|e| TestCaseError::fail(e.to_string()))?;
-        let (low_edge, high_edge) = (lower + eps, upper - eps);
-        prop_assume!(low_edge < high_edge);
-        // At the edges and beyond: reached.
-        prop_assert_eq!(joint_at_limit(low_edge, range, eps), Some(LimitSide::Lower));
-        prop_assert_eq!(joint_at_limit(low_edge - 1e-3, range, eps), Some(LimitSide::Lower));
-        prop_assert_eq!(joint_at_limit(high_edge, range, eps), Some(LimitSide::Upper));
-        prop_assert_eq!(joint_at_limit(high_edge + 1e-3, range, eps), Some(LimitSide::Upper));
-        // One float inside either edge: not reached.
-        prop_assert_eq!(joint_at_limit(low_edge.next_up(), range, eps), None);
-        prop_assert_eq!(joint_at_limit(high_edge.next_down(), range, eps), None);
-        // Anywhere strictly between the edges: not reached.
-        let theta = low_edge + inside * (high_edge - low_edge);
-        if theta > low_edge && theta < high_edge {
-            prop_assert_eq!(joint_at_limit(theta, range, eps), None);
-        }
+        prop_assume!(lower + eps < upper - eps);
+        check_joint_limit(range, eps, lower + fraction * (upper - lower));
     }
 
     #[test]
@@ -125,10 +152,10 @@ proptest! {
     }
 
     #[test]
-    fn timeout_is_t_at_least_t_max(t_max in 1u64..10_000, below in 1u64..10_000) {
-        prop_assert!(timed_out(t_max, t_max));
-        prop_assert!(timed_out(t_max + below, t_max));
-        prop_assert!(!timed_out(t_max.saturating_sub(below), t_max));
+    fn timeout_is_t_at_least_t_max(t_max in 1u64..10_000, offset in -3i64..=3, t in 0u64..20_000) {
+        check_timeout(t_max.saturating_add_signed(offset), t_max);
+        check_timeout(t, t_max);
+        prop_assert!(timed_out(t_max, t_max) && !timed_out(t_max - 1, t_max));
     }
 
     #[test]
