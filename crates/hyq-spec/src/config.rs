@@ -158,7 +158,8 @@ fn check(
     ok: bool,
     expected: &'static str,
 ) -> Result<(), ConfigError> {
-    // NaN fails every comparison, so `ok` is false for it; the explicit test documents that.
+    // Every caller's `ok` is false for NaN as well (NaN fails every comparison and `is_finite`);
+    // testing it here too means a future range written carelessly cannot let NaN through.
     if ok && !value.is_nan() {
         Ok(())
     } else {
