@@ -1,0 +1,328 @@
+//! The physics seam: the [`Backend`] trait every simulator implements, and the plain data that
+//! crosses it ([`PhysicsParams`], [`RobotState`], [`TrunkState`]).
+//!
+//! A backend simulates one robot ([`RobotModel`]) on flat ground at z = 0 (world frame: x
+//! forward, y left, z up). It advances one physics sub-step at a time under joint torques the
+//! caller computes (the shared actuator, [`crate::actuator`]), and reports joint state, trunk
+//! state and which tracked bodies (feet, trunk) touched the ground during the last sub-step.
+//!
+//! Input policy: inputs that may come from users, files or policies (states, torques,
+//! parameters) are validated, and bad ones are errors naming the value. Output buffers of the
+//! wrong length are a programming error and panic, like `copy_from_slice`.
+
+use std::fmt::Debug;
+use std::sync::Arc;
+
+use nalgebra::{Isometry3, Vector3};
+use serde::de::DeserializeOwned;
+use serde::{Deserialize, Serialize};
+
+use crate::error::PhysicsError;
+use crate::model::RobotModel;
+
+/// Engine-independent physics settings (`[physics]` in an environment's TOML).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct PhysicsParams {
+    /// Length of one physics sub-step (s) (default: 0.001).
+    pub dt: f64,
+    /// Gravity in the world frame (m/s²) (default: [0, 0, -9.81]).
+    pub gravity: [f64; 3],
+    /// Coulomb friction coefficient between any robot shape and the ground (default: 1.0, the
+    /// upstream foot `lateral_friction` and Gazebo `mu`). Contacts are inelastic.
+    pub ground_friction: f64,
+    /// A tracked shape within this distance (m) of the ground, or penetrating it, counts as
+    /// touching it even when it carries no load (default: 0.001).
+    pub contact_distance: f64,
+}
+
+impl Default for PhysicsParams {
+    fn default() -> Self {
+        Self {
+            dt: 0.001,
+            gravity: [0.0, 0.0, -9.81],
+            ground_friction: 1.0,
+            contact_distance: 0.001,
+        }
+    }
+}
+
+impl PhysicsParams {
+    /// Checks every field; the error names the first invalid one.
+    pub fn validate(&self) -> Result<(), PhysicsError> {
+        let bad = |field: &'static str, value: String, reason: &'static str| {
+            Err(PhysicsError::InvalidParam {
+                field,
+                value,
+                reason,
+            })
+        };
+        if !(self.dt.is_finite() && self.dt > 0.0 && self.dt <= 0.1) {
+            return bad("dt", self.dt.to_string(), "must be in (0, 0.1] s");
+        }
+        if !self.gravity.iter().all(|g| g.is_finite()) {
+            return bad("gravity", format!("{:?}", self.gravity), "must be finite");
+        }
+        if !(self.ground_friction.is_finite() && self.ground_friction >= 0.0) {
+            return bad(
+                "ground_friction",
+                self.ground_friction.to_string(),
+                "must be finite and non-negative",
+            );
+        }
+        if !(self.contact_distance.is_finite() && self.contact_distance >= 0.0) {
+            return bad(
+                "contact_distance",
+                self.contact_distance.to_string(),
+                "must be finite and non-negative (m)",
+            );
+        }
+        Ok(())
+    }
+}
+
+/// Pose and velocity of the trunk, world frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TrunkState {
+    /// Pose of the trunk's URDF link frame (not its centre of mass).
+    pub pose: Isometry3<f64>,
+    /// Linear velocity of the trunk frame's origin (m/s).
+    pub linvel: Vector3<f64>,
+    /// Angular velocity (rad/s).
+    pub angvel: Vector3<f64>,
+}
+
+impl TrunkState {
+    /// The trunk at rest at `pose`.
+    pub fn at_rest(pose: Isometry3<f64>) -> Self {
+        Self {
+            pose,
+            linvel: Vector3::zeros(),
+            angvel: Vector3::zeros(),
+        }
+    }
+}
+
+/// The full state of the robot: trunk pose and velocity plus joint angles and speeds.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RobotState {
+    /// The trunk (the free-floating root).
+    pub trunk: TrunkState,
+    /// Joint angles (rad), profile order.
+    pub q: Vec<f64>,
+    /// Joint speeds (rad/s), profile order.
+    pub qd: Vec<f64>,
+}
+
+impl RobotState {
+    /// The first non-finite value, named, if any.
+    pub fn first_non_finite(&self, model: &RobotModel) -> Option<(String, f64)> {
+        let t = &self.trunk;
+        let q = t.pose.rotation.quaternion();
+        let named: [(&str, f64); 13] = [
+            ("trunk position x", t.pose.translation.x),
+            ("trunk position y", t.pose.translation.y),
+            ("trunk position z", t.pose.translation.z),
+            ("trunk orientation w", q.w),
+            ("trunk orientation x", q.i),
+            ("trunk orientation y", q.j),
+            ("trunk orientation z", q.k),
+            ("trunk linear velocity x", t.linvel.x),
+            ("trunk linear velocity y", t.linvel.y),
+            ("trunk linear velocity z", t.linvel.z),
+            ("trunk angular velocity x", t.angvel.x),
+            ("trunk angular velocity y", t.angvel.y),
+            ("trunk angular velocity z", t.angvel.z),
+        ];
+        if let Some((name, v)) = named.iter().find(|(_, v)| !v.is_finite()) {
+            return Some(((*name).to_owned(), *v));
+        }
+        let joint_name = |i: usize| model.joints().get(i).map_or("?", |j| j.name.as_str());
+        if let Some((i, v)) = self.q.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+            return Some((format!("angle of joint {}", joint_name(i)), *v));
+        }
+        if let Some((i, v)) = self.qd.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+            return Some((format!("speed of joint {}", joint_name(i)), *v));
+        }
+        None
+    }
+
+    /// Checks lengths, finiteness and that the orientation is a unit quaternion.
+    pub fn validate(&self, model: &RobotModel) -> Result<(), PhysicsError> {
+        let n = model.num_joints();
+        for (what, got) in [
+            ("joint angles", self.q.len()),
+            ("joint speeds", self.qd.len()),
+        ] {
+            if got != n {
+                return Err(PhysicsError::WrongLength {
+                    what,
+                    expected: n,
+                    got,
+                });
+            }
+        }
+        if let Some((what, value)) = self.first_non_finite(model) {
+            return Err(PhysicsError::NonFinite { what, value });
+        }
+        let norm = self.trunk.pose.rotation.quaternion().norm();
+        if (norm - 1.0).abs() > 1e-6 {
+            return Err(PhysicsError::InvalidState {
+                what: "trunk orientation".into(),
+                reason: format!("quaternion norm {norm} is not 1"),
+            });
+        }
+        Ok(())
+    }
+}
+
+/// A physics engine simulating one robot on flat ground.
+///
+/// Required: the small core below. Provided: validation ([`Backend::set_state`],
+/// [`Backend::set_joint_torques`]) and whole-state reads. A backend:
+/// - applies the model's joint damping itself, as passive viscous damping, and no other joint
+///   friction, spring or motor;
+/// - adds no actuator of its own: the torques given are the only joint torques;
+/// - has no self-collision: robot shapes touch only the ground;
+/// - is deterministic: the same state and inputs give bitwise the same results.
+pub trait Backend: Sized + Send + 'static {
+    /// Engine-specific settings (`[physics.<NAME>]` in an environment's TOML), e.g. solver
+    /// iterations. `Default` gives the project's chosen settings.
+    type Options: Clone + Debug + Default + PartialEq + Send + Sync + Serialize + DeserializeOwned;
+
+    /// The backend's name, e.g. `"rapier"`.
+    const NAME: &'static str;
+
+    /// Builds a world with the robot at its spawn state ([`RobotModel::spawn_state`]).
+    ///
+    /// Must call [`PhysicsParams::validate`] and fail on invalid parameters or options.
+    fn build(
+        model: Arc<RobotModel>,
+        params: &PhysicsParams,
+        options: &Self::Options,
+    ) -> Result<Self, PhysicsError>;
+
+    /// The robot being simulated.
+    fn model(&self) -> &Arc<RobotModel>;
+
+    /// The physics parameters the world was built with.
+    fn params(&self) -> &PhysicsParams;
+
+    /// Puts the world into exactly this (already validated) state as if freshly built: no warm
+    /// start, contact cache or pending torque survives, so what follows depends only on the
+    /// state and the inputs, bitwise. Contacts read as all false until the next step.
+    ///
+    /// Callers use [`Backend::set_state`], which validates first.
+    fn apply_state(&mut self, state: &RobotState);
+
+    /// Stores joint torques (N·m, profile order, already validated) for the next
+    /// [`Backend::step`] only.
+    ///
+    /// Callers use [`Backend::set_joint_torques`], which validates first.
+    fn apply_joint_torques(&mut self, torques: &[f64]);
+
+    /// Advances one physics sub-step of `params().dt` under the stored torques, then clears
+    /// them (a step with no torques set is a step with zero torques).
+    ///
+    /// Errors with [`PhysicsError::Diverged`] when the state became non-finite; the world must
+    /// then be reset with [`Backend::set_state`] before it is stepped again. After `Ok`, every
+    /// read is finite.
+    fn step(&mut self) -> Result<(), PhysicsError>;
+
+    /// Joint angles (rad), profile order.
+    ///
+    /// # Panics
+    /// If `out.len()` is not the number of joints.
+    fn joint_positions(&self, out: &mut [f64]);
+
+    /// Joint speeds (rad/s), profile order.
+    ///
+    /// # Panics
+    /// If `out.len()` is not the number of joints.
+    fn joint_velocities(&self, out: &mut [f64]);
+
+    /// The trunk's pose and velocity (see [`TrunkState`] for which point and frame).
+    fn trunk(&self) -> TrunkState;
+
+    /// For each tracked body ([`RobotModel::tracked`]): did it really touch the ground during
+    /// the last step? Real means carrying load (normal impulse > 0) or within
+    /// `params().contact_distance` of the ground; merely being near it (an engine's speculative
+    /// contact) does not count. All false after build and [`Backend::apply_state`].
+    ///
+    /// # Panics
+    /// If `out.len()` is not the number of tracked bodies.
+    fn contacts(&self, out: &mut [bool]);
+
+    /// The world pose of every body frame as the engine holds it (index as in
+    /// [`RobotModel::links`]). Independent of [`RobotModel::link_poses`], which recomputes them
+    /// from the trunk pose and the joint angles: the two differ if joints come apart.
+    ///
+    /// # Panics
+    /// If `out.len()` is not the number of bodies.
+    fn link_poses(&self, out: &mut [Isometry3<f64>]);
+
+    /// The total mass (kg) of the robot's bodies as the engine holds them.
+    fn total_mass(&self) -> f64;
+
+    /// Validates `state` against the model and puts the world into it (see
+    /// [`Backend::apply_state`]).
+    fn set_state(&mut self, state: &RobotState) -> Result<(), PhysicsError> {
+        state.validate(self.model())?;
+        self.apply_state(state);
+        Ok(())
+    }
+
+    /// Validates joint torques (one finite value per joint, N·m, profile order) and stores them
+    /// for the next [`Backend::step`] only.
+    fn set_joint_torques(&mut self, torques: &[f64]) -> Result<(), PhysicsError> {
+        check_joint_values(self.model(), "joint torques", "torque", torques)?;
+        self.apply_joint_torques(torques);
+        Ok(())
+    }
+
+    /// Reads the whole state into `out`, resizing its joint vectors to the number of joints
+    /// (no allocation once they have the capacity).
+    fn read_state(&self, out: &mut RobotState) {
+        let n = self.model().num_joints();
+        out.q.resize(n, 0.0);
+        out.qd.resize(n, 0.0);
+        self.joint_positions(&mut out.q);
+        self.joint_velocities(&mut out.qd);
+        out.trunk = self.trunk();
+    }
+
+    /// The whole state (allocates; see [`Backend::read_state`] for hot paths).
+    fn state(&self) -> RobotState {
+        let mut out = RobotState {
+            trunk: self.trunk(),
+            q: Vec::new(),
+            qd: Vec::new(),
+        };
+        self.read_state(&mut out);
+        out
+    }
+}
+
+/// Checks that `values` holds one finite value per joint; `what` names the slice and `each`
+/// one value in errors (e.g. "joint torques", "torque").
+pub fn check_joint_values(
+    model: &RobotModel,
+    what: &'static str,
+    each: &str,
+    values: &[f64],
+) -> Result<(), PhysicsError> {
+    if values.len() != model.num_joints() {
+        return Err(PhysicsError::WrongLength {
+            what,
+            expected: model.num_joints(),
+            got: values.len(),
+        });
+    }
+    if let Some((i, v)) = values.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+        return Err(PhysicsError::NonFinite {
+            what: format!("{each} for joint {}", model.joints()[i].name),
+            value: *v,
+        });
+    }
+    Ok(())
+}

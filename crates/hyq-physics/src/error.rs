@@ -1,0 +1,164 @@
+//! Errors of the robot model ([`ModelError`]) and of the physics seam ([`PhysicsError`]).
+//!
+//! Every variant names what was wrong (file, link, joint, field) and the offending value, so a
+//! message alone is enough to fix the input.
+
+use std::path::PathBuf;
+
+/// Why a robot model could not be built from a URDF and a robot profile.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum ModelError {
+    /// A file could not be read.
+    #[error("cannot read {what} file {}: {source}", path.display())]
+    Io {
+        /// Which file this was ("URDF", "robot profile").
+        what: &'static str,
+        /// The path that was tried.
+        path: PathBuf,
+        /// The operating system's error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// The URDF is not well-formed XML or does not follow the URDF schema.
+    #[error("malformed URDF {origin}: {message}")]
+    Urdf {
+        /// Where the URDF came from (a path or "bundled").
+        origin: String,
+        /// The parser's message.
+        message: String,
+    },
+    /// The robot profile is not valid TOML or does not have the expected fields.
+    #[error("malformed robot profile {origin}: {message}")]
+    Profile {
+        /// Where the profile came from (a path or "bundled").
+        origin: String,
+        /// The parser's message (it names the line and the field).
+        message: String,
+    },
+    /// A profile field has a value the model cannot use.
+    #[error("robot profile field {field}: {reason}")]
+    InvalidProfile {
+        /// The field, e.g. `joints[3].standing` or `spawn.height`.
+        field: String,
+        /// What is wrong with its value, with the value.
+        reason: String,
+    },
+    /// The profile names a link the URDF does not have.
+    #[error("the URDF has no link named {link:?} (named by {referenced_by})")]
+    MissingLink {
+        /// The link name that was looked up.
+        link: String,
+        /// Which profile field named it.
+        referenced_by: String,
+    },
+    /// The profile names a joint the URDF does not have.
+    #[error("the URDF has no joint named {joint:?} (named by {referenced_by})")]
+    MissingJoint {
+        /// The joint name that was looked up.
+        joint: String,
+        /// Which profile field named it.
+        referenced_by: String,
+    },
+    /// The profile names a collision element the URDF link does not have.
+    #[error("URDF link {link:?} has no <collision name={collision:?}> (named by {referenced_by})")]
+    MissingCollision {
+        /// The URDF link.
+        link: String,
+        /// The collision name that was looked up.
+        collision: String,
+        /// Which profile field named it.
+        referenced_by: String,
+    },
+    /// A link's mass or inertia tensor is not physically valid.
+    #[error("link {link:?}: invalid inertia: {reason}")]
+    InvalidInertia {
+        /// The URDF link (or, after lumping fixed joints, the body named after its first link).
+        link: String,
+        /// What is wrong, with the numbers.
+        reason: String,
+    },
+    /// A joint cannot be simulated as written.
+    #[error("joint {joint:?}: {reason}")]
+    InvalidJoint {
+        /// The URDF joint name.
+        joint: String,
+        /// What is wrong, with the value.
+        reason: String,
+    },
+    /// A collision element cannot be simulated as written.
+    #[error("link {link:?}, collision {collision}: {reason}")]
+    InvalidGeometry {
+        /// The URDF link.
+        link: String,
+        /// The collision element's name, or its index if it has none.
+        collision: String,
+        /// What is wrong, with the value.
+        reason: String,
+    },
+    /// The URDF's links and joints do not form one tree rooted at the profile's trunk.
+    #[error("URDF structure: {reason}")]
+    Structure {
+        /// What is wrong, naming the links or joints involved.
+        reason: String,
+    },
+}
+
+/// Why the physics seam refused an input or could not go on.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum PhysicsError {
+    /// A physics parameter is out of its valid range.
+    #[error("physics parameter {field} = {value}: {reason}")]
+    InvalidParam {
+        /// The parameter's name as in the configuration file, e.g. `dt`.
+        field: &'static str,
+        /// The rejected value, formatted.
+        value: String,
+        /// The valid range.
+        reason: &'static str,
+    },
+    /// A slice has the wrong number of values (one per actuated joint is expected).
+    #[error("{what}: expected {expected} values (one per actuated joint), got {got}")]
+    WrongLength {
+        /// What the slice holds, e.g. "joint torques".
+        what: &'static str,
+        /// How many values the robot model needs.
+        expected: usize,
+        /// How many were given.
+        got: usize,
+    },
+    /// An input value is NaN or infinite.
+    #[error("{what} is not finite ({value})")]
+    NonFinite {
+        /// Which value, e.g. "joint torque for lf_kfe" or "trunk pose translation z".
+        what: String,
+        /// The value.
+        value: f64,
+    },
+    /// An input state is finite but not valid.
+    #[error("{what}: {reason}")]
+    InvalidState {
+        /// Which part of the state.
+        what: String,
+        /// What is wrong, with the value.
+        reason: String,
+    },
+    /// The simulated state became non-finite during a step: the episode cannot go on.
+    #[error("simulation diverged: {what} is not finite after the step")]
+    Diverged {
+        /// The first non-finite quantity found.
+        what: String,
+    },
+    /// An engine-specific failure.
+    #[error("{backend} backend: {message}")]
+    Backend {
+        /// The backend's [`crate::Backend::NAME`].
+        backend: &'static str,
+        /// What went wrong.
+        message: String,
+    },
+    /// The robot model could not be built.
+    #[error(transparent)]
+    Model(#[from] ModelError),
+}

@@ -1,0 +1,28 @@
+//! The physics seam of the HyQ environment, free of any physics engine.
+//!
+//! - [`RobotModel`]: a robot built once from a URDF and a robot [`Profile`], shared by every
+//!   backend (`Arc<RobotModel>`): bodies with mass properties and primitive collision shapes,
+//!   actuated joints in the profile's order, tracked bodies (feet, then the trunk), standing
+//!   pose, spawn height, default gains, and forward kinematics.
+//! - [`Backend`]: the trait a simulator implements (rapier in `hyq-rapier`, DART in
+//!   `hyq-dart`): build, set a state, apply joint torques, advance one sub-step, read joint and
+//!   trunk state and real ground contacts.
+//! - [`bundled::hyq`]: the HyQ robot shipped in `assets/hyq/`, usable from any directory.
+//!
+//! Nothing here knows HyQ: robot names and counts come from the profile.
+
+pub mod backend;
+pub mod bundled;
+pub mod error;
+pub mod inertia;
+pub mod model;
+pub mod profile;
+
+pub use backend::{Backend, PhysicsParams, RobotState, TrunkState, check_joint_values};
+pub use error::{ModelError, PhysicsError};
+pub use model::{Collision, Joint, Link, RobotModel, Shape, TrackedBody};
+pub use profile::Profile;
+
+/// The linear-algebra crate of this API (`nalgebra`), re-exported so that callers use the
+/// same version.
+pub use nalgebra as na;

@@ -1,0 +1,93 @@
+//! The robot profile: the robot-specific facts that the crates read instead of knowing them.
+//!
+//! A profile is a small TOML file next to the URDF (see `assets/hyq/profile.toml`): the trunk
+//! link, the tracked feet, the actuated joints in observation/action order with the standing
+//! pose, the spawn height and the default PD gains. Nothing in the code knows a robot's link or
+//! joint names or how many it has; it all comes from here, so the crates work for other robots.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::ModelError;
+
+/// A robot profile as written in its TOML file.
+///
+/// The fields are checked against the URDF when the [`crate::RobotModel`] is built.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Profile {
+    /// Name of the robot, used in messages.
+    pub name: String,
+    /// The URDF's path, relative to the profile file.
+    pub urdf: String,
+    /// The URDF's root link: the free-floating trunk.
+    pub trunk: String,
+    /// Tracked feet in observation order.
+    pub feet: Vec<FootEntry>,
+    /// Actuated joints in observation/action order, each with its standing angle.
+    pub joints: Vec<JointEntry>,
+    /// Where the robot is placed at reset.
+    pub spawn: Spawn,
+    /// Default PD gains of every joint.
+    pub gains: Gains,
+}
+
+/// A tracked foot: a collision shape whose ground contact is reported.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FootEntry {
+    /// Short name, e.g. `lf`.
+    pub name: String,
+    /// The URDF link that carries the foot's collision shape.
+    pub link: String,
+    /// The `name` attribute of the foot's `<collision>` element on that link. When absent,
+    /// every collision shape of the link counts as the foot.
+    #[serde(default)]
+    pub collision: Option<String>,
+}
+
+/// An actuated joint.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct JointEntry {
+    /// Short name used in observations and configuration, e.g. `lf_haa`.
+    pub name: String,
+    /// The URDF joint's name, e.g. `lf_haa_joint`.
+    pub urdf: String,
+    /// Nominal standing angle (rad).
+    pub standing: f64,
+    /// Proportional gain for this joint (N·m/rad); `gains.kp` when absent.
+    #[serde(default)]
+    pub kp: Option<f64>,
+    /// Derivative gain for this joint (N·m·s/rad); `gains.kd` when absent.
+    #[serde(default)]
+    pub kd: Option<f64>,
+}
+
+/// Where the robot is placed at reset.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Spawn {
+    /// Height (m) of the trunk frame's origin above the ground, trunk level, joints at the
+    /// standing pose, at rest.
+    pub height: f64,
+}
+
+/// Default PD gains of the joint actuators.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Gains {
+    /// Proportional gain (N·m/rad).
+    pub kp: f64,
+    /// Derivative gain (N·m·s/rad).
+    pub kd: f64,
+}
+
+impl Profile {
+    /// Parses a profile from TOML text; `origin` (a path or "bundled") appears in errors.
+    pub fn from_toml_str(text: &str, origin: &str) -> Result<Self, ModelError> {
+        toml::from_str(text).map_err(|e| ModelError::Profile {
+            origin: origin.to_owned(),
+            message: e.to_string(),
+        })
+    }
+}
