@@ -7,10 +7,13 @@
 //! - [`Backend`]: the trait a simulator implements (rapier in `hyq-rapier`, DART in
 //!   `hyq-dart`): build, set a state, apply joint torques, advance one sub-step, read joint and
 //!   trunk state and real ground contacts.
+//! - [`actuator`]: the joint PD law with effort and velocity limits, evaluated every sub-step in
+//!   shared code ([`pd_substep`]), so every backend is driven identically.
 //! - [`bundled::hyq`]: the HyQ robot shipped in `assets/hyq/`, usable from any directory.
 //!
 //! Nothing here knows HyQ: robot names and counts come from the profile.
 
+pub mod actuator;
 pub mod backend;
 pub mod bundled;
 pub mod error;
@@ -18,6 +21,7 @@ pub mod inertia;
 pub mod model;
 pub mod profile;
 
+pub use actuator::{Actuator, PdScratch, pd_substep};
 pub use backend::{Backend, PhysicsParams, RobotState, TrunkState, check_joint_values};
 pub use error::{ModelError, PhysicsError};
 pub use model::{Collision, Joint, Link, RobotModel, Shape, TrackedBody};
