@@ -10,12 +10,16 @@
 //! - [`actuator`]: the joint PD law with effort and velocity limits, evaluated every sub-step in
 //!   shared code ([`pd_substep`]), so every backend is driven identically.
 //! - [`bundled::hyq`]: the HyQ robot shipped in `assets/hyq/`, usable from any directory.
+//! - `conformance` (cargo feature `conformance`): the test bodies every backend must pass,
+//!   instantiated with [`conformance_tests!`] in a backend's `tests/conformance.rs`.
 //!
 //! Nothing here knows HyQ: robot names and counts come from the profile.
 
 pub mod actuator;
 pub mod backend;
 pub mod bundled;
+#[cfg(feature = "conformance")]
+pub mod conformance;
 pub mod error;
 pub mod inertia;
 pub mod model;
