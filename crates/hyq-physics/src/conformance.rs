@@ -731,74 +731,94 @@ pub fn limp_robot_collapses_onto_its_trunk<B: Backend>(options: &B::Options) {
 }
 
 /// Every joint driven into its limits at full torque (targets 0.5 rad past alternate limits,
-/// stiff gains saturating at the effort limit, 2 s on the ground) stays within 0.1 rad of its
-/// range and reaches it; no joint comes apart: the engine's body poses stay within 1 mm of the
-/// forward kinematics of its trunk pose and joint angles.
+/// stiff gains saturating at the effort limit) stays within 0.1 rad of its range, and no
+/// joint comes apart: the engine's body poses stay within 1 mm of the forward kinematics of its
+/// trunk pose and joint angles. First floating in zero gravity, where every joint must reach
+/// each limit (within 0.1 rad by the end of each 0.5 s phase), then on the ground under the
+/// robot's weight, where every joint must reach each limit at least once in 2 s.
 pub fn joint_limits_hold_under_full_torque<B: Backend>(options: &B::Options) {
-    let params = PhysicsParams::default();
-    let mut b: B = build(&params, options);
-    let model = Arc::clone(b.model());
-    set(&mut b, &model.spawn_state());
+    let model = bundled::hyq();
     let n = model.num_joints();
     let act = Actuator::with_gains(&model, &vec![3000.0; n], &vec![30.0; n]).expect("gains");
-    let mut scratch = PdScratch::new(n);
-    let phase = steps_for(&params, 0.5);
     let mut worst_overshoot: f64 = 0.0;
     let mut worst_separation: f64 = 0.0;
-    let mut saturated = vec![false; n];
-    for p in 0..4 {
-        let upper = p % 2 == 0;
-        let targets: Vec<f64> = model
-            .joints()
-            .iter()
-            .map(|j| if upper { j.upper + 0.5 } else { j.lower - 0.5 })
-            .collect();
-        for _ in 0..phase {
-            step_pd(&mut b, &act, &targets, &mut scratch);
-            for (i, tau) in scratch.torques().iter().enumerate() {
-                saturated[i] |= tau.abs() >= model.joints()[i].effort;
+    for (params, start, in_air) in [
+        (zero_gravity(), standing_at(&model, 3.0), true),
+        (PhysicsParams::default(), model.spawn_state(), false),
+    ] {
+        let mut b: B = build(&params, options);
+        set(&mut b, &start);
+        let mut scratch = PdScratch::new(n);
+        let phase = steps_for(&params, 0.5);
+        let mut saturated = vec![false; n];
+        // Closest approach to each joint's [lower, upper] limit over the run.
+        let mut closest = vec![[f64::INFINITY; 2]; n];
+        for p in 0..4 {
+            let upper = p % 2 == 0;
+            let targets: Vec<f64> = model
+                .joints()
+                .iter()
+                .map(|j| if upper { j.upper + 0.5 } else { j.lower - 0.5 })
+                .collect();
+            for _ in 0..phase {
+                step_pd(&mut b, &act, &targets, &mut scratch);
+                for (i, tau) in scratch.torques().iter().enumerate() {
+                    saturated[i] |= tau.abs() >= model.joints()[i].effort;
+                }
+                let q = read_q(&b);
+                for (i, j) in model.joints().iter().enumerate() {
+                    let over = (j.lower - q[i]).max(q[i] - j.upper).max(0.0);
+                    worst_overshoot = worst_overshoot.max(over);
+                    assert!(
+                        over <= 0.1,
+                        "joint {} at {} rad, {over} rad past its range [{}, {}] (in the air: {in_air})",
+                        j.name,
+                        q[i],
+                        j.lower,
+                        j.upper
+                    );
+                    closest[i][0] = closest[i][0].min((q[i] - j.lower).abs());
+                    closest[i][1] = closest[i][1].min((q[i] - j.upper).abs());
+                }
+                let fk = fk_poses(&b);
+                let engine = engine_poses(&b);
+                for (l, (a, e)) in fk.iter().zip(&engine).enumerate() {
+                    let sep = (a.translation.vector - e.translation.vector).norm();
+                    worst_separation = worst_separation.max(sep);
+                    assert!(
+                        sep <= 1e-3,
+                        "body {} is {sep} m away from where its joints put it (in the air: {in_air})",
+                        model.links()[l].name
+                    );
+                }
             }
-            let q = read_q(&b);
-            for (i, j) in model.joints().iter().enumerate() {
-                let over = (j.lower - q[i]).max(q[i] - j.upper).max(0.0);
-                worst_overshoot = worst_overshoot.max(over);
-                assert!(
-                    over <= 0.1,
-                    "joint {} at {} rad, {over} rad past its range [{}, {}]",
-                    j.name,
-                    q[i],
-                    j.lower,
-                    j.upper
-                );
-            }
-            let fk = fk_poses(&b);
-            let engine = engine_poses(&b);
-            for (l, (a, e)) in fk.iter().zip(&engine).enumerate() {
-                let sep = (a.translation.vector - e.translation.vector).norm();
-                worst_separation = worst_separation.max(sep);
-                assert!(
-                    sep <= 1e-3,
-                    "body {} is {sep} m away from where its joints put it",
-                    model.links()[l].name
-                );
+            if in_air {
+                let q = read_q(&b);
+                for (i, j) in model.joints().iter().enumerate() {
+                    let limit = if upper { j.upper } else { j.lower };
+                    assert!(
+                        (q[i] - limit).abs() <= 0.1,
+                        "joint {} at {} rad did not reach its limit {limit} rad in the air",
+                        j.name,
+                        q[i]
+                    );
+                }
             }
         }
-        let q = read_q(&b);
         for (i, j) in model.joints().iter().enumerate() {
-            let limit = if upper { j.upper } else { j.lower };
             assert!(
-                (q[i] - limit).abs() <= 0.1,
-                "joint {} at {} rad did not reach its {} limit {limit} rad",
+                saturated[i],
+                "joint {} never saturated: the test must drive every joint at full torque",
+                j.name
+            );
+            assert!(
+                closest[i][0] <= 0.1 && closest[i][1] <= 0.1,
+                "joint {} came only within {:?} rad of its limits (in the air: {in_air})",
                 j.name,
-                q[i],
-                if upper { "upper" } else { "lower" }
+                closest[i]
             );
         }
     }
-    assert!(
-        saturated.iter().all(|&s| s),
-        "the test must drive every joint at full torque"
-    );
     // Both figures are part of the report of this test.
     println!(
         "{}: worst limit overshoot {worst_overshoot:.4} rad, worst joint separation {worst_separation:.2e} m",
@@ -980,10 +1000,15 @@ pub fn internal_torques_conserve_momentum<B: Backend>(options: &B::Options) {
         let err = (com(&b) - (c1 + v * t)).norm();
         worst = worst.max(err);
     }
-    // f32 engines accumulate about 1e-6 m per step at most here; a root integrated at its
-    // frame origin instead of its centre of mass is off by centimetres.
+    // A first-order integrator at 1 kHz drifts by millimetres in this violent second (rapier:
+    // 0.7 mm at 4 solver iterations, 6 mm at 1); a root integrated at its frame origin
+    // instead of its centre of mass is off by decimetres (0.3 m).
+    println!(
+        "{}: centre of mass left its straight line by {worst:.2e} m in 1 s",
+        B::NAME
+    );
     assert!(
-        worst < 1e-3,
+        worst < 1e-2,
         "centre of mass left its straight line by {worst} m"
     );
     assert!(
