@@ -52,16 +52,20 @@ class Sim {
   // time, forces, contacts and the collision detector's caches are reset.
   void set_state(const BaseState& base, rust::Slice<const double> q,
                  rust::Slice<const double> qd);
-  // Stores the torques of the actuated joints; they are applied on every
-  // following step until replaced (DART itself zeroes forces after a step).
+  // Stores the torques of the actuated joints for the next step only.
   void set_joint_torques(rust::Slice<const double> tau);
-  // Advances the world by one time step.
-  void step();
+  // Advances the world by one time step. Returns false when the new state
+  // is not finite (or beyond a sanity bound); then nothing but set_state and
+  // the joint readouts may be called.
+  bool step();
 
   // Readouts; they cannot fail. Each writes min(out.size(), n) values.
   void joint_positions(rust::Slice<double> out) const;
   void joint_velocities(rust::Slice<double> out) const;
   BaseState base_state() const;
+  // World pose of every body frame: x, y, z, qw, qx, qy, qz per body.
+  void body_poses(rust::Slice<double> out) const;
+  double total_mass() const;
   // For each tracked link: did one of its collision shapes touch the ground
   // in the last step (the contacts the last step's solver used).
   void contacts(rust::Slice<bool> out) const;

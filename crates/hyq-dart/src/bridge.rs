@@ -35,6 +35,9 @@ pub(crate) mod ffi {
         /// Capsule along the shape frame's z axis; `size[0]` = radius, `size[1]` = half the
         /// distance between the cap centres (m).
         Capsule,
+        /// Cylinder along the shape frame's z axis; `size[0]` = radius, `size[1]` = half its
+        /// length (m).
+        Cylinder,
     }
 
     /// A rigid transform: translation (m) and unit quaternion (w, x, y, z).
@@ -55,6 +58,9 @@ pub(crate) mod ffi {
         joint_kind: JointKind,
         /// Joint name, unique.
         joint_name: String,
+        /// Revolute only: the joint's slot in the actuated-joint order used by every slice
+        /// (torques, positions, velocities); the slots of all revolute joints are 0..n.
+        joint_index: u32,
         /// Joint frame (= this body's frame at zero joint angle) in the parent body's frame.
         joint_origin: Pose,
         /// Rotation axis in this body's frame, unit length (revolute only).
@@ -140,10 +146,13 @@ pub(crate) mod ffi {
         /// Sets root state and actuated-joint positions/velocities (revolute joints in body order)
         /// and resets everything else to the freshly built state.
         fn set_state(self: Pin<&mut Sim>, base: &BaseState, q: &[f64], qd: &[f64]) -> Result<()>;
-        /// Stores the actuated-joint torques applied on every following step.
+        /// Stores the actuated-joint torques applied during the next step only.
         fn set_joint_torques(self: Pin<&mut Sim>, tau: &[f64]) -> Result<()>;
-        /// Advances the world by one time step.
-        fn step(self: Pin<&mut Sim>) -> Result<()>;
+        /// Advances the world by one time step; `Ok(false)` when the state diverged (non-finite
+        /// or absurdly large). A diverged world must not be read except for joint values, and
+        /// must be given a new state before it is stepped again: DART aborts the process when
+        /// it computes a transform from a non-finite state.
+        fn step(self: Pin<&mut Sim>) -> Result<bool>;
 
         /// Actuated-joint positions (rad).
         fn joint_positions(self: &Sim, out: &mut [f64]);
@@ -151,6 +160,11 @@ pub(crate) mod ffi {
         fn joint_velocities(self: &Sim, out: &mut [f64]);
         /// Root body state.
         fn base_state(self: &Sim) -> BaseState;
+        /// World pose of every body frame, body-list order, 7 values each: x, y, z, then the
+        /// quaternion w, x, y, z.
+        fn body_poses(self: &Sim, out: &mut [f64]);
+        /// Total mass of the robot's bodies (kg) as DART holds them.
+        fn total_mass(self: &Sim) -> f64;
         /// Per tracked link: ground contact in the last step.
         fn contacts(self: &Sim, out: &mut [bool]);
         /// Contact points in the last step.

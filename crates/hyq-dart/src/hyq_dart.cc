@@ -21,6 +21,7 @@
 #include <dart/dynamics/BodyNode.hpp>
 #include <dart/dynamics/BoxShape.hpp>
 #include <dart/dynamics/CapsuleShape.hpp>
+#include <dart/dynamics/CylinderShape.hpp>
 #include <dart/dynamics/FreeJoint.hpp>
 #include <dart/dynamics/Inertia.hpp>
 #include <dart/dynamics/RevoluteJoint.hpp>
@@ -49,6 +50,11 @@ namespace {
 
 using dart::dynamics::BodyNode;
 using dart::dynamics::ShapeNode;
+
+// Coordinates beyond this magnitude (m, rad, m/s, rad/s) count as diverged.
+// No sane state comes near it, and it keeps every transform DART computes
+// from the coordinates finite.
+constexpr double kSaneBound = 1e8;
 
 Eigen::Isometry3d to_isometry(const Pose& pose, const std::string& what) {
   const auto& r = pose.rotation;
@@ -95,17 +101,25 @@ struct Sim::Impl {
   dart::simulation::WorldPtr world;
   dart::dynamics::SkeletonPtr robot;
   dart::dynamics::SkeletonPtr ground;
-  // The root body and its floating joint.
+  // Every body, description order; the first is the root.
+  std::vector<BodyNode*> bodies;
+  // The root body and its floating joint. DART integrates a free body's
+  // motion at its body frame's origin; at an origin away from the centre of
+  // mass that bends the centre of mass's straight flight (by millimetres per
+  // second for HyQ's trunk). So the root body's frame sits at its centre of
+  // mass, `root_com` in the description's root frame, and every pose or
+  // velocity of the root crossing the bridge is converted.
   BodyNode* root = nullptr;
   dart::dynamics::FreeJoint* root_joint = nullptr;
-  // Actuated (revolute) joints in description order; the index of each in
-  // the skeleton's generalized coordinates.
+  Eigen::Vector3d root_com = Eigen::Vector3d::Zero();
+  // Actuated (revolute) joints in the slice order given by BodyDesc::joint_index;
+  // the index of each in the skeleton's generalized coordinates.
   std::vector<dart::dynamics::Joint*> actuated;
   std::vector<std::size_t> actuated_dof;
   // Collision shapes that set a contact flag, and the flag they set.
   std::vector<std::pair<const ShapeNode*, std::size_t>> tracked_shapes;
   std::size_t num_tracked = 0;
-  // Torques applied before every step (DART zeroes forces after a step).
+  // Torques for the next step.
   Eigen::VectorXd torques;
   // Scratch vectors for set_state, sized once.
   Eigen::VectorXd positions;
@@ -164,10 +178,17 @@ std::unique_ptr<Sim> new_sim(rust::Slice<const BodyDesc> bodies,
     }
 
     BodyNode* parent = nullptr;
+    // Frames given in the root's description frame are moved to its body
+    // frame, which sits at its centre of mass.
+    Eigen::Isometry3d from_parent = Eigen::Isometry3d::Identity();
     if (i == 0) {
       require(b.parent == -1 && b.joint_kind == JointKind::Free,
               what + ": the first body must be the root (parent -1, free joint)");
+      impl->root_com = Eigen::Vector3d(b.com[0], b.com[1], b.com[2]);
     } else {
+      if (b.parent == 0) {
+        from_parent.translation() = -impl->root_com;
+      }
       require(b.parent >= 0 && static_cast<std::size_t>(b.parent) < i,
               what + ": parent index " + std::to_string(b.parent) +
                   " must name an earlier body");
@@ -200,7 +221,8 @@ std::unique_ptr<Sim> new_sim(rust::Slice<const BodyDesc> bodies,
       RevoluteJoint::Properties props;
       props.mName = joint_name;
       props.mAxis = axis;
-      props.mT_ParentBodyToJoint = to_isometry(b.joint_origin, what + " joint origin");
+      props.mT_ParentBodyToJoint =
+          from_parent * to_isometry(b.joint_origin, what + " joint origin");
       props.mT_ChildBodyToJoint = Eigen::Isometry3d::Identity();
       auto pair = impl->robot->createJointAndBodyNodePair<RevoluteJoint>(
           parent, props, body_props);
@@ -217,11 +239,20 @@ std::unique_ptr<Sim> new_sim(rust::Slice<const BodyDesc> bodies,
       joint->setPositionLimitEnforced(true);
       joint->setDampingCoefficient(0, b.damping);
       joint->setActuatorType(Joint::FORCE);
-      impl->actuated.push_back(joint);
+      const std::size_t slot = b.joint_index;
+      require(slot < bodies.size(),
+              what + ": joint_index " + std::to_string(slot) + " out of range");
+      if (impl->actuated.size() <= slot) {
+        impl->actuated.resize(slot + 1, nullptr);
+      }
+      require(impl->actuated[slot] == nullptr,
+              what + ": joint_index " + std::to_string(slot) + " is used twice");
+      impl->actuated[slot] = joint;
     } else if (b.joint_kind == JointKind::Fixed) {
       WeldJoint::Properties props;
       props.mName = joint_name;
-      props.mT_ParentBodyToJoint = to_isometry(b.joint_origin, what + " joint origin");
+      props.mT_ParentBodyToJoint =
+          from_parent * to_isometry(b.joint_origin, what + " joint origin");
       props.mT_ChildBodyToJoint = Eigen::Isometry3d::Identity();
       auto pair = impl->robot->createJointAndBodyNodePair<WeldJoint>(
           parent, props, body_props);
@@ -239,13 +270,19 @@ std::unique_ptr<Sim> new_sim(rust::Slice<const BodyDesc> bodies,
                 node->getName() + "')");
 
     const auto& in = b.inertia;
-    node->setInertia(Inertia(b.mass, b.com[0], b.com[1], b.com[2], in[0], in[1], in[2],
-                             in[3], in[4], in[5]));
+    const Eigen::Vector3d com = (i == 0) ? Eigen::Vector3d::Zero()
+                                         : Eigen::Vector3d(b.com[0], b.com[1], b.com[2]);
+    node->setInertia(Inertia(b.mass, com.x(), com.y(), com.z(), in[0], in[1], in[2], in[3],
+                             in[4], in[5]));
     nodes.push_back(node);
   }
   impl->root = nodes.front();
-  for (auto* joint : impl->actuated) {
-    impl->actuated_dof.push_back(joint->getIndexInSkeleton(0));
+  impl->bodies = nodes;
+  for (std::size_t slot = 0; slot < impl->actuated.size(); ++slot) {
+    require(impl->actuated[slot] != nullptr,
+            "no revolute joint has joint_index " + std::to_string(slot) +
+                " (the slots must be 0..n)");
+    impl->actuated_dof.push_back(impl->actuated[slot]->getIndexInSkeleton(0));
   }
 
   for (std::size_t i = 0; i < shapes.size(); ++i) {
@@ -271,12 +308,21 @@ std::unique_ptr<Sim> new_sim(rust::Slice<const BodyDesc> bodies,
               what + ": capsule radius must be > 0 and half length >= 0");
       // DART's capsule height is the distance between the cap centres.
       shape = std::make_shared<CapsuleShape>(s.size[0], 2.0 * s.size[1]);
+    } else if (s.kind == ShapeKind::Cylinder) {
+      require(s.size[0] > 0 && std::isfinite(s.size[0]) && s.size[1] > 0 &&
+                  std::isfinite(s.size[1]),
+              what + ": cylinder radius and half length must be finite and > 0");
+      shape = std::make_shared<CylinderShape>(s.size[0], 2.0 * s.size[1]);
     } else {
       throw std::invalid_argument(what + ": unknown shape kind");
     }
     ShapeNode* sn = nodes[s.body]->createShapeNodeWith<CollisionAspect, DynamicsAspect>(shape);
     require_ptr(sn, "ShapeNode for " + what);
-    sn->setRelativeTransform(to_isometry(s.pose, what + " pose"));
+    Eigen::Isometry3d shape_tf = to_isometry(s.pose, what + " pose");
+    if (s.body == 0) {
+      shape_tf.pretranslate(-impl->root_com);
+    }
+    sn->setRelativeTransform(shape_tf);
     sn->getDynamicsAspect()->setFrictionCoeff(desc.friction);
     sn->getDynamicsAspect()->setRestitutionCoeff(desc.restitution);
     if (s.tracked >= 0) {
@@ -307,6 +353,10 @@ std::unique_ptr<Sim> new_sim(rust::Slice<const BodyDesc> bodies,
   require_ptr(impl->world.get(), "World");
   impl->world->setGravity(Eigen::Vector3d(desc.gravity[0], desc.gravity[1], desc.gravity[2]));
   impl->world->setTimeStep(desc.dt);
+  // The world starts with DART's default FCL detector, which would build
+  // (and complain about) capsule geometry for every skeleton added; install
+  // Bullet first.
+  impl->install_fresh_detector();
   impl->world->addSkeleton(impl->robot);
   impl->world->addSkeleton(impl->ground);
 
@@ -343,18 +393,22 @@ void Sim::set_state(const BaseState& base, rust::Slice<const double> q,
             "set_state: joint " + std::to_string(i) + " position/velocity must be finite");
   }
 
-  // The free joint's coordinates: [rotation vector, translation] and the
-  // body-frame twist [angular; linear] of the root body's origin.
+  // The free joint's coordinates: [rotation vector, translation] of the root
+  // body frame (at the centre of mass) and its body-frame twist [angular;
+  // linear].
+  Eigen::Isometry3d body_tf = tf;
+  body_tf.translate(s.root_com);
+  const Eigen::Vector3d w(base.angular_velocity[0], base.angular_velocity[1],
+                          base.angular_velocity[2]);
+  const Eigen::Vector3d v_origin(base.linear_velocity[0], base.linear_velocity[1],
+                                 base.linear_velocity[2]);
+  const Eigen::Vector3d v_com = v_origin + w.cross(tf.linear() * s.root_com);
+  const Eigen::Matrix3d rt = tf.linear().transpose();
   s.positions.setZero();
   s.velocities.setZero();
-  s.positions.head<6>() = dart::dynamics::FreeJoint::convertToPositions(tf);
-  const Eigen::Matrix3d rt = tf.linear().transpose();
-  s.velocities.segment<3>(0) =
-      rt * Eigen::Vector3d(base.angular_velocity[0], base.angular_velocity[1],
-                           base.angular_velocity[2]);
-  s.velocities.segment<3>(3) =
-      rt * Eigen::Vector3d(base.linear_velocity[0], base.linear_velocity[1],
-                           base.linear_velocity[2]);
+  s.positions.head<6>() = dart::dynamics::FreeJoint::convertToPositions(body_tf);
+  s.velocities.segment<3>(0) = rt * w;
+  s.velocities.segment<3>(3) = rt * v_com;
   for (std::size_t i = 0; i < n; ++i) {
     s.positions[static_cast<Eigen::Index>(s.actuated_dof[i])] = q[i];
     s.velocities[static_cast<Eigen::Index>(s.actuated_dof[i])] = qd[i];
@@ -387,12 +441,21 @@ void Sim::set_joint_torques(rust::Slice<const double> tau) {
   }
 }
 
-void Sim::step() {
+bool Sim::step() {
   Impl& s = *impl_;
   for (std::size_t i = 0; i < s.actuated.size(); ++i) {
     s.actuated[i]->setForce(0, s.torques[static_cast<Eigen::Index>(i)]);
   }
   s.world->step();
+  s.torques.setZero();
+  // Debian's libdart keeps its assertions: the first time a non-finite
+  // configuration is turned into a transform, DART aborts the process. Read
+  // the raw coordinates (no transform involved) and report a diverged state
+  // before anything computes a transform from it.
+  const auto& q = s.robot->getPositions();
+  const auto& qd = s.robot->getVelocities();
+  return q.allFinite() && qd.allFinite() && q.cwiseAbs().maxCoeff() < kSaneBound &&
+         qd.cwiseAbs().maxCoeff() < kSaneBound;
 }
 
 void Sim::joint_positions(rust::Slice<double> out) const {
@@ -411,9 +474,10 @@ void Sim::joint_velocities(rust::Slice<double> out) const {
 
 BaseState Sim::base_state() const {
   const BodyNode* root = impl_->root;
-  const Eigen::Isometry3d& tf = root->getWorldTransform();
+  Eigen::Isometry3d tf = root->getWorldTransform();
+  tf.translate(-impl_->root_com);
   const Eigen::Quaterniond quat(tf.linear());
-  const Eigen::Vector3d v = root->getLinearVelocity();
+  const Eigen::Vector3d v = root->getLinearVelocity(Eigen::Vector3d(-impl_->root_com));
   const Eigen::Vector3d w = root->getAngularVelocity();
   BaseState out{};
   out.position = {tf.translation().x(), tf.translation().y(), tf.translation().z()};
@@ -422,6 +486,27 @@ BaseState Sim::base_state() const {
   out.angular_velocity = {w.x(), w.y(), w.z()};
   return out;
 }
+
+void Sim::body_poses(rust::Slice<double> out) const {
+  const std::size_t n = std::min(out.size() / 7, impl_->bodies.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    Eigen::Isometry3d tf = impl_->bodies[i]->getWorldTransform();
+    if (i == 0) {
+      tf.translate(-impl_->root_com);
+    }
+    const Eigen::Quaterniond quat(tf.linear());
+    double* o = out.data() + 7 * i;
+    o[0] = tf.translation().x();
+    o[1] = tf.translation().y();
+    o[2] = tf.translation().z();
+    o[3] = quat.w();
+    o[4] = quat.x();
+    o[5] = quat.y();
+    o[6] = quat.z();
+  }
+}
+
+double Sim::total_mass() const { return impl_->robot->getMass(); }
 
 void Sim::contacts(rust::Slice<bool> out) const {
   for (auto& flag : out) {

@@ -9,8 +9,10 @@
 //! All C++ and all `unsafe` code of the project live in this crate: the bridge is
 //! `src/bridge.rs` (the one `#[cxx::bridge]`), `include/hyq_dart.h` and `src/hyq_dart.cc`.
 
+mod backend;
 mod bridge;
 mod error;
 mod sim;
 
+pub use backend::{DartBackend, DartOptions, GROUND_HALF_EXTENT_M};
 pub use error::DartError;

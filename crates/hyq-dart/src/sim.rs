@@ -20,6 +20,7 @@ impl Pose {
 pub(crate) struct Sim {
     inner: UniquePtr<ffi::Sim>,
     num_joints: usize,
+    num_bodies: usize,
     num_tracked: usize,
 }
 
@@ -50,6 +51,7 @@ impl Sim {
         Ok(Self {
             inner,
             num_joints,
+            num_bodies: bodies.len(),
             num_tracked: world.num_tracked as usize,
         })
     }
@@ -66,12 +68,6 @@ impl Sim {
         self.inner.as_ref().expect("Sim::inner is never null")
     }
 
-    /// Number of actuated (revolute) joints.
-    #[allow(dead_code)]
-    pub(crate) fn num_joints(&self) -> usize {
-        self.num_joints
-    }
-
     /// Sets the root state and joint state; everything else as freshly built.
     pub(crate) fn set_state(
         &mut self,
@@ -83,16 +79,17 @@ impl Sim {
         Ok(())
     }
 
-    /// Stores the joint torques applied on every following step.
+    /// Stores the joint torques applied during the next step only.
     pub(crate) fn set_joint_torques(&mut self, tau: &[f64]) -> Result<(), DartError> {
         self.pin().set_joint_torques(tau)?;
         Ok(())
     }
 
-    /// One time step.
-    pub(crate) fn step(&mut self) -> Result<(), DartError> {
-        self.pin().step()?;
-        Ok(())
+    /// One time step. `Ok(false)` when the state diverged: then only the joint readouts and
+    /// [`Self::set_state`] may be called (anything that computes a transform would make DART
+    /// abort the process).
+    pub(crate) fn step(&mut self) -> Result<bool, DartError> {
+        Ok(self.pin().step()?)
     }
 
     /// Joint positions; `out.len()` must equal [`Self::num_joints`].
@@ -110,6 +107,18 @@ impl Sim {
     /// Root body pose and velocity, world frame.
     pub(crate) fn base_state(&self) -> BaseState {
         self.get().base_state()
+    }
+
+    /// World pose of every body frame, 7 values per body (x, y, z, qw, qx, qy, qz);
+    /// `out.len()` must be 7 × the number of bodies.
+    pub(crate) fn body_poses(&self, out: &mut [f64]) {
+        assert_eq!(out.len(), 7 * self.num_bodies, "body_poses: wrong length");
+        self.get().body_poses(out);
+    }
+
+    /// Total mass of the robot as DART holds it (kg).
+    pub(crate) fn total_mass(&self) -> f64 {
+        self.get().total_mass()
     }
 
     /// Contact flag per tracked link; `out.len()` must equal the description's `num_tracked`.
@@ -136,6 +145,8 @@ mod tests {
     //! bitwise.
     #![allow(clippy::unwrap_used)]
 
+    use hyq_physics::na::{Quaternion, UnitQuaternion, Vector3};
+
     use super::*;
 
     fn world(num_tracked: u32) -> WorldDesc {
@@ -156,6 +167,7 @@ mod tests {
             parent: -1,
             joint_kind: JointKind::Free,
             joint_name: "root_joint".into(),
+            joint_index: 0,
             joint_origin: Pose::IDENTITY,
             axis: [0.0; 3],
             lower: 0.0,
@@ -187,7 +199,7 @@ mod tests {
 
     fn run(sim: &mut Sim, steps: usize) {
         for _ in 0..steps {
-            sim.step().unwrap();
+            assert!(sim.step().unwrap());
         }
     }
 
@@ -218,7 +230,7 @@ mod tests {
             let mut sim = Sim::new(&[root(2.0)], &[s], &world(1)).unwrap();
             sim.set_state(&at(rest + 0.02), &[], &[]).unwrap();
             let mut flags = [true];
-            sim.step().unwrap();
+            assert!(sim.step().unwrap());
             sim.contacts(&mut flags);
             assert!(
                 !flags[0],
@@ -293,7 +305,7 @@ mod tests {
         let mut sim = Sim::new(&[root(1.0)], &[s0, s1, untracked], &w).unwrap();
         // Sphere 0 and the untracked sphere dip 1 mm into the ground.
         sim.set_state(&at(0.149), &[], &[]).unwrap();
-        sim.step().unwrap();
+        assert!(sim.step().unwrap());
         let mut flags = [false; 2];
         sim.contacts(&mut flags);
         assert_eq!(flags, [true, false]);
@@ -308,6 +320,7 @@ mod tests {
             parent: 0,
             joint_kind: JointKind::Revolute,
             joint_name: "arm_joint".into(),
+            joint_index: 0,
             joint_origin: Pose {
                 translation: [0.0, 0.0, 0.3],
                 rotation: [1.0, 0.0, 0.0, 0.0],
@@ -333,7 +346,7 @@ mod tests {
         let (mut q_max, mut qd_max) = (f64::MIN, 0.0_f64);
         for _ in 0..1000 {
             sim.set_joint_torques(&[20.0]).unwrap();
-            sim.step().unwrap();
+            assert!(sim.step().unwrap());
             sim.joint_positions(&mut q);
             sim.joint_velocities(&mut qd);
             q_max = q_max.max(q[0]);
@@ -388,7 +401,7 @@ mod tests {
         for k in 0..steps {
             let tau = if (k / 50) % 2 == 0 { 15.0 } else { -15.0 };
             sim.set_joint_torques(&[tau]).unwrap();
-            sim.step().unwrap();
+            assert!(sim.step().unwrap());
             sim.joint_positions(&mut q);
             sim.joint_velocities(&mut qd);
             let b = sim.base_state();
@@ -459,5 +472,46 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(err.contains("translation must be finite"), "{err}");
+    }
+
+    #[test]
+    fn a_free_body_flies_its_centre_of_mass_straight_whatever_its_frame() {
+        // DART integrates a free body at its body frame's origin; the bridge puts the root's
+        // frame at its centre of mass, so a tumbling body's centre of mass keeps a straight
+        // line (with the frame at the URDF origin, 6 cm off, it drifted 5.5e-5 m in 1 s).
+        for com in [[0.0; 3], [0.056, 0.0215, 0.0036]] {
+            let mut body = root(61.0);
+            body.com = com;
+            body.inertia = [1.5, 5.0, 5.5, 0.0, 0.0, 0.0];
+            let mut w = world(0);
+            w.gravity = [0.0; 3];
+            let mut sim = Sim::new(&[body], &[], &w).unwrap();
+            let start = BaseState {
+                position: [0.0, 0.0, 3.0],
+                orientation: [1.0, 0.0, 0.0, 0.0],
+                linear_velocity: [1.0, -0.3, 0.5],
+                angular_velocity: [0.5, -0.8, 4.0],
+            };
+            sim.set_state(&start, &[], &[]).unwrap();
+            let centre = |sim: &Sim| {
+                let mut p = [0.0; 7];
+                sim.body_poses(&mut p);
+                let q = UnitQuaternion::from_quaternion(Quaternion::new(p[3], p[4], p[5], p[6]));
+                Vector3::new(p[0], p[1], p[2]) + q * Vector3::from(com)
+            };
+            let c0 = centre(&sim);
+            let v = Vector3::from(start.linear_velocity)
+                + Vector3::from(start.angular_velocity).cross(&Vector3::from(com));
+            let mut worst: f64 = 0.0;
+            for n in 1..=1000 {
+                assert!(sim.step().unwrap());
+                let expected = c0 + v * (f64::from(n) * w.dt);
+                worst = worst.max((centre(&sim) - expected).norm());
+            }
+            assert!(
+                worst < 1e-9,
+                "com {com:?}: centre of mass drifted {worst} m"
+            );
+        }
     }
 }

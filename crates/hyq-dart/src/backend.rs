@@ -1,0 +1,414 @@
+//! [`DartBackend`]: the `hyq-physics` [`Backend`] trait on a DART 6.12 world.
+//!
+//! The DART skeleton is built from the shared [`RobotModel`] body by body (mass, centre of mass,
+//! inertia tensor, joint frame, axis, limits, damping, primitive collision shapes), so DART and
+//! every other backend simulate the same robot by construction. The torques come from the
+//! shared actuator ([`hyq_physics::pd_substep`]); DART adds none of its own.
+
+use std::sync::Arc;
+
+use hyq_physics::na::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3};
+use hyq_physics::{
+    Backend, PhysicsError, PhysicsParams, RobotModel, RobotState, Shape, TrunkState,
+};
+use serde::{Deserialize, Serialize};
+
+use crate::error::DartError;
+use crate::sim::{BaseState, BodyDesc, JointKind, Pose, ShapeDesc, ShapeKind, Sim, WorldDesc};
+
+/// Half the side (m) of the square ground box whose top face is the plane z = 0. Bullet works in
+/// single precision, and its contact geometry for a box loses precision in proportion to the
+/// box's size, so the ground is large enough for any episode (an episode of 1000 env steps lasts
+/// 10 s, in which HyQ covers well under 50 m) but no larger.
+pub const GROUND_HALF_EXTENT_M: f64 = 100.0;
+
+/// DART-specific settings (`[physics.dart]`). DART's solver has no setting the project exposes
+/// yet: the collision detector (Bullet), the LCP solver (Dantzig) and DART's contact and
+/// joint-limit constraint parameters (its defaults) are fixed; see the crate's README for why.
+#[derive(Debug, Clone, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DartOptions {}
+
+/// A tracked collision shape, for the geometric half of the contact test.
+#[derive(Debug, Clone)]
+struct TrackedShape {
+    tracked: usize,
+    link: usize,
+    origin: Isometry3<f64>,
+    shape: Shape,
+}
+
+/// One HyQ (or any [`RobotModel`]) on flat ground in its own DART world.
+///
+/// `Send` (worlds can move between threads, and several worlds can step on several threads at
+/// once) but not `Sync`.
+#[derive(Debug)]
+pub struct DartBackend {
+    sim: Sim,
+    model: Arc<RobotModel>,
+    params: PhysicsParams,
+    tracked_shapes: Vec<TrackedShape>,
+    /// Body poses after the last step or state change, 7 values per body (model link order).
+    poses: Vec<f64>,
+    /// Contact flags of the last step.
+    contacts: Vec<bool>,
+    /// Scratch for the finiteness check after a step.
+    q: Vec<f64>,
+    qd: Vec<f64>,
+    /// Set when the world cannot be stepped until the next state change (a failed state change
+    /// or a diverged step).
+    blocked: Option<String>,
+}
+
+fn backend_error(message: String) -> PhysicsError {
+    PhysicsError::Backend {
+        backend: DartBackend::NAME,
+        message,
+    }
+}
+
+impl From<DartError> for PhysicsError {
+    fn from(e: DartError) -> Self {
+        backend_error(e.to_string())
+    }
+}
+
+fn pose(iso: &Isometry3<f64>) -> Pose {
+    let t = iso.translation.vector;
+    let q = iso.rotation.quaternion();
+    Pose {
+        translation: [t.x, t.y, t.z],
+        rotation: [q.w, q.i, q.j, q.k],
+    }
+}
+
+/// The bridge's description of `model`: bodies in model order (parents first), shapes with the
+/// tracked body they report to.
+fn describe(
+    model: &RobotModel,
+    params: &PhysicsParams,
+) -> Result<(Vec<BodyDesc>, Vec<ShapeDesc>, WorldDesc), PhysicsError> {
+    let mut tracked_of = std::collections::HashMap::new();
+    for (t, body) in model.tracked().iter().enumerate() {
+        for &s in &body.shapes {
+            if let Some(other) = tracked_of.insert((body.link, s), t) {
+                return Err(backend_error(format!(
+                    "collision {s} of link {} belongs to two tracked bodies ({} and {})",
+                    model.links()[body.link].name,
+                    model.tracked()[other].name,
+                    body.name
+                )));
+            }
+        }
+    }
+
+    let mut bodies = Vec::with_capacity(model.num_links());
+    let mut shapes = Vec::new();
+    for (i, link) in model.links().iter().enumerate() {
+        let i3 = link.inertia;
+        let mut body = BodyDesc {
+            name: link.name.clone(),
+            parent: -1,
+            joint_kind: JointKind::Free,
+            joint_name: format!("{}_free", link.name),
+            joint_index: 0,
+            joint_origin: Pose::IDENTITY,
+            axis: [0.0; 3],
+            lower: 0.0,
+            upper: 0.0,
+            damping: 0.0,
+            mass: link.mass,
+            com: [link.com.x, link.com.y, link.com.z],
+            inertia: [
+                i3[(0, 0)],
+                i3[(1, 1)],
+                i3[(2, 2)],
+                i3[(0, 1)],
+                i3[(0, 2)],
+                i3[(1, 2)],
+            ],
+        };
+        match (link.parent, link.parent_joint) {
+            (None, _) => {}
+            (Some(parent), Some(j)) => {
+                let joint = &model.joints()[j];
+                body.parent = i32::try_from(parent).map_err(|_| {
+                    backend_error(format!(
+                        "link {}: parent index {parent} too large",
+                        link.name
+                    ))
+                })?;
+                body.joint_kind = JointKind::Revolute;
+                body.joint_name = joint.urdf_name.clone();
+                body.joint_index = u32::try_from(j).map_err(|_| {
+                    backend_error(format!("joint {}: index {j} too large", joint.name))
+                })?;
+                body.joint_origin = pose(&joint.origin);
+                body.axis = [joint.axis.x, joint.axis.y, joint.axis.z];
+                body.lower = joint.lower;
+                body.upper = joint.upper;
+                body.damping = joint.damping;
+            }
+            (Some(_), None) => {
+                return Err(backend_error(format!(
+                    "link {} has a parent but no actuated joint",
+                    link.name
+                )));
+            }
+        }
+        bodies.push(body);
+
+        for (s, collision) in link.collisions.iter().enumerate() {
+            let (kind, size) = match collision.shape {
+                Shape::Box { half_extents } => (
+                    ShapeKind::Box,
+                    [half_extents.x, half_extents.y, half_extents.z],
+                ),
+                Shape::Sphere { radius } => (ShapeKind::Sphere, [radius, 0.0, 0.0]),
+                Shape::Capsule {
+                    radius,
+                    half_length,
+                } => (ShapeKind::Capsule, [radius, half_length, 0.0]),
+                Shape::Cylinder {
+                    radius,
+                    half_length,
+                } => (ShapeKind::Cylinder, [radius, half_length, 0.0]),
+                // `Shape` is non-exhaustive: a shape added to the model later must be mapped
+                // here before DART can simulate it.
+                #[allow(unreachable_patterns)]
+                ref other => {
+                    return Err(backend_error(format!(
+                        "link {}: collision shape {other:?} is not supported by the DART backend",
+                        link.name
+                    )));
+                }
+            };
+            shapes.push(ShapeDesc {
+                body: u32::try_from(i)
+                    .map_err(|_| backend_error(format!("link index {i} too large")))?,
+                kind,
+                size,
+                pose: pose(&collision.origin),
+                tracked: tracked_of
+                    .get(&(i, s))
+                    .map_or(-1, |&t| i32::try_from(t).unwrap_or(i32::MAX)),
+            });
+        }
+    }
+    let world = WorldDesc {
+        dt: params.dt,
+        gravity: params.gravity,
+        friction: params.ground_friction,
+        restitution: 0.0,
+        ground_height: 0.0,
+        ground_half_extent: GROUND_HALF_EXTENT_M,
+        num_tracked: u32::try_from(model.tracked().len())
+            .map_err(|_| backend_error("too many tracked bodies".into()))?,
+    };
+    Ok((bodies, shapes, world))
+}
+
+fn base_state(trunk: &TrunkState) -> BaseState {
+    let t = trunk.pose.translation.vector;
+    let q = trunk.pose.rotation.quaternion();
+    BaseState {
+        position: [t.x, t.y, t.z],
+        orientation: [q.w, q.i, q.j, q.k],
+        linear_velocity: [trunk.linvel.x, trunk.linvel.y, trunk.linvel.z],
+        angular_velocity: [trunk.angvel.x, trunk.angvel.y, trunk.angvel.z],
+    }
+}
+
+fn isometry(p: &[f64]) -> Isometry3<f64> {
+    Isometry3::from_parts(
+        Translation3::new(p[0], p[1], p[2]),
+        UnitQuaternion::new_normalize(Quaternion::new(p[3], p[4], p[5], p[6])),
+    )
+}
+
+impl DartBackend {
+    /// Contact points DART's solver used in the last step (all robot shapes, tracked or not).
+    pub fn num_contact_points(&self) -> usize {
+        self.sim.num_contacts()
+    }
+
+    /// Simulated time since the last state change (s), as DART counts it.
+    pub fn time(&self) -> f64 {
+        self.sim.time()
+    }
+
+    /// Re-reads the body poses the contact test and [`Backend::link_poses`] use.
+    fn refresh_poses(&mut self) {
+        self.sim.body_poses(&mut self.poses);
+    }
+
+    /// Names the first joint whose angle or speed is not finite, or else the trunk, after a
+    /// step the bridge reported as diverged. Reads only joint values: DART would abort on
+    /// anything that computes a transform from this state.
+    fn diverged_quantity(&mut self) -> String {
+        self.sim.joint_positions(&mut self.q);
+        self.sim.joint_velocities(&mut self.qd);
+        let joints = self.model.joints();
+        if let Some(i) = self.q.iter().position(|v| !v.is_finite()) {
+            return format!("angle of joint {}", joints[i].name);
+        }
+        if let Some(i) = self.qd.iter().position(|v| !v.is_finite()) {
+            return format!("speed of joint {}", joints[i].name);
+        }
+        "trunk pose or velocity (or a value beyond the bridge's sanity bound of 1e8)".into()
+    }
+
+    /// Sets the contact flags of the step just taken: a tracked shape touched the ground if
+    /// DART's solver used a contact on it in this step, or if it ends the step within
+    /// `contact_distance` of the ground.
+    fn update_contacts(&mut self) {
+        self.sim.contacts(&mut self.contacts);
+        for t in &self.tracked_shapes {
+            if self.contacts[t.tracked] {
+                continue;
+            }
+            let body = isometry(&self.poses[7 * t.link..7 * t.link + 7]);
+            if t.shape.lowest_z(&(body * t.origin)) <= self.params.contact_distance {
+                self.contacts[t.tracked] = true;
+            }
+        }
+    }
+}
+
+impl Backend for DartBackend {
+    type Options = DartOptions;
+    const NAME: &'static str = "dart";
+
+    fn build(
+        model: Arc<RobotModel>,
+        params: &PhysicsParams,
+        _options: &Self::Options,
+    ) -> Result<Self, PhysicsError> {
+        params.validate()?;
+        let (bodies, shapes, world) = describe(&model, params)?;
+        let sim = Sim::new(&bodies, &shapes, &world)?;
+        let tracked_shapes = model
+            .tracked()
+            .iter()
+            .enumerate()
+            .flat_map(|(t, body)| {
+                let link = &model.links()[body.link];
+                body.shapes.iter().map(move |&s| TrackedShape {
+                    tracked: t,
+                    link: body.link,
+                    origin: link.collisions[s].origin,
+                    shape: link.collisions[s].shape.clone(),
+                })
+            })
+            .collect();
+        let n = model.num_joints();
+        let mut backend = Self {
+            sim,
+            tracked_shapes,
+            poses: vec![0.0; 7 * model.num_links()],
+            contacts: vec![false; model.tracked().len()],
+            q: vec![0.0; n],
+            qd: vec![0.0; n],
+            params: params.clone(),
+            blocked: None,
+            model,
+        };
+        let spawn = backend.model.spawn_state();
+        backend.set_state(&spawn)?;
+        if let Some(reason) = backend.blocked.take() {
+            return Err(backend_error(reason));
+        }
+        Ok(backend)
+    }
+
+    fn model(&self) -> &Arc<RobotModel> {
+        &self.model
+    }
+
+    fn params(&self) -> &PhysicsParams {
+        &self.params
+    }
+
+    fn apply_state(&mut self, state: &RobotState) {
+        self.contacts.fill(false);
+        match self
+            .sim
+            .set_state(&base_state(&state.trunk), &state.q, &state.qd)
+        {
+            Ok(()) => self.blocked = None,
+            // The state was validated, so DART refusing it is unexpected; the trait gives this
+            // method no error channel, so the next step reports it.
+            Err(e) => self.blocked = Some(format!("the last set_state failed: {e}")),
+        }
+        self.refresh_poses();
+    }
+
+    fn apply_joint_torques(&mut self, torques: &[f64]) {
+        if let Err(e) = self.sim.set_joint_torques(torques) {
+            // Lengths and finiteness were validated by the caller; see `apply_state`.
+            self.blocked = Some(format!("set_joint_torques failed: {e}"));
+        }
+    }
+
+    fn step(&mut self) -> Result<(), PhysicsError> {
+        if let Some(reason) = &self.blocked {
+            return Err(backend_error(format!(
+                "{reason}; call set_state before stepping again"
+            )));
+        }
+        if !self.sim.step()? {
+            let what = self.diverged_quantity();
+            self.blocked = Some(format!("the simulation diverged ({what} is not finite)"));
+            self.contacts.fill(false);
+            return Err(PhysicsError::Diverged { what });
+        }
+        self.refresh_poses();
+        self.update_contacts();
+        Ok(())
+    }
+
+    fn joint_positions(&self, out: &mut [f64]) {
+        self.sim.joint_positions(out);
+    }
+
+    fn joint_velocities(&self, out: &mut [f64]) {
+        self.sim.joint_velocities(out);
+    }
+
+    fn trunk(&self) -> TrunkState {
+        let b = self.sim.base_state();
+        let p = [
+            b.position[0],
+            b.position[1],
+            b.position[2],
+            b.orientation[0],
+            b.orientation[1],
+            b.orientation[2],
+            b.orientation[3],
+        ];
+        TrunkState {
+            pose: isometry(&p),
+            linvel: Vector3::from(b.linear_velocity),
+            angvel: Vector3::from(b.angular_velocity),
+        }
+    }
+
+    fn contacts(&self, out: &mut [bool]) {
+        out.copy_from_slice(&self.contacts);
+    }
+
+    fn link_poses(&self, out: &mut [Isometry3<f64>]) {
+        assert_eq!(
+            out.len(),
+            self.model.num_links(),
+            "link_poses: one pose per body"
+        );
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = isometry(&self.poses[7 * i..7 * i + 7]);
+        }
+    }
+
+    fn total_mass(&self) -> f64 {
+        self.sim.total_mass()
+    }
+}
