@@ -66,10 +66,10 @@ class Sim {
   // World pose of every body frame: x, y, z, qw, qx, qy, qz per body.
   void body_poses(rust::Slice<double> out) const;
   double total_mass() const;
-  // For each tracked link: did one of its collision shapes touch the ground
-  // in the last step (the contacts the last step's solver used).
+  // For each tracked link: did one of its collision shapes touch or
+  // penetrate the ground in the contacts the last step's solver used.
   void contacts(rust::Slice<bool> out) const;
-  // Number of contact points the last step's solver used.
+  // Number of touching or penetrating contact points in the last step.
   std::size_t num_contacts() const;
   double time() const;
 

@@ -227,7 +227,8 @@ fn isometry(p: &[f64]) -> Isometry3<f64> {
 }
 
 impl DartBackend {
-    /// Contact points DART's solver used in the last step (all robot shapes, tracked or not).
+    /// Touching or penetrating contact points in the last step (all robot shapes, tracked or
+    /// not).
     pub fn num_contact_points(&self) -> usize {
         self.sim.num_contacts()
     }
@@ -258,9 +259,10 @@ impl DartBackend {
         "trunk pose or velocity (or a value beyond the bridge's sanity bound of 1e8)".into()
     }
 
-    /// Sets the contact flags of the step just taken: a tracked shape touched the ground if
-    /// DART's solver used a contact on it in this step, or if it ends the step within
-    /// `contact_distance` of the ground.
+    /// Sets the contact flags of the step just taken: a tracked shape touched the ground if it
+    /// touched or penetrated it in the contacts DART's solver used in this step (taken before
+    /// the step moved the bodies), or if it ends the step within `contact_distance` of the
+    /// ground.
     fn update_contacts(&mut self) {
         self.sim.contacts(&mut self.contacts);
         for t in &self.tracked_shapes {

@@ -165,9 +165,11 @@ pub(crate) mod ffi {
         fn body_poses(self: &Sim, out: &mut [f64]);
         /// Total mass of the robot's bodies (kg) as DART holds them.
         fn total_mass(self: &Sim) -> f64;
-        /// Per tracked link: ground contact in the last step.
+        /// Per tracked link: one of its shapes touched or penetrated the ground in the contacts
+        /// of the last step.
         fn contacts(self: &Sim, out: &mut [bool]);
-        /// Contact points in the last step.
+        /// Touching or penetrating contact points in the last step (Bullet also reports points
+        /// up to about a millimetre apart; those are not counted).
         fn num_contacts(self: &Sim) -> usize;
         /// Simulated time since the last `set_state` (s).
         fn time(self: &Sim) -> f64;

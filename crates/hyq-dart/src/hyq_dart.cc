@@ -15,6 +15,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <dart/collision/CollisionObject.hpp>
 #include <dart/collision/CollisionResult.hpp>
 #include <dart/collision/bullet/BulletCollisionDetector.hpp>
 #include <dart/constraint/ConstraintSolver.hpp>
@@ -512,19 +513,30 @@ void Sim::contacts(rust::Slice<bool> out) const {
   for (auto& flag : out) {
     flag = false;
   }
-  const auto& result = impl_->world->getLastCollisionResult();
-  if (!result.isCollision()) {
-    return;
-  }
-  for (const auto& [shape, link] : impl_->tracked_shapes) {
-    if (link < out.size() && result.inCollision(shape)) {
-      out[link] = true;
+  // Bullet also reports points up to about a millimetre apart (its contact
+  // breaking threshold); DART's result keeps them with a negative depth.
+  // Only touching or penetrating points count here.
+  for (const auto& contact : impl_->world->getLastCollisionResult().getContacts()) {
+    if (!(contact.penetrationDepth >= 0.0)) {
+      continue;
+    }
+    for (const auto* object : {contact.collisionObject1, contact.collisionObject2}) {
+      const auto* frame = object->getShapeFrame();
+      for (const auto& [shape, link] : impl_->tracked_shapes) {
+        if (shape == frame && link < out.size()) {
+          out[link] = true;
+        }
+      }
     }
   }
 }
 
 std::size_t Sim::num_contacts() const {
-  return impl_->world->getLastCollisionResult().getNumContacts();
+  std::size_t n = 0;
+  for (const auto& contact : impl_->world->getLastCollisionResult().getContacts()) {
+    n += contact.penetrationDepth >= 0.0 ? 1 : 0;
+  }
+  return n;
 }
 
 double Sim::time() const { return impl_->world->getTime(); }

@@ -127,7 +127,7 @@ impl Sim {
         self.get().contacts(out);
     }
 
-    /// Contact points the last step's solver used.
+    /// Touching or penetrating contact points in the last step.
     pub(crate) fn num_contacts(&self) -> usize {
         self.get().num_contacts()
     }
@@ -250,23 +250,62 @@ mod tests {
     }
 
     #[test]
-    fn a_shape_hovering_within_bullets_contact_margin_is_not_in_contact() {
-        // Bullet keeps manifold points up to a few centimetres apart; only touching counts.
+    fn shapes_hovering_within_bullets_contact_margin_are_not_in_contact() {
+        // Bullet keeps manifold points up to a few centimetres apart, and its plane shape
+        // reported a box 14 mm above it as touching; against the ground box, only touching
+        // counts, for every shape kind and orientation the robot uses.
+        let tilted = Pose {
+            translation: [0.0; 3],
+            rotation: about_y(0.4),
+        };
+        let lying = Pose {
+            translation: [0.0; 3],
+            rotation: about_y(std::f64::consts::FRAC_PI_2),
+        };
+        let cases = [
+            (ShapeKind::Sphere, [0.05, 0.0, 0.0], Pose::IDENTITY),
+            (ShapeKind::Box, [0.2, 0.1, 0.05], Pose::IDENTITY),
+            (ShapeKind::Box, [0.2, 0.1, 0.05], tilted),
+            (ShapeKind::Capsule, [0.04, 0.15, 0.0], lying),
+            (ShapeKind::Capsule, [0.04, 0.15, 0.0], tilted),
+            (ShapeKind::Cylinder, [0.04, 0.15, 0.0], lying),
+        ];
         let mut w = world(1);
         w.gravity = [0.0; 3];
-        let s = shape(ShapeKind::Sphere, [0.05, 0.0, 0.0], Pose::IDENTITY, 0);
-        let mut sim = Sim::new(&[root(1.0)], &[s], &w).unwrap();
-        sim.set_state(&at(0.05 + 0.003), &[], &[]).unwrap();
-        run(&mut sim, 10);
-        let mut flags = [true];
-        sim.contacts(&mut flags);
-        assert!(!flags[0]);
-        assert_eq!(sim.num_contacts(), 0);
-        let z = sim.base_state().position[2];
-        assert!(
-            (z - 0.053).abs() < 1e-12,
-            "nothing pushed the sphere: z = {z}"
-        );
+        for (kind, size, pose) in cases {
+            for gap in [0.003, 0.0005] {
+                let s = shape(kind, size, pose, 0);
+                let mut sim = Sim::new(&[root(1.0)], &[s], &w).unwrap();
+                // Place the shape's lowest point `gap` above the ground.
+                sim.set_state(&at(1.0), &[], &[]).unwrap();
+                let lowest = lowest_point(kind, size, &pose) + 1.0;
+                let z0 = 1.0 - lowest + gap;
+                sim.set_state(&at(z0), &[], &[]).unwrap();
+                run(&mut sim, 10);
+                let mut flags = [true];
+                sim.contacts(&mut flags);
+                assert!(!flags[0], "{kind:?} {gap} m above the ground in contact");
+                assert_eq!(sim.num_contacts(), 0, "{kind:?} {gap} m above the ground");
+                let z = sim.base_state().position[2];
+                assert!(
+                    (z - z0).abs() < 1e-12,
+                    "nothing pushed the {kind:?}: z = {z}, was {z0}"
+                );
+            }
+        }
+    }
+
+    /// Lowest z of a shape whose body frame is at the origin (rotation about y only).
+    fn lowest_point(kind: ShapeKind, size: [f64; 3], pose: &Pose) -> f64 {
+        let (w, y) = (pose.rotation[0], pose.rotation[2]);
+        let angle = 2.0 * y.atan2(w);
+        let (sin, cos) = (angle.sin().abs(), angle.cos().abs());
+        match kind {
+            ShapeKind::Sphere => -size[0],
+            ShapeKind::Box => -(size[0] * sin + size[2] * cos),
+            ShapeKind::Capsule => -(size[1] * cos + size[0]),
+            _ => -(size[1] * cos + size[0] * sin),
+        }
     }
 
     #[test]
