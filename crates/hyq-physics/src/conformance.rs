@@ -2,7 +2,7 @@
 //!
 //! A backend crate runs all of them with one line in its `tests/conformance.rs`:
 //!
-//! ```ignore
+//! ```text
 //! hyq_physics::conformance_tests!(hyq_rapier::RapierBackend);
 //! // or, with engine options:
 //! hyq_physics::conformance_tests!(hyq_rapier::RapierBackend, hyq_rapier::RapierOptions::default());

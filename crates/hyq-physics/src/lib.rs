@@ -11,7 +11,8 @@
 //!   shared code ([`pd_substep`]), so every backend is driven identically.
 //! - [`bundled::hyq`]: the HyQ robot shipped in `assets/hyq/`, usable from any directory.
 //! - `conformance` (cargo feature `conformance`): the test bodies every backend must pass,
-//!   instantiated with [`conformance_tests!`] in a backend's `tests/conformance.rs`.
+//!   instantiated with `hyq_physics::conformance_tests!(Backend)` in a backend's
+//!   `tests/conformance.rs`.
 //!
 //! Nothing here knows HyQ: robot names and counts come from the profile.
 
