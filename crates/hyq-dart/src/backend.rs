@@ -414,3 +414,24 @@ impl Backend for DartBackend {
         self.sim.total_mass()
     }
 }
+
+#[cfg(test)]
+mod tests {
+    //! `[physics.dart]` parses from TOML: empty is the default, anything else is refused by
+    //! name.
+    #![allow(clippy::unwrap_used)]
+
+    use super::*;
+
+    #[test]
+    fn options_parse_empty_and_reject_unknown_fields() {
+        assert_eq!(
+            toml::from_str::<DartOptions>("").unwrap(),
+            DartOptions::default()
+        );
+        let err = toml::from_str::<DartOptions>("detector = \"ode\"")
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("detector"), "{err}");
+    }
+}

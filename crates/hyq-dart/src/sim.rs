@@ -553,4 +553,34 @@ mod tests {
             );
         }
     }
+
+    #[test]
+    fn friction_is_a_pyramid_along_the_world_axes() {
+        // A box sliding on the ground (mu = 1) decelerates at mu g along x or y, as under a
+        // Coulomb cone, but at sqrt(2) mu g along the diagonal: DART bounds the friction along
+        // two tangent directions (world x and y on flat ground) separately.
+        let decel = |dir: [f64; 2]| {
+            let s = shape(ShapeKind::Box, [0.2, 0.2, 0.05], Pose::IDENTITY, 0);
+            let mut sim = Sim::new(&[root(10.0)], &[s], &world(1)).unwrap();
+            let mut start = at(0.05);
+            start.linear_velocity = [dir[0], dir[1], 0.0];
+            sim.set_state(&start, &[], &[]).unwrap();
+            run(&mut sim, 20);
+            let v0 = sim.base_state().linear_velocity;
+            run(&mut sim, 50);
+            let v1 = sim.base_state().linear_velocity;
+            let speed = |v: [f64; 3]| v[0].hypot(v[1]);
+            (speed(v0) - speed(v1)) / 0.05
+        };
+        let g = 9.81;
+        let along_x = decel([1.0, 0.0]);
+        let along_y = decel([0.0, 1.0]);
+        let diagonal = decel([std::f64::consts::FRAC_1_SQRT_2; 2]);
+        assert!((along_x / g - 1.0).abs() < 0.02, "x: {along_x} m/s²");
+        assert!((along_y / g - 1.0).abs() < 0.02, "y: {along_y} m/s²");
+        assert!(
+            (diagonal / g - std::f64::consts::SQRT_2).abs() < 0.03,
+            "diagonal: {diagonal} m/s²"
+        );
+    }
 }
