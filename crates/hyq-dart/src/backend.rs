@@ -365,6 +365,15 @@ impl Backend for DartBackend {
             return Err(PhysicsError::Diverged { what });
         }
         self.refresh_poses();
+        let (x, y) = (self.poses[0], self.poses[1]);
+        if x.abs().max(y.abs()) > GROUND_HALF_EXTENT_M {
+            let reason = format!(
+                "the trunk left DART's ground at ({x:.1}, {y:.1}) m (the ground ends at \
+                 ±{GROUND_HALF_EXTENT_M} m in x and y)"
+            );
+            self.blocked = Some(reason.clone());
+            return Err(backend_error(reason));
+        }
         self.update_contacts();
         Ok(())
     }
@@ -422,6 +431,29 @@ mod tests {
     #![allow(clippy::unwrap_used)]
 
     use super::*;
+
+    #[test]
+    fn leaving_the_ground_box_is_an_error_not_a_silent_fall() {
+        let model = hyq_physics::bundled::hyq();
+        let mut b = DartBackend::build(
+            model.clone(),
+            &PhysicsParams::default(),
+            &DartOptions::default(),
+        )
+        .unwrap();
+        let mut state = model.spawn_state();
+        state.trunk.pose.translation.x = GROUND_HALF_EXTENT_M - 0.5;
+        b.set_state(&state).unwrap();
+        b.step().unwrap();
+        state.trunk.pose.translation.x = GROUND_HALF_EXTENT_M + 0.5;
+        b.set_state(&state).unwrap();
+        let err = b.step().unwrap_err().to_string();
+        assert!(err.contains("left DART's ground"), "{err}");
+        let err = b.step().unwrap_err().to_string();
+        assert!(err.contains("call set_state"), "{err}");
+        b.set_state(&model.spawn_state()).unwrap();
+        b.step().unwrap();
+    }
 
     #[test]
     fn options_parse_empty_and_reject_unknown_fields() {
