@@ -209,7 +209,7 @@ mod tests {
     }
 
     #[test]
-    fn sphere_box_and_capsule_rest_on_the_ground_at_their_geometric_height() {
+    fn every_shape_kind_rests_on_the_ground_at_its_geometric_height() {
         // A capsule lying along x: its z axis rotated by 90° about y.
         let lying = Pose {
             translation: [0.0; 3],
@@ -225,6 +225,10 @@ mod tests {
                 0.05,
             ),
             (shape(ShapeKind::Capsule, [0.04, 0.15, 0.0], lying, 0), 0.04),
+            (
+                shape(ShapeKind::Cylinder, [0.04, 0.15, 0.0], lying, 0),
+                0.04,
+            ),
         ];
         for (s, rest) in cases {
             let mut sim = Sim::new(&[root(2.0)], &[s], &world(1)).unwrap();
