@@ -25,7 +25,7 @@ impl Part {
 }
 
 /// The install line printed when DART is missing (the README gives the same line).
-pub const DART_INSTALL: &str = "sudo apt-get install -y libdart-dev libdart-utils-urdf-dev";
+pub const DART_INSTALL: &str = "sudo apt-get install -y libdart-dev libdart-collision-bullet-dev";
 
 /// What happened to one stage.
 enum Outcome {
@@ -99,9 +99,11 @@ pub fn workspace_members(root: &Path) -> Result<Vec<String>, String> {
     Ok(names)
 }
 
-/// True when Debian's DART development files are installed.
+/// True when Debian's DART development files are installed, with the Bullet collision detector
+/// the backend uses.
 fn dart_installed() -> bool {
     Path::new("/usr/include/dart/config.hpp").exists()
+        && Path::new("/usr/include/dart/collision/bullet/BulletCollisionDetector.hpp").exists()
 }
 
 /// Runs `cargo` with `args` in the workspace root, streaming its output, and returns how many
