@@ -169,12 +169,15 @@ impl PdScratch {
     }
 }
 
-/// One actuated physics sub-step: reads `q` and `q̇`, computes the actuator torques for
-/// `targets` (rad, profile order), applies them and steps the backend. Allocates nothing.
+/// The actuator half of a sub-step: reads `q` and `q̇`, computes the actuator torques for
+/// `targets` (rad, profile order) and stores them in the backend for its next
+/// [`Backend::step`]. Allocates nothing. [`pd_substep`] is this followed by the step; callers
+/// that time the actuator and the physics apart (an environment's profiling) call the two
+/// halves themselves.
 ///
-/// Errors if `targets` is not one finite value per joint, if `scratch` or `actuator` was made
-/// for another robot, or if the step diverged.
-pub fn pd_substep<B: Backend>(
+/// Errors if `targets` is not one finite value per joint, or if `scratch` or `actuator` was made
+/// for another robot.
+pub fn apply_pd<B: Backend>(
     backend: &mut B,
     actuator: &Actuator,
     targets: &[f64],
@@ -197,6 +200,21 @@ pub fn pd_substep<B: Backend>(
     backend.joint_velocities(&mut scratch.qd);
     actuator.torques(targets, &scratch.q, &scratch.qd, &mut scratch.tau)?;
     // Validated rather than trusted: extreme gains could overflow the law to NaN.
-    backend.set_joint_torques(&scratch.tau)?;
+    backend.set_joint_torques(&scratch.tau)
+}
+
+/// One actuated physics sub-step: reads `q` and `q̇`, computes the actuator torques for
+/// `targets` (rad, profile order), applies them and steps the backend ([`apply_pd`], then
+/// [`Backend::step`]). Allocates nothing.
+///
+/// Errors if `targets` is not one finite value per joint, if `scratch` or `actuator` was made
+/// for another robot, or if the step diverged.
+pub fn pd_substep<B: Backend>(
+    backend: &mut B,
+    actuator: &Actuator,
+    targets: &[f64],
+    scratch: &mut PdScratch,
+) -> Result<(), PhysicsError> {
+    apply_pd(backend, actuator, targets, scratch)?;
     backend.step()
 }

@@ -26,7 +26,7 @@ pub mod inertia;
 pub mod model;
 pub mod profile;
 
-pub use actuator::{Actuator, PdScratch, pd_substep};
+pub use actuator::{Actuator, PdScratch, apply_pd, pd_substep};
 pub use backend::{Backend, PhysicsParams, RobotState, TrunkState, check_joint_values};
 pub use error::{ModelError, PhysicsError};
 pub use model::{Collision, Joint, Link, RobotModel, Shape, TrackedBody};

@@ -175,6 +175,7 @@ pub struct RobotModel {
     num_feet: usize,
     standing: Vec<f64>,
     spawn_height: f64,
+    standing_height: f64,
     kp: Vec<f64>,
     kd: Vec<f64>,
     total_mass: f64,
@@ -623,6 +624,10 @@ impl RobotModel {
             num_feet: profile.feet.len(),
             standing: profile.joints.iter().map(|j| j.standing).collect(),
             spawn_height: profile.spawn.height,
+            standing_height: profile
+                .spawn
+                .standing_height
+                .unwrap_or(profile.spawn.height),
             kp,
             kd,
             total_mass,
@@ -688,6 +693,12 @@ impl RobotModel {
     /// Height (m) of the trunk frame at spawn.
     pub fn spawn_height(&self) -> f64 {
         self.spawn_height
+    }
+
+    /// Nominal standing height (m) of the trunk frame: where it settles standing at the
+    /// standing pose (the profile's `spawn.standing_height`, else the spawn height).
+    pub fn standing_height(&self) -> f64 {
+        self.standing_height
     }
 
     /// Default proportional gains (N·m/rad), profile order.
@@ -830,6 +841,14 @@ fn check_profile_values(profile: &Profile) -> Result<(), ModelError> {
             "spawn.height".into(),
             format!("{} m must be finite and positive", profile.spawn.height),
         ));
+    }
+    if let Some(h) = profile.spawn.standing_height {
+        if !(h.is_finite() && h > 0.0) {
+            return Err(invalid(
+                "spawn.standing_height".into(),
+                format!("{h} m must be finite and positive"),
+            ));
+        }
     }
     let gain = |field: String, v: f64| {
         if v.is_finite() && v >= 0.0 {

@@ -70,6 +70,12 @@ pub struct Spawn {
     /// Height (m) of the trunk frame's origin above the ground, trunk level, joints at the
     /// standing pose, at rest.
     pub height: f64,
+    /// Nominal standing height (m) of the trunk frame's origin: where it settles when the robot
+    /// stands on flat ground at the standing pose under the default gains, as measured in the
+    /// simulators. Environments put their default goal at this height. When absent, the spawn
+    /// `height` is used.
+    #[serde(default)]
+    pub standing_height: Option<f64>,
 }
 
 /// Default PD gains of the joint actuators.

@@ -428,3 +428,20 @@ fn duplicate_foot_names() {
         other => panic!("expected InvalidProfile, got {other:?}"),
     }
 }
+
+#[test]
+fn standing_height_must_be_positive_and_defaults_to_the_spawn_height() {
+    let p = profile_with("standing_height = 0.5895", "standing_height = -0.1").expect("parses");
+    match load(HYQ_URDF, &p) {
+        Err(ModelError::InvalidProfile { field, reason }) => {
+            assert_eq!(field, "spawn.standing_height");
+            assert!(reason.contains("-0.1"), "{reason}");
+        }
+        other => panic!("expected InvalidProfile, got {other:?}"),
+    }
+    let p = profile_with("standing_height = 0.5895", "").expect("parses");
+    let model = load(HYQ_URDF, &p).expect("loads without standing_height");
+    assert_eq!(model.standing_height(), model.spawn_height());
+    let model = load(HYQ_URDF, &profile()).expect("bundled HyQ loads");
+    assert_eq!(model.standing_height(), 0.5895);
+}
