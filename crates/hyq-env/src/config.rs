@@ -1,0 +1,650 @@
+//! The environment's configuration: one TOML file with a table per concern, validated once when
+//! it is read or changed, never mutated behind the environment's back.
+//!
+//! ```toml
+//! [task]          # hyq-spec's TaskConfig: the spec's §2 user variables by their spec names
+//! norm_rew_scaling = 10.0
+//! fall_penalty = 1.0
+//!
+//! [goal]          # where the goal is (see GoalConfig)
+//! mode = "ahead"
+//! distance_m = 5.0
+//!
+//! [action]        # how actions become joint targets (see ActionConfig)
+//! mode = "normalized"
+//!
+//! [control]       # PD gains and sub-steps (see ControlConfig)
+//! sim_steps_per_env_step = 10
+//!
+//! [physics]       # hyq-physics' PhysicsParams, shared by every engine
+//! dt = 0.001
+//!
+//! [physics.rapier]   # the rapier backend's options, read when a rapier env is built
+//! solver_iterations = 2
+//!
+//! [physics.dart]     # the DART backend's options, read when a DART env is built
+//!
+//! [reset]         # spawn placement and reset noise (see ResetConfig)
+//! joint_noise_rad = 0.0
+//! ```
+//!
+//! Every table and every key is optional: a missing one takes its default. Unknown keys are
+//! errors naming the key. [`EnvConfig::set`] changes one value by its dotted key
+//! (`"task.fall_penalty"`, `"physics.rapier.solver_iterations"`), the way the CLI's `--set` and
+//! the Python keyword arguments do, and validates the whole configuration again.
+
+use std::collections::BTreeMap;
+use std::fmt;
+use std::path::Path;
+
+use hyq_physics::PhysicsParams;
+use hyq_spec::TaskConfig;
+use serde::de::{self, DeserializeOwned, Deserializer};
+use serde::ser::Serializer;
+use serde::{Deserialize, Serialize};
+use thiserror::Error;
+
+/// The names of the engine tables `[physics.<name>]` a configuration may hold, one per backend
+/// crate (`hyq-rapier`, `hyq-dart`). A table is read only by the backend of that name; the
+/// list exists so that a misspelt engine table is an error rather than silently ignored.
+pub const ENGINE_TABLES: [&str; 2] = ["rapier", "dart"];
+
+/// The whole configuration of an environment (see the module docs for the file layout).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct EnvConfig {
+    /// The spec's user variables (rewards, penalties, tolerances, t_max), hyq-spec's
+    /// [`TaskConfig`] with the spec's names. (default: the spec's §2 table)
+    pub task: TaskConfig,
+    /// Where the goal is. (default: 5 m ahead along +x at the nominal standing height)
+    pub goal: GoalConfig,
+    /// How actions become joint targets. (default: normalized, clipped)
+    pub action: ActionConfig,
+    /// The PD actuator's gains and the number of physics sub-steps per env step.
+    /// (default: the robot profile's gains, 10 sub-steps)
+    pub control: ControlConfig,
+    /// Physics settings shared by every engine, plus one optional table per engine.
+    /// (default: dt 0.001 s, gravity −9.81 z, friction 1, contact distance 1 mm)
+    pub physics: PhysicsConfig,
+    /// Spawn placement and reset noise. (default: at the origin, facing +x, no noise)
+    pub reset: ResetConfig,
+}
+
+/// How the goal G of each episode is chosen (`[goal]`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct GoalConfig {
+    /// `"ahead"`: `distance_m` along +x from the spawn point; `"fixed"`: `position`;
+    /// `"random"`: a seeded draw from `distance_range_m` and `heading_range_deg`.
+    /// (default: `"ahead"`)
+    pub mode: GoalMode,
+    /// Distance (m) of the goal along +x from the spawn point in `"ahead"` mode. Finite, > 0.
+    /// (default: 5.0)
+    pub distance_m: f64,
+    /// The goal's world coordinates [x, y, z] (m) in `"fixed"` mode, where it is required.
+    /// (default: unset)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub position: Option<[f64; 3]>,
+    /// [min, max] distance (m) from the spawn point, drawn uniformly, in `"random"` mode.
+    /// Finite, 0 < min ≤ max. (default: [3.0, 7.0])
+    pub distance_range_m: [f64; 2],
+    /// [min, max] heading (degrees, about +z from +x, positive to the left), drawn uniformly,
+    /// in `"random"` mode. Within [−180, 180], min ≤ max. (default: [0.0, 0.0], straight
+    /// ahead: the spec's yaw multiplier (§5.1) penalises any heading away from +x, so goals off
+    /// the x axis are opt-in)
+    pub heading_range_deg: [f64; 2],
+    /// The goal's height z (m) in `"ahead"` and `"random"` modes. (default: unset, meaning the
+    /// robot's nominal standing height from its profile, `spawn.standing_height`: 0.5895 m for
+    /// HyQ)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub height_m: Option<f64>,
+}
+
+impl Default for GoalConfig {
+    fn default() -> Self {
+        Self {
+            mode: GoalMode::Ahead,
+            distance_m: 5.0,
+            position: None,
+            distance_range_m: [3.0, 7.0],
+            heading_range_deg: [0.0, 0.0],
+            height_m: None,
+        }
+    }
+}
+
+/// How the goal is chosen; see [`GoalConfig`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum GoalMode {
+    /// `distance_m` straight ahead (+x) of the spawn point.
+    Ahead,
+    /// A fixed world position.
+    Fixed,
+    /// A seeded random distance and heading from the spawn point.
+    Random,
+}
+
+/// How an action becomes the 12 joint targets of the PD actuator (`[action]`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ActionConfig {
+    /// `"normalized"`: a ∈ [−1, 1] maps linearly onto each joint's range (−1 the lower limit,
+    /// +1 the upper); `"absolute"`: targets in radians; `"delta"`: target = the joint's angle at
+    /// the start of the step + a · `max_delta_rad`, a ∈ [−1, 1]. Targets are always clipped to
+    /// the joint limits. (default: `"normalized"`)
+    pub mode: ActionMode,
+    /// What a finite value outside the action space does: `"clip"` clips it to the space (and
+    /// the step's info says so), `"error"` refuses the step. Non-finite values are always
+    /// errors. (default: `"clip"`)
+    pub out_of_range: OutOfRange,
+    /// The largest change of a joint target per env step in `"delta"` mode (rad). Finite, > 0.
+    /// (default: 0.1, i.e. up to 10 rad/s at 100 env steps per second, within HyQ's 12 rad/s)
+    pub max_delta_rad: f64,
+}
+
+impl Default for ActionConfig {
+    fn default() -> Self {
+        Self {
+            mode: ActionMode::Normalized,
+            out_of_range: OutOfRange::Clip,
+            max_delta_rad: 0.1,
+        }
+    }
+}
+
+/// The action modes; see [`ActionConfig::mode`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ActionMode {
+    /// [−1, 1] onto each joint's range.
+    Normalized,
+    /// Radians, within the joint limits.
+    Absolute,
+    /// [−1, 1] times `max_delta_rad` from the current angle.
+    Delta,
+}
+
+/// What happens to a finite action value outside the action space; see
+/// [`ActionConfig::out_of_range`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum OutOfRange {
+    /// Clip to the action space.
+    Clip,
+    /// Refuse the step with an error naming the index and value.
+    Error,
+}
+
+/// The PD actuator and the sub-stepping (`[control]`).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ControlConfig {
+    /// Physics sub-steps per env step (the spec's §6.3 "10 simulator steps per gym step"); the
+    /// env step lasts `sim_steps_per_env_step · physics.dt`. In 1..=1000. (default: 10)
+    pub sim_steps_per_env_step: u32,
+    /// Proportional gains (N·m/rad): `"profile"` for the robot profile's, one number for every
+    /// joint, or one per joint in action order. Finite, ≥ 0. (default: `"profile"`, 1000 for
+    /// HyQ)
+    pub kp: Gains,
+    /// Derivative gains (N·m·s/rad), as `kp`. (default: `"profile"`, 20 for HyQ)
+    pub kd: Gains,
+    /// Whether the actuator honours the URDF velocity limits (hyq-physics' actuator rule 2).
+    /// (default: true)
+    pub velocity_limit: bool,
+}
+
+impl Default for ControlConfig {
+    fn default() -> Self {
+        Self {
+            sim_steps_per_env_step: 10,
+            kp: Gains::Profile,
+            kd: Gains::Profile,
+            velocity_limit: true,
+        }
+    }
+}
+
+/// Gains as written in `[control]`: the profile's, one for all joints, or one per joint.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub enum Gains {
+    /// The robot profile's gains (written `"profile"`).
+    #[default]
+    Profile,
+    /// The same gain for every joint (a number).
+    All(f64),
+    /// One gain per joint in action order (an array).
+    PerJoint(Vec<f64>),
+}
+
+impl Gains {
+    /// The gains for `n` joints, `profile` being the profile's; `None` when a per-joint list has
+    /// the wrong length.
+    pub fn resolve(&self, profile: &[f64]) -> Option<Vec<f64>> {
+        match self {
+            Gains::Profile => Some(profile.to_vec()),
+            Gains::All(g) => Some(vec![*g; profile.len()]),
+            Gains::PerJoint(v) => (v.len() == profile.len()).then(|| v.clone()),
+        }
+    }
+}
+
+impl Serialize for Gains {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        match self {
+            Gains::Profile => s.serialize_str("profile"),
+            Gains::All(g) => s.serialize_f64(*g),
+            Gains::PerJoint(v) => v.serialize(s),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for Gains {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V;
+        impl<'de> de::Visitor<'de> for V {
+            type Value = Gains;
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str("\"profile\", a number, or an array of one number per joint")
+            }
+            fn visit_str<E: de::Error>(self, v: &str) -> Result<Gains, E> {
+                if v == "profile" {
+                    Ok(Gains::Profile)
+                } else {
+                    Err(E::invalid_value(de::Unexpected::Str(v), &self))
+                }
+            }
+            fn visit_f64<E: de::Error>(self, v: f64) -> Result<Gains, E> {
+                Ok(Gains::All(v))
+            }
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<Gains, E> {
+                Ok(Gains::All(v as f64))
+            }
+            fn visit_u64<E: de::Error>(self, v: u64) -> Result<Gains, E> {
+                Ok(Gains::All(v as f64))
+            }
+            fn visit_seq<A: de::SeqAccess<'de>>(self, mut seq: A) -> Result<Gains, A::Error> {
+                let mut out = Vec::new();
+                while let Some(g) = seq.next_element::<f64>()? {
+                    out.push(g);
+                }
+                Ok(Gains::PerJoint(out))
+            }
+        }
+        d.deserialize_any(V)
+    }
+}
+
+/// `[physics]`: hyq-physics' engine-independent [`PhysicsParams`] as plain keys, plus one
+/// optional sub-table per engine (`[physics.rapier]`, `[physics.dart]`, see
+/// [`ENGINE_TABLES`]) that is deserialised into that backend's `Options` when an environment
+/// on it is built, so one file serves every engine.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PhysicsConfig {
+    /// dt, gravity, friction, contact distance (see [`PhysicsParams`] for each default).
+    pub params: PhysicsParams,
+    /// The engine tables, by engine name, as written.
+    pub engines: BTreeMap<String, toml::Table>,
+}
+
+impl PhysicsConfig {
+    /// The options of engine `name` (`[physics.<name>]`), or `O::default()` when the table is
+    /// absent. Errors name the table and the key.
+    pub fn engine_options<O: DeserializeOwned + Default>(
+        &self,
+        name: &str,
+    ) -> Result<O, ConfigError> {
+        match self.engines.get(name) {
+            None => Ok(O::default()),
+            Some(table) => O::deserialize(toml::Value::Table(table.clone())).map_err(|e| {
+                ConfigError::Invalid {
+                    key: format!("physics.{name}"),
+                    value: table.to_string().trim().replace('\n', ", "),
+                    expected: e.to_string(),
+                }
+            }),
+        }
+    }
+}
+
+impl Serialize for PhysicsConfig {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let mut table = toml::Table::try_from(&self.params).map_err(serde::ser::Error::custom)?;
+        for (name, engine) in &self.engines {
+            table.insert(name.clone(), toml::Value::Table(engine.clone()));
+        }
+        table.serialize(s)
+    }
+}
+
+impl<'de> Deserialize<'de> for PhysicsConfig {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let mut table = toml::Table::deserialize(d)?;
+        let mut engines = BTreeMap::new();
+        for name in ENGINE_TABLES {
+            match table.remove(name) {
+                None => {}
+                Some(toml::Value::Table(t)) => {
+                    engines.insert(name.to_owned(), t);
+                }
+                Some(other) => {
+                    return Err(de::Error::custom(format!(
+                        "physics.{name} must be a table of {name} options, not `{other}`"
+                    )));
+                }
+            }
+        }
+        if let Some((key, _)) = table.iter().find(|(_, v)| v.is_table()) {
+            return Err(de::Error::custom(format!(
+                "unknown engine table `physics.{key}` (engine tables: {})",
+                ENGINE_TABLES.join(", ")
+            )));
+        }
+        let params =
+            PhysicsParams::deserialize(toml::Value::Table(table)).map_err(de::Error::custom)?;
+        Ok(PhysicsConfig { params, engines })
+    }
+}
+
+/// Where and how the robot is placed at reset (`[reset]`).
+///
+/// The robot always starts at rest, trunk level (up to `yaw_deg`), joints at the profile's
+/// standing pose, the trunk frame at the profile's spawn height. Noise is drawn from the reset
+/// seed's noise stream, separate from the goal stream.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ResetConfig {
+    /// The spawn point's [x, y] (m, world). Finite. (default: [0.0, 0.0])
+    pub spawn_xy_m: [f64; 2],
+    /// The trunk's yaw at spawn (degrees, about +z, positive to the left). In [−180, 180].
+    /// (default: 0.0, facing +x)
+    pub yaw_deg: f64,
+    /// Uniform noise added to the yaw at each reset: ± this many degrees. In [0, 180].
+    /// (default: 0.0, off)
+    pub yaw_noise_deg: f64,
+    /// Uniform noise added to each standing joint angle at each reset: ± this many radians,
+    /// then clipped to the joint's limits. Finite, ≥ 0. (default: 0.0, off)
+    pub joint_noise_rad: f64,
+}
+
+impl Default for ResetConfig {
+    fn default() -> Self {
+        Self {
+            spawn_xy_m: [0.0, 0.0],
+            yaw_deg: 0.0,
+            yaw_noise_deg: 0.0,
+            joint_noise_rad: 0.0,
+        }
+    }
+}
+
+/// An invalid configuration; every variant names the key and, where there is one, the value.
+#[derive(Clone, Debug, PartialEq, Error)]
+pub enum ConfigError {
+    /// The configuration file could not be read.
+    #[error("cannot read configuration file {path}: {message}")]
+    Io {
+        /// The path that was tried.
+        path: String,
+        /// The operating system's message.
+        message: String,
+    },
+    /// The text is not valid TOML, has an unknown key, or a value of the wrong type or range
+    /// (the message names the key and shows the line).
+    #[error("configuration {origin}: {message}")]
+    Parse {
+        /// Where the text came from (a path, or "text").
+        origin: String,
+        /// The parser's message.
+        message: String,
+    },
+    /// A value out of its valid range.
+    #[error("invalid {key} = {value}: {expected}")]
+    Invalid {
+        /// The dotted key, e.g. `goal.distance_m`.
+        key: String,
+        /// The rejected value as written.
+        value: String,
+        /// What the key accepts.
+        expected: String,
+    },
+    /// A key given to [`EnvConfig::set`] that names no setting, or a change it refused.
+    #[error("--set {key}={value}: {message}")]
+    Set {
+        /// The dotted key as given.
+        key: String,
+        /// The value as given.
+        value: String,
+        /// What was wrong.
+        message: String,
+    },
+}
+
+fn invalid(key: &str, value: impl fmt::Debug, expected: &str) -> ConfigError {
+    ConfigError::Invalid {
+        key: key.to_owned(),
+        value: format!("{value:?}"),
+        expected: expected.to_owned(),
+    }
+}
+
+fn finite_positive(key: &str, v: f64) -> Result<(), ConfigError> {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(invalid(key, v, "must be finite and > 0"))
+    }
+}
+
+fn gains_ok(key: &str, g: &Gains) -> Result<(), ConfigError> {
+    let ok = |v: &f64| v.is_finite() && *v >= 0.0;
+    match g {
+        Gains::Profile => Ok(()),
+        Gains::All(v) if ok(v) => Ok(()),
+        Gains::PerJoint(v) if v.iter().all(ok) => Ok(()),
+        other => Err(invalid(key, other, "gains must be finite and >= 0")),
+    }
+}
+
+impl EnvConfig {
+    /// Parses and validates a configuration from TOML text; `origin` (a path, or "text")
+    /// appears in errors.
+    pub fn from_toml_str(text: &str, origin: &str) -> Result<Self, ConfigError> {
+        let config: EnvConfig = toml::from_str(text).map_err(|e| ConfigError::Parse {
+            origin: origin.to_owned(),
+            message: e.to_string(),
+        })?;
+        config.validate()?;
+        Ok(config)
+    }
+
+    /// Reads, parses and validates a configuration file.
+    pub fn from_file(path: impl AsRef<Path>) -> Result<Self, ConfigError> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|e| ConfigError::Io {
+            path: path.display().to_string(),
+            message: e.to_string(),
+        })?;
+        Self::from_toml_str(&text, &path.display().to_string())
+    }
+
+    /// The configuration as TOML text, every key written (defaults included), so that it reads
+    /// back to an equal configuration.
+    pub fn to_toml_string(&self) -> String {
+        // Invariant: every field serialises to TOML (numbers, strings, arrays, tables; the
+        // optional fields are skipped when unset), which the round-trip test checks.
+        toml::to_string(self).unwrap_or_else(|e| unreachable!("EnvConfig serialises: {e}"))
+    }
+
+    /// Sets one value by its dotted key, e.g. `set("task.fall_penalty", "1.5")`,
+    /// `set("goal.position", "[5, 0, 0.6]")`, `set("task.exp_rew_scaling", "off")` or
+    /// `set("physics.rapier.solver_iterations", "4")`, then validates the whole configuration.
+    ///
+    /// `value` is read as a TOML value (number, boolean, array, quoted string); anything that
+    /// is not one is taken as a bare string, so `mode=random` works unquoted. On error the
+    /// configuration is unchanged and the error names the key and the value.
+    pub fn set(&mut self, key: &str, value: &str) -> Result<(), ConfigError> {
+        let fail = |message: String| ConfigError::Set {
+            key: key.to_owned(),
+            value: value.to_owned(),
+            message,
+        };
+        let path: Vec<&str> = key.split('.').collect();
+        if path.len() < 2 || path.iter().any(|p| p.is_empty()) {
+            return Err(fail(
+                "a key is `table.name`, e.g. `task.fall_penalty` or `physics.rapier.solver_iterations`"
+                    .into(),
+            ));
+        }
+        let parsed = toml::from_str::<toml::Table>(&format!("v = {value}"))
+            .ok()
+            .and_then(|mut t| t.remove("v"))
+            .unwrap_or_else(|| toml::Value::String(value.to_owned()));
+        let mut doc =
+            toml::Table::try_from(&*self).map_err(|e| fail(format!("cannot serialise: {e}")))?;
+        let mut table = &mut doc;
+        for part in &path[..path.len() - 1] {
+            let entry = table
+                .entry(part.to_string())
+                .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+            table = match entry {
+                toml::Value::Table(t) => t,
+                _ => return Err(fail(format!("`{part}` is a value, not a table"))),
+            };
+        }
+        table.insert(path[path.len() - 1].to_owned(), parsed);
+        let config: EnvConfig =
+            EnvConfig::deserialize(toml::Value::Table(doc)).map_err(|e| fail(e.to_string()))?;
+        config.validate().map_err(|e| fail(e.to_string()))?;
+        *self = config;
+        Ok(())
+    }
+
+    /// Checks every value against its documented range; the first invalid one is the error,
+    /// named by its dotted key. (The engine tables are checked when an environment on that
+    /// engine is built, by the backend.)
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        self.task.validate().map_err(|e| ConfigError::Invalid {
+            key: format!("task.{}", task_field(&e)),
+            value: task_value(&e),
+            expected: e.to_string(),
+        })?;
+
+        let g = &self.goal;
+        finite_positive("goal.distance_m", g.distance_m)?;
+        match (g.mode, g.position) {
+            (GoalMode::Fixed, None) => {
+                return Err(invalid(
+                    "goal.position",
+                    "unset",
+                    "goal.mode = \"fixed\" needs goal.position = [x, y, z] (m)",
+                ));
+            }
+            (_, Some(p)) if !p.iter().all(|v| v.is_finite()) => {
+                return Err(invalid("goal.position", p, "must be finite"));
+            }
+            _ => {}
+        }
+        let [dmin, dmax] = g.distance_range_m;
+        if !(dmin.is_finite() && dmax.is_finite() && dmin > 0.0 && dmin <= dmax) {
+            return Err(invalid(
+                "goal.distance_range_m",
+                g.distance_range_m,
+                "must be finite with 0 < min <= max (m)",
+            ));
+        }
+        let [hmin, hmax] = g.heading_range_deg;
+        if !((-180.0..=180.0).contains(&hmin) && (-180.0..=180.0).contains(&hmax) && hmin <= hmax) {
+            return Err(invalid(
+                "goal.heading_range_deg",
+                g.heading_range_deg,
+                "must be within [-180, 180] degrees with min <= max",
+            ));
+        }
+        if let Some(h) = g.height_m
+            && !h.is_finite()
+        {
+            return Err(invalid("goal.height_m", h, "must be finite (m)"));
+        }
+
+        finite_positive("action.max_delta_rad", self.action.max_delta_rad)?;
+
+        let c = &self.control;
+        if !(1..=1000).contains(&c.sim_steps_per_env_step) {
+            return Err(invalid(
+                "control.sim_steps_per_env_step",
+                c.sim_steps_per_env_step,
+                "must be in 1..=1000",
+            ));
+        }
+        gains_ok("control.kp", &c.kp)?;
+        gains_ok("control.kd", &c.kd)?;
+
+        self.physics.params.validate().map_err(|e| match e {
+            hyq_physics::PhysicsError::InvalidParam {
+                field,
+                value,
+                reason,
+            } => ConfigError::Invalid {
+                key: format!("physics.{field}"),
+                value,
+                expected: reason.to_owned(),
+            },
+            other => ConfigError::Invalid {
+                key: "physics".into(),
+                value: String::new(),
+                expected: other.to_string(),
+            },
+        })?;
+
+        let r = &self.reset;
+        if !r.spawn_xy_m.iter().all(|v| v.is_finite()) {
+            return Err(invalid(
+                "reset.spawn_xy_m",
+                r.spawn_xy_m,
+                "must be finite (m)",
+            ));
+        }
+        if !(-180.0..=180.0).contains(&r.yaw_deg) {
+            return Err(invalid(
+                "reset.yaw_deg",
+                r.yaw_deg,
+                "must be in [-180, 180] degrees",
+            ));
+        }
+        if !(0.0..=180.0).contains(&r.yaw_noise_deg) {
+            return Err(invalid(
+                "reset.yaw_noise_deg",
+                r.yaw_noise_deg,
+                "must be in [0, 180] degrees",
+            ));
+        }
+        if !(r.joint_noise_rad.is_finite() && r.joint_noise_rad >= 0.0) {
+            return Err(invalid(
+                "reset.joint_noise_rad",
+                r.joint_noise_rad,
+                "must be finite and >= 0 (rad)",
+            ));
+        }
+        Ok(())
+    }
+
+    /// The environment's time step Δt_env = sub-steps × dt (s).
+    pub fn env_dt(&self) -> f64 {
+        f64::from(self.control.sim_steps_per_env_step) * self.physics.params.dt
+    }
+}
+
+fn task_field(e: &hyq_spec::ConfigError) -> &'static str {
+    match e {
+        hyq_spec::ConfigError::Real { field, .. }
+        | hyq_spec::ConfigError::Integer { field, .. } => field,
+    }
+}
+
+fn task_value(e: &hyq_spec::ConfigError) -> String {
+    match e {
+        hyq_spec::ConfigError::Real { value, .. } => value.to_string(),
+        hyq_spec::ConfigError::Integer { value, .. } => value.to_string(),
+    }
+}

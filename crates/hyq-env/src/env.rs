@@ -1,0 +1,710 @@
+//! The environment: the spec's rules (hyq-spec) joined to a physics backend (hyq-physics).
+//!
+//! One env step (spec §6.3, RULINGS §3):
+//!
+//! 1. the action is checked (length, finiteness, range) before anything changes, then mapped to
+//!    joint targets q* ([`crate::action`]);
+//! 2. `sim_steps_per_env_step` physics sub-steps of `dt` run, the shared PD actuator
+//!    (`hyq_physics::pd_substep`) computing the joint torques before every one;
+//! 3. each tracked body's ground contact is OR-latched over all the sub-steps: a foot or trunk
+//!    that touched the ground in any sub-step reads 1 (rows 24–28), and the trunk's latched flag
+//!    is the §6.3 fall fact;
+//! 4. the trunk acceleration is a^t = (v^t − v^{t−1}) / Δt_env (rows 33–35), v the trunk frame
+//!    origin's linear velocity at the end of the step, Δt_env = sub-steps × dt; 0 after reset;
+//! 5. hyq-spec's [`EpisodeRules::evaluate_step`] gives the reward breakdown and the
+//!    terminations; the observation is written through hyq-spec's [`ObservationLayout`] from
+//!    named fields.
+//!
+//! C^t, the trunk centre of the spec, is the origin of the trunk's URDF link frame (as reported
+//! by every backend), the same point whose velocity gives the acceleration.
+//!
+//! # Divergence
+//! When a sub-step fails with a backend error (`PhysicsError::Diverged` or any other), or a
+//! reading after the step is not finite, the episode ends with the reason `diverged`
+//! (`terminated = true`) and nothing non-finite is emitted: the observation is the last finite
+//! one (the previous step's, unchanged), the reward is 0 with every term 0 and every multiplier
+//! 1, and distance, D_n, roll, pitch and yaw keep their previous values. `timeout` is reported too
+//! if t ≥ t_max. The env must then be reset.
+
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use hyq_physics::na::{Point3, Vector3};
+use hyq_physics::{
+    Actuator, Backend, PdScratch, PhysicsError, RobotModel, RobotState, TrunkState, apply_pd,
+    pd_substep,
+};
+use hyq_spec::observation::trunk_acceleration;
+use hyq_spec::{
+    Clipping, EpisodeError, EpisodeRules, JointDescription, JointRange, Observation,
+    ObservationLayout, RobotDescription, StepSnapshot, TrunkDescription, roll_pitch_yaw,
+};
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use thiserror::Error;
+
+use crate::action::{ActionError, ActionScalar, ActionSpace};
+use crate::config::{ConfigError, EnvConfig};
+use crate::goal::{GoalSampler, sample_reset_state};
+use crate::info::{Reason, Reasons, StepInfo, ZERO_REWARD};
+
+/// Why the environment refused a call. Every variant names what was wrong.
+#[derive(Debug, Error)]
+pub enum EnvError {
+    /// `step` was called before the first `reset`.
+    #[error("step called before reset: call reset first")]
+    NotReset,
+    /// `step` was called after the episode ended, without a reset.
+    #[error(
+        "step called after episode {episode} ended at t = {t} ({reasons:?}) without reset: call reset"
+    )]
+    EpisodeOver {
+        /// The episode that ended.
+        episode: u64,
+        /// The step at which it ended.
+        t: u64,
+        /// Why it ended.
+        reasons: Reasons,
+    },
+    /// The action was refused; the environment did not change.
+    #[error(transparent)]
+    Action(#[from] ActionError),
+    /// The configuration is invalid for this robot or backend.
+    #[error(transparent)]
+    Config(#[from] ConfigError),
+    /// The episode's goal or start cannot be used by the rules (e.g. a goal at the start).
+    #[error(transparent)]
+    Episode(#[from] EpisodeError),
+    /// The backend could not be built, or refused a reset state.
+    #[error(transparent)]
+    Physics(#[from] PhysicsError),
+}
+
+/// Options for one [`Env::reset`] (Gymnasium's `options`). Everything unset follows the
+/// configuration.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ResetOptions {
+    /// This episode's goal G (m, world), instead of the configured goal. No goal is drawn from
+    /// the goal stream.
+    pub goal: Option<[f64; 3]>,
+    /// This episode's initial state, instead of the standing pose at the spawn point with the
+    /// configured noise. No noise is drawn from the noise stream.
+    pub state: Option<RobotState>,
+}
+
+/// The result of [`Env::step`]: the observation (f64 and f32, both borrowed from the env's
+/// buffers), the reward, Gymnasium's two flags, and the info.
+#[derive(Clone, Copy, Debug)]
+pub struct Step<'a> {
+    /// The observation, f64, in the §3 order.
+    pub observation: &'a [f64],
+    /// The same observation rounded to f32.
+    pub observation_f32: &'a [f32],
+    /// The reward (`info.reward.total`).
+    pub reward: f64,
+    /// Reached, joint limit, fell or diverged.
+    pub terminated: bool,
+    /// Timeout and not terminated.
+    pub truncated: bool,
+    /// Everything else.
+    pub info: &'a StepInfo,
+}
+
+/// The result of [`Env::reset`]: the first observation and the info (t = 0).
+#[derive(Clone, Copy, Debug)]
+pub struct Reset<'a> {
+    /// The observation, f64.
+    pub observation: &'a [f64],
+    /// The observation, f32.
+    pub observation_f32: &'a [f32],
+    /// Episode, goal, initial position, distance, attitude; reward terms 0.
+    pub info: &'a StepInfo,
+}
+
+/// Time spent in each part of [`Env::step`], summed over the steps since timing was switched
+/// on (see [`Env::set_timing`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StepTiming {
+    /// Env steps timed.
+    pub steps: u64,
+    /// Whole `step` calls, from entry to return.
+    pub total: Duration,
+    /// The shared actuator: reading q and q̇, the PD law, storing the torques (every sub-step).
+    pub actuator: Duration,
+    /// The engine's sub-steps, the contact reads after each, and the state reads at the end.
+    pub physics: Duration,
+    /// The trunk acceleration and writing the f64 and f32 observations.
+    pub observation: Duration,
+    /// hyq-spec's `evaluate_step`: rewards, penalties, terminations.
+    pub spec: Duration,
+}
+
+impl StepTiming {
+    /// The time not in any named part (action mapping, latching, bookkeeping).
+    pub fn other(&self) -> Duration {
+        self.total
+            .saturating_sub(self.actuator + self.physics + self.observation + self.spec)
+    }
+}
+
+/// The per-episode state.
+#[derive(Clone, Debug)]
+struct Episode {
+    rules: EpisodeRules,
+    done: bool,
+}
+
+/// The HyQ walk-to-goal environment on backend `B` (see the crate docs for the env card).
+pub struct Env<B: Backend> {
+    backend: B,
+    model: Arc<RobotModel>,
+    config: EnvConfig,
+    options: B::Options,
+    actuator: Actuator,
+    space: ActionSpace,
+    robot: RobotDescription,
+    layout: ObservationLayout,
+    goals: GoalSampler,
+    env_dt: f64,
+    trunk_tracked: usize,
+    num_feet: usize,
+
+    seeded: bool,
+    goal_rng: ChaCha8Rng,
+    noise_rng: ChaCha8Rng,
+    episodes: u64,
+    episode: Option<Episode>,
+
+    scratch: PdScratch,
+    q: Vec<f64>,
+    qd: Vec<f64>,
+    substep_contacts: Vec<bool>,
+    latched: Vec<bool>,
+    trunk: TrunkState,
+    obs: Vec<f64>,
+    obs_next: Vec<f64>,
+    obs_f32: Vec<f32>,
+    info: StepInfo,
+
+    timing_on: bool,
+    timing: StepTiming,
+}
+
+/// The goal stream's ChaCha stream number (the reset noise uses [`NOISE_STREAM`]).
+const GOAL_STREAM: u64 = 0;
+/// The reset-noise stream's ChaCha stream number.
+const NOISE_STREAM: u64 = 1;
+/// The seed an environment that was never given one behaves as if reset with.
+pub const DEFAULT_SEED: u64 = 0;
+
+fn stream(seed: u64, stream: u64) -> ChaCha8Rng {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    rng.set_stream(stream);
+    rng
+}
+
+/// The rules' view of `model`: joints with their limits and speed limits, the feet and the
+/// trunk (with the spec's §3 bounds for the trunk rows).
+fn robot_description(model: &RobotModel) -> Result<RobotDescription, ConfigError> {
+    let bad = |what: String| ConfigError::Invalid {
+        key: "robot".into(),
+        value: model.name().to_owned(),
+        expected: what,
+    };
+    let joints = model
+        .joints()
+        .iter()
+        .map(|j| {
+            Ok(JointDescription {
+                name: j.name.clone(),
+                range: JointRange::new(j.lower, j.upper).map_err(|e| bad(e.to_string()))?,
+                velocity_limit: j.velocity,
+            })
+        })
+        .collect::<Result<Vec<_>, ConfigError>>()?;
+    let tracked = model.tracked();
+    let feet = tracked[..model.num_feet()]
+        .iter()
+        .map(|t| t.name.clone())
+        .collect();
+    let trunk = TrunkDescription {
+        name: tracked[model.trunk_tracked_index()].name.clone(),
+        ..TrunkDescription::spec()
+    };
+    RobotDescription::new(joints, feet, trunk).map_err(|e| bad(e.to_string()))
+}
+
+impl<B: Backend> Env<B> {
+    /// Builds an environment for `model` on backend `B` with `config`: validates the whole
+    /// configuration for this robot (gains per joint, the fixed goal against the spawn point,
+    /// the engine table `[physics.<B::NAME>]`), then builds the backend.
+    ///
+    /// The environment must be [`Env::reset`] before its first step.
+    pub fn new(model: Arc<RobotModel>, config: EnvConfig) -> Result<Self, EnvError> {
+        config.validate()?;
+        let options: B::Options = config.physics.engine_options(B::NAME)?;
+        let n = model.num_joints();
+        let gains = |key: &str, g: &crate::config::Gains, profile: &[f64]| {
+            g.resolve(profile).ok_or_else(|| ConfigError::Invalid {
+                key: key.to_owned(),
+                value: format!("{g:?}"),
+                expected: format!("one gain per joint: {n} values"),
+            })
+        };
+        let kp = gains("control.kp", &config.control.kp, model.kp())?;
+        let kd = gains("control.kd", &config.control.kd, model.kd())?;
+        let mut actuator = Actuator::with_gains(&model, &kp, &kd)?;
+        actuator.set_velocity_limit(config.control.velocity_limit);
+        let space = ActionSpace::new(&model, &config.action);
+        let robot = robot_description(&model)?;
+        let layout = ObservationLayout::new(&robot);
+        let goals = GoalSampler::new(&config, &model);
+        // A fixed goal can be checked against the spawn point once, here, rather than fail at
+        // every reset.
+        goals.check(&config.task)?;
+        let backend = B::build(model.clone(), &config.physics.params, &options)?;
+        let tracked = model.tracked().len();
+        let obs_len = layout.len();
+        let mut env = Self {
+            env_dt: config.env_dt(),
+            trunk_tracked: model.trunk_tracked_index(),
+            num_feet: model.num_feet(),
+            seeded: false,
+            goal_rng: stream(DEFAULT_SEED, GOAL_STREAM),
+            noise_rng: stream(DEFAULT_SEED, NOISE_STREAM),
+            episodes: 0,
+            episode: None,
+            scratch: PdScratch::new(n),
+            q: vec![0.0; n],
+            qd: vec![0.0; n],
+            substep_contacts: vec![false; tracked],
+            latched: vec![false; tracked],
+            trunk: backend.trunk(),
+            obs: vec![0.0; obs_len],
+            obs_next: vec![0.0; obs_len],
+            obs_f32: vec![0.0; obs_len],
+            info: StepInfo {
+                episode: 0,
+                t: 0,
+                reward: ZERO_REWARD,
+                reasons: Reasons::NONE,
+                joint_at_limit: None,
+                divergence: None,
+                distance_to_goal: 0.0,
+                d_n: None,
+                roll: 0.0,
+                pitch: 0.0,
+                yaw: 0.0,
+                goal: [0.0; 3],
+                initial_position: [0.0; 3],
+                joint_targets: vec![0.0; n],
+                action_clipped: false,
+            },
+            timing_on: false,
+            timing: StepTiming::default(),
+            backend,
+            model,
+            config,
+            options,
+            actuator,
+            space,
+            robot,
+            layout,
+            goals,
+        };
+        env.read_state();
+        Ok(env)
+    }
+
+    /// Starts an episode and returns its first observation.
+    ///
+    /// `seed`: `Some(s)` reseeds the environment's random streams from `s` (one ChaCha8 stream
+    /// for goals, another for reset noise, so switching noise on does not move the goals);
+    /// `None` continues the streams where the previous reset left them, so a run of unseeded
+    /// resets after a seeded one is reproducible (Gymnasium's semantics). An environment never
+    /// seeded behaves as if its first reset had seed [`DEFAULT_SEED`].
+    ///
+    /// The robot starts at rest at the standing pose, trunk level at the spawn point and height,
+    /// with the configured yaw and noise, unless `options` gives a state or a goal. On error the
+    /// streams, the robot and the previous episode are left as they were.
+    pub fn reset(
+        &mut self,
+        seed: Option<u64>,
+        options: &ResetOptions,
+    ) -> Result<Reset<'_>, EnvError> {
+        let (mut goal_rng, mut noise_rng) = match seed {
+            Some(s) => (stream(s, GOAL_STREAM), stream(s, NOISE_STREAM)),
+            None => (self.goal_rng.clone(), self.noise_rng.clone()),
+        };
+        let state = match &options.state {
+            Some(s) => s.clone(),
+            None => sample_reset_state(&self.model, &self.config.reset, &mut noise_rng),
+        };
+        state.validate(&self.model)?;
+        let initial = Point3::from(state.trunk.pose.translation.vector);
+        let goal = match options.goal {
+            Some(g) => Point3::from(g),
+            None => self.goals.sample(&mut goal_rng),
+        };
+        let rules = EpisodeRules::new(&self.config.task, initial, goal)?;
+        self.backend.set_state(&state)?;
+
+        self.seeded |= seed.is_some();
+        self.goal_rng = goal_rng;
+        self.noise_rng = noise_rng;
+        self.episodes += 1;
+        self.read_state();
+        self.latched.fill(false);
+        let accel = Vector3::zeros();
+        self.write_observation(accel)
+            .map_err(|what| PhysicsError::Diverged { what })?;
+        std::mem::swap(&mut self.obs, &mut self.obs_next);
+        self.fill_f32();
+
+        let attitude = roll_pitch_yaw(&self.trunk.pose.rotation);
+        let d0 = (goal - initial).norm();
+        let info = &mut self.info;
+        info.episode = self.episodes;
+        info.t = 0;
+        info.reward = ZERO_REWARD;
+        info.reasons = Reasons::NONE;
+        info.joint_at_limit = None;
+        info.divergence = None;
+        info.distance_to_goal = d0;
+        info.d_n = rules.start_goal_distance().map(|k| k.normalise(d0));
+        info.roll = attitude.roll;
+        info.pitch = attitude.pitch;
+        info.yaw = attitude.yaw;
+        info.goal = goal.coords.into();
+        info.initial_position = initial.coords.into();
+        info.joint_targets.copy_from_slice(&self.q);
+        info.action_clipped = false;
+        self.episode = Some(Episode { rules, done: false });
+        Ok(Reset {
+            observation: &self.obs,
+            observation_f32: &self.obs_f32,
+            info: &self.info,
+        })
+    }
+
+    /// Takes one env step with `action` (one value per joint, action order; `f64` or `f32`).
+    ///
+    /// Errors, with the environment unchanged: before the first reset, after the episode ended
+    /// (reset first), a wrong length, a non-finite value, or an out-of-range value under
+    /// `action.out_of_range = "error"`. A physics failure is not an error: it ends the episode
+    /// with the reason `diverged` (see the module docs for what is emitted).
+    pub fn step<A: ActionScalar>(&mut self, action: &[A]) -> Result<Step<'_>, EnvError> {
+        let start = self.timing_on.then(Instant::now);
+        let episode = self.episode.as_ref().ok_or(EnvError::NotReset)?;
+        if episode.done {
+            return Err(EnvError::EpisodeOver {
+                episode: self.episodes,
+                t: self.info.t,
+                reasons: self.info.reasons,
+            });
+        }
+        self.space.check(action)?;
+
+        // From here on the step happens.
+        self.info.action_clipped =
+            self.space
+                .targets(action, &self.q, &mut self.info.joint_targets);
+        self.info.t += 1;
+        let t = self.info.t;
+        let previous_position = Point3::from(self.trunk.pose.translation.vector);
+        let previous_velocity = self.trunk.linvel;
+        self.latched.fill(false);
+        let failure = self.run_substeps();
+
+        let rules = match &self.episode {
+            Some(e) => e.rules,
+            None => unreachable!("checked above: an episode is running"),
+        };
+        let outcome = match failure {
+            Some(what) => Err(what),
+            None => self.finish_step(&rules, t, previous_position, previous_velocity),
+        };
+        match outcome {
+            Ok(outcome) => {
+                let info = &mut self.info;
+                info.reward = outcome.reward;
+                info.reasons = Reasons::from_spec(outcome.terminations);
+                info.joint_at_limit = outcome.joint_at_limit;
+                info.distance_to_goal = outcome.distance;
+                info.d_n = outcome.normalised_distance;
+                info.roll = outcome.attitude.roll;
+                info.pitch = outcome.attitude.pitch;
+                info.yaw = outcome.attitude.yaw;
+            }
+            Err(what) => {
+                // The last finite observation stays in `obs`; the distances and attitude keep
+                // their previous values.
+                let info = &mut self.info;
+                info.reward = ZERO_REWARD;
+                info.reasons = Reasons::NONE;
+                info.reasons.insert(Reason::Diverged);
+                if t >= rules.config().max_time_steps {
+                    info.reasons.insert(Reason::Timeout);
+                }
+                info.joint_at_limit = None;
+                info.divergence = Some(what);
+            }
+        }
+        if let Some(e) = self.episode.as_mut() {
+            e.done = self.info.reasons.done();
+        }
+        if let Some(start) = start {
+            self.timing.total += start.elapsed();
+            self.timing.steps += 1;
+        }
+        Ok(Step {
+            observation: &self.obs,
+            observation_f32: &self.obs_f32,
+            reward: self.info.reward.total,
+            terminated: self.info.reasons.terminated(),
+            truncated: self.info.reasons.truncated(),
+            info: &self.info,
+        })
+    }
+
+    /// Runs the sub-steps with the current joint targets, latching contacts; returns what
+    /// failed, if anything did.
+    fn run_substeps(&mut self) -> Option<String> {
+        for _ in 0..self.config.control.sim_steps_per_env_step {
+            let result = if self.timing_on {
+                let t0 = Instant::now();
+                let r = apply_pd(
+                    &mut self.backend,
+                    &self.actuator,
+                    &self.info.joint_targets,
+                    &mut self.scratch,
+                );
+                let t1 = Instant::now();
+                let r = r.and_then(|()| self.backend.step());
+                self.timing.actuator += t1 - t0;
+                self.timing.physics += t1.elapsed();
+                r
+            } else {
+                pd_substep(
+                    &mut self.backend,
+                    &self.actuator,
+                    &self.info.joint_targets,
+                    &mut self.scratch,
+                )
+            };
+            if let Err(e) = result {
+                return Some(e.to_string());
+            }
+            let t0 = self.timing_on.then(Instant::now);
+            self.backend.contacts(&mut self.substep_contacts);
+            for (latched, now) in self.latched.iter_mut().zip(&self.substep_contacts) {
+                *latched |= *now;
+            }
+            if let Some(t0) = t0 {
+                self.timing.physics += t0.elapsed();
+            }
+        }
+        None
+    }
+
+    /// Reads the state after the sub-steps, evaluates the rules and writes the observation.
+    fn finish_step(
+        &mut self,
+        rules: &EpisodeRules,
+        t: u64,
+        previous_position: Point3<f64>,
+        previous_velocity: Vector3<f64>,
+    ) -> Result<hyq_spec::StepOutcome, String> {
+        let t0 = self.timing_on.then(Instant::now);
+        self.read_state();
+        if let Some(t0) = t0 {
+            self.timing.physics += t0.elapsed();
+        }
+        if let Some(what) = self.first_non_finite_reading() {
+            return Err(format!("{what} is not finite after the step"));
+        }
+        let t0 = self.timing_on.then(Instant::now);
+        let outcome = rules
+            .evaluate_step(&StepSnapshot {
+                step: t,
+                previous_position,
+                position: Point3::from(self.trunk.pose.translation.vector),
+                orientation: self.trunk.pose.rotation,
+                joint_angles: &self.q,
+                joint_ranges: self.robot.joint_ranges(),
+                trunk_contact: self.latched[self.trunk_tracked],
+            })
+            .map_err(|e| e.to_string())?;
+        let t1 = self.timing_on.then(Instant::now);
+        let accel = trunk_acceleration(&previous_velocity, &self.trunk.linvel, self.env_dt)
+            .map_err(|e| e.to_string())?;
+        self.write_observation(accel)?;
+        std::mem::swap(&mut self.obs, &mut self.obs_next);
+        self.fill_f32();
+        if let (Some(t0), Some(t1)) = (t0, t1) {
+            self.timing.spec += t1 - t0;
+            self.timing.observation += t1.elapsed();
+        }
+        Ok(outcome)
+    }
+
+    fn read_state(&mut self) {
+        self.backend.joint_positions(&mut self.q);
+        self.backend.joint_velocities(&mut self.qd);
+        self.trunk = self.backend.trunk();
+    }
+
+    /// The first non-finite value read from the backend, named (allocation-free when none).
+    fn first_non_finite_reading(&self) -> Option<String> {
+        let t = &self.trunk;
+        let trunk = t
+            .pose
+            .translation
+            .vector
+            .iter()
+            .chain(t.pose.rotation.coords.iter())
+            .chain(t.linvel.iter())
+            .chain(t.angvel.iter())
+            .any(|v| !v.is_finite());
+        if trunk {
+            return Some(format!("trunk state {t:?}"));
+        }
+        let joint = |values: &[f64], what: &str| {
+            values
+                .iter()
+                .position(|v| !v.is_finite())
+                .map(|i| format!("{what} of joint {} ({})", self.space_joint(i), values[i]))
+        };
+        joint(&self.q, "angle").or_else(|| joint(&self.qd, "speed"))
+    }
+
+    fn space_joint(&self, i: usize) -> &str {
+        &self.model.joints()[i].name
+    }
+
+    /// Writes the observation of the current state into `obs_next`.
+    fn write_observation(&mut self, accel: Vector3<f64>) -> Result<(), String> {
+        let observation = Observation {
+            joint_angles: &self.q,
+            joint_speeds: &self.qd,
+            foot_contacts: &self.latched[..self.num_feet],
+            trunk_contact: self.latched[self.trunk_tracked],
+            trunk_rotation: self.trunk.pose.rotation,
+            trunk_acceleration: accel,
+            trunk_position: Point3::from(self.trunk.pose.translation.vector),
+        };
+        self.layout
+            .write(&observation, Clipping::Off, &mut self.obs_next)
+            .map_err(|e| e.to_string())
+    }
+
+    fn fill_f32(&mut self) {
+        for (out, v) in self.obs_f32.iter_mut().zip(&self.obs) {
+            *out = *v as f32;
+        }
+    }
+
+    /// The current observation (f64, §3 order): the last reset's or step's.
+    pub fn observation(&self) -> &[f64] {
+        &self.obs
+    }
+
+    /// The current observation rounded to f32.
+    pub fn observation_f32(&self) -> &[f32] {
+        &self.obs_f32
+    }
+
+    /// The info of the last reset or step.
+    pub fn info(&self) -> &StepInfo {
+        &self.info
+    }
+
+    /// Whether the current episode has ended (or none was started): the next call must be
+    /// [`Env::reset`].
+    pub fn needs_reset(&self) -> bool {
+        self.episode.as_ref().is_none_or(|e| e.done)
+    }
+
+    /// The validated configuration.
+    pub fn config(&self) -> &EnvConfig {
+        &self.config
+    }
+
+    /// The backend's options, as read from `[physics.<B::NAME>]`.
+    pub fn backend_options(&self) -> &B::Options {
+        &self.options
+    }
+
+    /// The robot.
+    pub fn model(&self) -> &Arc<RobotModel> {
+        &self.model
+    }
+
+    /// The rules' view of the robot (joint ranges, feet, trunk).
+    pub fn robot(&self) -> &RobotDescription {
+        &self.robot
+    }
+
+    /// The observation layout (row names, bounds, named index ranges).
+    pub fn observation_layout(&self) -> &ObservationLayout {
+        &self.layout
+    }
+
+    /// The action space.
+    pub fn action_space(&self) -> &ActionSpace {
+        &self.space
+    }
+
+    /// The actuator (gains, limits).
+    pub fn actuator(&self) -> &Actuator {
+        &self.actuator
+    }
+
+    /// Δt_env = sub-steps × dt (s).
+    pub fn env_dt(&self) -> f64 {
+        self.env_dt
+    }
+
+    /// The joint angles at the end of the last step or reset (rad, action order).
+    pub fn joint_angles(&self) -> &[f64] {
+        &self.q
+    }
+
+    /// The trunk state at the end of the last step or reset.
+    pub fn trunk(&self) -> &TrunkState {
+        &self.trunk
+    }
+
+    /// Whether the environment was ever reset with a seed.
+    pub fn was_seeded(&self) -> bool {
+        self.seeded
+    }
+
+    /// The backend.
+    pub fn backend(&self) -> &B {
+        &self.backend
+    }
+
+    /// The backend, mutably: for tests and tools that script a backend (see
+    /// [`crate::testing`]). Changing the simulated state here bypasses the episode's
+    /// bookkeeping; the next step starts from whatever state the backend is in.
+    pub fn backend_mut(&mut self) -> &mut B {
+        &mut self.backend
+    }
+
+    /// Switches per-part timing of [`Env::step`] on or off (off by default; a few
+    /// `Instant::now` calls per sub-step when on). Results are bitwise the same either way.
+    pub fn set_timing(&mut self, on: bool) {
+        self.timing_on = on;
+    }
+
+    /// The time summed per part since timing was switched on or last cleared.
+    pub fn timing(&self) -> &StepTiming {
+        &self.timing
+    }
+
+    /// Clears the timing sums.
+    pub fn clear_timing(&mut self) {
+        self.timing = StepTiming::default();
+    }
+}

@@ -1,0 +1,212 @@
+//! What a step reports besides the observation and the reward: every reward term, every
+//! termination that fired (the spec's four, §6, plus the environment's own `diverged`), the
+//! distances, the attitude, the goal, the start and the joint targets used.
+
+use hyq_spec::{JointLimitHit, RewardBreakdown, Termination, Terminations};
+use serde::{Serialize, Serializer, ser::SerializeSeq};
+use std::fmt;
+
+/// Why an episode ended: one of the spec's four conditions (§6.1–§6.4), or the environment's
+/// own `diverged` (the physics produced a non-finite state). Serialised as its snake_case name.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Reason {
+    /// §6.1: the trunk centre is inside the reach cube around the goal.
+    Reached,
+    /// §6.2: a joint is within ε_joint of a limit.
+    JointLimit,
+    /// §6.3: the trunk touched the ground in a sub-step of the step.
+    Fell,
+    /// §6.4: t ≥ t_max.
+    Timeout,
+    /// The physics diverged (a backend `Diverged` error or a non-finite reading): the episode
+    /// cannot go on. Not a spec condition.
+    Diverged,
+}
+
+impl Reason {
+    /// Every reason, the spec's four in its order, then `diverged`.
+    pub const ALL: [Reason; 5] = [
+        Reason::Reached,
+        Reason::JointLimit,
+        Reason::Fell,
+        Reason::Timeout,
+        Reason::Diverged,
+    ];
+
+    /// The stable snake_case name used in JSON and logs.
+    pub const fn as_str(self) -> &'static str {
+        match self {
+            Reason::Reached => "reached",
+            Reason::JointLimit => "joint_limit",
+            Reason::Fell => "fell",
+            Reason::Timeout => "timeout",
+            Reason::Diverged => "diverged",
+        }
+    }
+
+    const fn bit(self) -> u8 {
+        1 << self as u8
+    }
+}
+
+impl fmt::Display for Reason {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+impl From<Termination> for Reason {
+    fn from(t: Termination) -> Self {
+        match t {
+            Termination::Reached => Reason::Reached,
+            Termination::JointLimit => Reason::JointLimit,
+            Termination::Fell => Reason::Fell,
+            Termination::Timeout => Reason::Timeout,
+        }
+    }
+}
+
+/// The set of reasons that hold at the end of a step (any number). Serialised as a list of
+/// names in [`Reason::ALL`]'s order, e.g. `["joint_limit", "fell"]`.
+#[derive(Clone, Copy, Default, PartialEq, Eq, Hash)]
+pub struct Reasons(u8);
+
+impl Reasons {
+    /// No reason: the episode goes on.
+    pub const NONE: Reasons = Reasons(0);
+
+    /// The spec's terminations that hold.
+    pub fn from_spec(t: Terminations) -> Self {
+        t.iter().map(Reason::from).collect()
+    }
+
+    /// Adds a reason.
+    pub fn insert(&mut self, r: Reason) {
+        self.0 |= r.bit();
+    }
+
+    /// Whether `r` holds.
+    pub const fn contains(self, r: Reason) -> bool {
+        self.0 & r.bit() != 0
+    }
+
+    /// Whether no reason holds.
+    pub const fn is_empty(self) -> bool {
+        self.0 == 0
+    }
+
+    /// Gymnasium's `terminated`: reached, joint limit, fell or diverged.
+    pub const fn terminated(self) -> bool {
+        self.0 & !Reason::Timeout.bit() != 0
+    }
+
+    /// Gymnasium's `truncated`: timeout and not terminated.
+    pub const fn truncated(self) -> bool {
+        self.contains(Reason::Timeout) && !self.terminated()
+    }
+
+    /// Whether the episode is over.
+    pub const fn done(self) -> bool {
+        self.0 != 0
+    }
+
+    /// The reasons that hold, in [`Reason::ALL`]'s order.
+    pub fn iter(self) -> impl Iterator<Item = Reason> {
+        Reason::ALL.into_iter().filter(move |r| self.contains(*r))
+    }
+}
+
+impl FromIterator<Reason> for Reasons {
+    fn from_iter<I: IntoIterator<Item = Reason>>(iter: I) -> Self {
+        let mut s = Reasons::NONE;
+        for r in iter {
+            s.insert(r);
+        }
+        s
+    }
+}
+
+impl fmt::Debug for Reasons {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_set().entries(self.iter()).finish()
+    }
+}
+
+impl Serialize for Reasons {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let mut seq = s.serialize_seq(Some(self.0.count_ones() as usize))?;
+        for r in self.iter() {
+            seq.serialize_element(&r)?;
+        }
+        seq.end()
+    }
+}
+
+/// Everything a step (or a reset) reports besides the observation.
+///
+/// Owned by the environment and updated in place every step (no allocation once the joint
+/// target buffer exists); clone it to keep it.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct StepInfo {
+    /// Episodes started since the environment was built, counting this one (1 in the first).
+    pub episode: u64,
+    /// t, env steps taken since reset (0 after reset, 1 after the first step).
+    pub t: u64,
+    /// The step's reward and each of its terms (hyq-spec's breakdown; `total` is the reward).
+    /// After reset, and on a diverged step, every term is 0, the multipliers 1 and the total 0.
+    pub reward: RewardBreakdown,
+    /// Every reason that holds at the end of the step (empty while the episode goes on).
+    pub reasons: Reasons,
+    /// The first joint at a limit when `joint_limit` holds.
+    pub joint_at_limit: Option<JointLimitHit>,
+    /// What diverged, when `diverged` holds (the backend's message).
+    pub divergence: Option<String>,
+    /// D^t = ‖G − C^t‖ (m).
+    pub distance_to_goal: f64,
+    /// D_n^t = D^t / K, or `None` when K is too small to divide by (only allowed while r_n and
+    /// r_e are off).
+    pub d_n: Option<f64>,
+    /// The trunk's roll (rad, intrinsic Z-Y-X, RULINGS §1).
+    pub roll: f64,
+    /// The trunk's pitch (rad).
+    pub pitch: f64,
+    /// The trunk's yaw (rad).
+    pub yaw: f64,
+    /// G, the goal (m, world).
+    pub goal: [f64; 3],
+    /// C^0, the trunk position after reset (m, world).
+    pub initial_position: [f64; 3],
+    /// The joint targets (rad, action order) the actuator tracked during the step; after reset,
+    /// the joint angles at reset.
+    pub joint_targets: Vec<f64>,
+    /// Whether any action value was outside the action space and clipped.
+    pub action_clipped: bool,
+}
+
+impl StepInfo {
+    /// Gymnasium's `terminated`.
+    pub fn terminated(&self) -> bool {
+        self.reasons.terminated()
+    }
+
+    /// Gymnasium's `truncated`.
+    pub fn truncated(&self) -> bool {
+        self.reasons.truncated()
+    }
+}
+
+/// The breakdown reported where no reward is given (after reset, on a diverged step): every
+/// term 0, every multiplier 1, total 0.
+pub(crate) const ZERO_REWARD: RewardBreakdown = RewardBreakdown {
+    r_b: 0.0,
+    r_n: 0.0,
+    r_e: 0.0,
+    r_reach: 0.0,
+    m_yaw: 1.0,
+    m_pitch: 1.0,
+    m_height: 1.0,
+    joint_penalty: 0.0,
+    fall_penalty: 0.0,
+    total: 0.0,
+};
