@@ -604,6 +604,18 @@ impl<B: Backend> Env<B> {
         }
     }
 
+    /// What a [`crate::policy::Policy`] needs to choose the next action.
+    pub fn policy_input(&self) -> crate::policy::PolicyInput<'_> {
+        crate::policy::PolicyInput {
+            t: self.info.t,
+            env_dt: self.env_dt,
+            observation: &self.obs,
+            joint_angles: &self.q,
+            standing: self.model.standing_pose(),
+            space: &self.space,
+        }
+    }
+
     /// The current observation (f64, §3 order): the last reset's or step's.
     pub fn observation(&self) -> &[f64] {
         &self.obs

@@ -3,12 +3,12 @@
 //! distances, the attitude, the goal, the start and the joint targets used.
 
 use hyq_spec::{JointLimitHit, RewardBreakdown, Termination, Terminations};
-use serde::{Serialize, Serializer, ser::SerializeSeq};
+use serde::{Deserialize, Serialize, Serializer, ser::SerializeSeq};
 use std::fmt;
 
 /// Why an episode ended: one of the spec's four conditions (§6.1–§6.4), or the environment's
 /// own `diverged` (the physics produced a non-finite state). Serialised as its snake_case name.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Reason {
     /// §6.1: the trunk centre is inside the reach cube around the goal.

@@ -6,6 +6,10 @@ pub mod config;
 pub mod env;
 pub mod goal;
 pub mod info;
+pub mod policy;
+pub mod record;
+pub mod testing;
+pub mod vec_env;
 
 pub use action::{ActionError, ActionScalar, ActionSpace};
 pub use config::{
@@ -14,3 +18,6 @@ pub use config::{
 };
 pub use env::{DEFAULT_SEED, Env, EnvError, Reset, ResetOptions, Step, StepTiming};
 pub use info::{Reason, Reasons, StepInfo};
+pub use policy::{Policy, PolicyInput, RandomPolicy, Stand, Trot, TrotParams};
+pub use record::{RecordTerms, StepRecord};
+pub use vec_env::{AutoReset, VecEnv, VecEnvError, VecStepOut};

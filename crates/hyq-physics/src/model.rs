@@ -842,13 +842,13 @@ fn check_profile_values(profile: &Profile) -> Result<(), ModelError> {
             format!("{} m must be finite and positive", profile.spawn.height),
         ));
     }
-    if let Some(h) = profile.spawn.standing_height {
-        if !(h.is_finite() && h > 0.0) {
-            return Err(invalid(
-                "spawn.standing_height".into(),
-                format!("{h} m must be finite and positive"),
-            ));
-        }
+    if let Some(h) = profile.spawn.standing_height
+        && !(h.is_finite() && h > 0.0)
+    {
+        return Err(invalid(
+            "spawn.standing_height".into(),
+            format!("{h} m must be finite and positive"),
+        ));
     }
     let gain = |field: String, v: f64| {
         if v.is_finite() && v >= 0.0 {

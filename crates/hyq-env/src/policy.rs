@@ -1,0 +1,220 @@
+//! Policies for demos, tests and benchmarks (not learned): [`Stand`] holds the standing pose,
+//! [`RandomPolicy`] draws uniformly from the action space with its own seed, and [`Trot`] is a
+//! scripted open-loop trot that carries HyQ forward along +x.
+//!
+//! Policies act in the environment's action space whatever its mode: the scripted ones think in
+//! joint targets and convert them with [`ActionSpace::action_for_targets`].
+
+use hyq_physics::RobotModel;
+use hyq_spec::nomenclature::{HyqJoint, JointKind, Leg};
+use rand::{RngExt, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use thiserror::Error;
+
+use crate::action::ActionSpace;
+
+/// What a policy sees at each step.
+#[derive(Clone, Copy, Debug)]
+pub struct PolicyInput<'a> {
+    /// Env steps taken since reset (0 for the first action of an episode).
+    pub t: u64,
+    /// Δt_env (s): the policy's clock is `t · env_dt`.
+    pub env_dt: f64,
+    /// The current observation (§3 order).
+    pub observation: &'a [f64],
+    /// The current joint angles (rad, action order).
+    pub joint_angles: &'a [f64],
+    /// The robot's standing pose (rad, action order).
+    pub standing: &'a [f64],
+    /// The action space to act in.
+    pub space: &'a ActionSpace,
+}
+
+/// A policy: observation in, action out (one value per joint, written into `action`).
+pub trait Policy: Send {
+    /// A short name (`"stand"`, `"random"`, `"trot"`).
+    fn name(&self) -> &'static str;
+    /// The action for `input`; allocates nothing.
+    fn act(&mut self, input: &PolicyInput<'_>, action: &mut [f64]);
+}
+
+/// Holds the standing pose: targets = the profile's standing angles.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Stand;
+
+impl Policy for Stand {
+    fn name(&self) -> &'static str {
+        "stand"
+    }
+
+    fn act(&mut self, input: &PolicyInput<'_>, action: &mut [f64]) {
+        input
+            .space
+            .action_for_targets(input.standing, input.joint_angles, action);
+    }
+}
+
+/// Uniform random actions in the action space, from its own ChaCha8 stream: the same seed gives
+/// the same actions, whatever the environment does.
+#[derive(Clone, Debug)]
+pub struct RandomPolicy {
+    rng: ChaCha8Rng,
+}
+
+impl RandomPolicy {
+    /// A random policy seeded with `seed`.
+    pub fn new(seed: u64) -> Self {
+        Self {
+            rng: ChaCha8Rng::seed_from_u64(seed),
+        }
+    }
+}
+
+impl Policy for RandomPolicy {
+    fn name(&self) -> &'static str {
+        "random"
+    }
+
+    fn act(&mut self, input: &PolicyInput<'_>, action: &mut [f64]) {
+        for ((a, lo), hi) in action
+            .iter_mut()
+            .zip(input.space.low())
+            .zip(input.space.high())
+        {
+            *a = self.rng.random_range(*lo..=*hi);
+        }
+    }
+}
+
+/// A robot the trot cannot drive.
+#[derive(Clone, Debug, PartialEq, Error)]
+#[error("the trot policy needs the spec's joint {joint} (HyQ's §1 nomenclature) in the robot")]
+pub struct TrotError {
+    /// The missing joint's name.
+    pub joint: &'static str,
+}
+
+/// Parameters of [`Trot`] (defaults tuned on rapier with the default configuration).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TrotParams {
+    /// Gait frequency (Hz): one full cycle of both diagonal pairs.
+    pub frequency_hz: f64,
+    /// Hip flexion/extension swing amplitude (rad) about the standing angle.
+    pub hip_amplitude: f64,
+    /// Extra knee flexion (rad) at the middle of a leg's swing, lifting the foot.
+    pub knee_lift: f64,
+    /// Time (s) over which the gait's amplitudes ramp up from standing.
+    pub ramp_s: f64,
+}
+
+impl Default for TrotParams {
+    fn default() -> Self {
+        Self {
+            frequency_hz: 3.0,
+            hip_amplitude: 0.1,
+            knee_lift: 0.4,
+            ramp_s: 1.0,
+        }
+    }
+}
+
+/// One leg's joints for the trot.
+#[derive(Clone, Copy, Debug)]
+struct LegJoints {
+    hfe: usize,
+    kfe: usize,
+    /// 0 for the diagonal pair lf + rh, π for rf + lh.
+    phase: f64,
+    /// The sign that flexes the knee further from standing (lifting the foot).
+    knee_flex: f64,
+}
+
+/// A scripted open-loop trot along +x: diagonal leg pairs (lf + rh, rf + lh) alternate half a
+/// cycle apart. For each leg, with φ = 2π f t + its pair's phase and r(t) a ramp from 0 to 1
+/// over `ramp_s`:
+///
+/// - hip (hfe) target = standing − r · A_hip · sin φ: the foot swings forward while cos φ > 0
+///   and pushes back (stance) while cos φ < 0;
+/// - knee (kfe) target = standing + r · flex · A_knee · max(0, cos φ): the foot lifts during the
+///   swing only;
+/// - hip abduction (haa) stays at standing.
+///
+/// Open loop: it reads neither the observation nor the goal, so it walks straight only as far
+/// as the simulation stays symmetric. Measured figures are in the crate docs.
+#[derive(Clone, Debug)]
+pub struct Trot {
+    params: TrotParams,
+    legs: [LegJoints; 4],
+    targets: Vec<f64>,
+}
+
+impl Trot {
+    /// The trot for `model`, which must have the spec's twelve joints by name.
+    pub fn new(model: &RobotModel, params: TrotParams) -> Result<Self, TrotError> {
+        let index = |leg: Leg, kind: JointKind| {
+            let joint = HyqJoint { leg, kind }.name();
+            model.joint_index(joint).ok_or(TrotError { joint })
+        };
+        let leg = |leg: Leg| -> Result<LegJoints, TrotError> {
+            let kfe = index(leg, JointKind::Kfe)?;
+            let standing = model.standing_pose()[kfe];
+            Ok(LegJoints {
+                hfe: index(leg, JointKind::Hfe)?,
+                kfe,
+                phase: match leg {
+                    Leg::LeftFront | Leg::RightHind => 0.0,
+                    Leg::RightFront | Leg::LeftHind => std::f64::consts::PI,
+                },
+                // Flexing bends the knee further from straight (0 rad): further from 0.
+                knee_flex: if standing < 0.0 { -1.0 } else { 1.0 },
+            })
+        };
+        Ok(Self {
+            params,
+            legs: [
+                leg(Leg::LeftFront)?,
+                leg(Leg::LeftHind)?,
+                leg(Leg::RightFront)?,
+                leg(Leg::RightHind)?,
+            ],
+            targets: model.standing_pose().to_vec(),
+        })
+    }
+
+    /// The parameters.
+    pub fn params(&self) -> &TrotParams {
+        &self.params
+    }
+
+    /// The joint targets (rad) at time `time_s` after reset, from the standing pose.
+    pub fn targets_at(&mut self, time_s: f64, standing: &[f64]) -> &[f64] {
+        let p = &self.params;
+        let ramp = if p.ramp_s > 0.0 {
+            (time_s / p.ramp_s).clamp(0.0, 1.0)
+        } else {
+            1.0
+        };
+        self.targets.copy_from_slice(standing);
+        for leg in &self.legs {
+            let phi = std::f64::consts::TAU * p.frequency_hz * time_s + leg.phase;
+            self.targets[leg.hfe] = standing[leg.hfe] - ramp * p.hip_amplitude * phi.sin();
+            self.targets[leg.kfe] =
+                standing[leg.kfe] + ramp * leg.knee_flex * p.knee_lift * phi.cos().max(0.0);
+        }
+        &self.targets
+    }
+}
+
+impl Policy for Trot {
+    fn name(&self) -> &'static str {
+        "trot"
+    }
+
+    fn act(&mut self, input: &PolicyInput<'_>, action: &mut [f64]) {
+        // The targets of the step about to run are those at its end time.
+        let time_s = (input.t + 1) as f64 * input.env_dt;
+        let space = input.space;
+        let targets = self.targets_at(time_s, input.standing);
+        space.action_for_targets(targets, input.joint_angles, action);
+    }
+}

@@ -1,0 +1,160 @@
+//! The per-step record: one JSON object per env step (the CLI's `--record` JSONL, the Python
+//! binding's logs and the comparison tools all share this schema).
+//!
+//! | key | type | meaning |
+//! |---|---|---|
+//! | `episode` | integer | episode number, 1 for the first since the env was built |
+//! | `t` | integer | env steps since reset, 1 for the first step |
+//! | `obs` | 39 numbers | the observation after the step (§3 order) |
+//! | `action` | 12 numbers | the action as given (before clipping) |
+//! | `joint_targets` | 12 numbers | the joint targets the actuator tracked (rad) |
+//! | `reward` | number | the step's reward (`terms` composed) |
+//! | `terms` | object | `r_b`, `r_n`, `r_e`, `r_reach`, `m_yaw`, `m_pitch`, `joint_penalty`, `fall_penalty`, and `m_height` only when the opt-in height penalty is configured |
+//! | `yaw`, `pitch` | numbers | the trunk's yaw and pitch (rad, intrinsic Z-Y-X) |
+//! | `distance_to_goal` | number | D^t (m) |
+//! | `d_n` | number or null | D_n^t; null when K is too small (only with r_n and r_e off) |
+//! | `goal` | 3 numbers | G (m, world) |
+//! | `initial_position` | 3 numbers | C^0 (m, world) |
+//! | `terminated`, `truncated` | booleans | Gymnasium's flags |
+//! | `reasons` | list of strings | a subset of `reached`, `joint_limit`, `fell`, `timeout`, `diverged`, in that order |
+//!
+//! Numbers are written with full f64 precision (shortest round-trip form): reading a record
+//! back gives the same bits.
+
+use std::borrow::Cow;
+
+use hyq_physics::Backend;
+use serde::{Deserialize, Serialize};
+
+use crate::env::Env;
+use crate::info::{Reason, Reasons, StepInfo};
+
+/// The reward terms of a record (see the module docs).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RecordTerms {
+    /// Base reward r_b.
+    pub r_b: f64,
+    /// Normalised reward r_n.
+    pub r_n: f64,
+    /// Exponential reward r_e.
+    pub r_e: f64,
+    /// Reach bonus r_reach.
+    pub r_reach: f64,
+    /// Yaw multiplier.
+    pub m_yaw: f64,
+    /// Pitch multiplier.
+    pub m_pitch: f64,
+    /// Height multiplier, present only when the opt-in height penalty is configured.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub m_height: Option<f64>,
+    /// Joint-limit penalty subtracted.
+    pub joint_penalty: f64,
+    /// Fall penalty subtracted.
+    pub fall_penalty: f64,
+}
+
+/// One env step as written to a JSONL record (see the module docs for the schema). Borrows the
+/// environment's buffers when written; owns them when read back.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StepRecord<'a> {
+    /// Episode number (1 for the first).
+    pub episode: u64,
+    /// Env steps since reset (1 for the first step).
+    pub t: u64,
+    /// The observation after the step.
+    pub obs: Cow<'a, [f64]>,
+    /// The action as given.
+    pub action: Cow<'a, [f64]>,
+    /// The joint targets tracked (rad).
+    pub joint_targets: Cow<'a, [f64]>,
+    /// The reward.
+    pub reward: f64,
+    /// The reward's terms.
+    pub terms: RecordTerms,
+    /// Yaw (rad).
+    pub yaw: f64,
+    /// Pitch (rad).
+    pub pitch: f64,
+    /// D^t (m).
+    pub distance_to_goal: f64,
+    /// D_n^t, or null.
+    pub d_n: Option<f64>,
+    /// G (m).
+    pub goal: [f64; 3],
+    /// C^0 (m).
+    pub initial_position: [f64; 3],
+    /// Gymnasium's `terminated`.
+    pub terminated: bool,
+    /// Gymnasium's `truncated`.
+    pub truncated: bool,
+    /// Why the episode ended (empty while it goes on).
+    pub reasons: Vec<Reason>,
+}
+
+impl<'a> StepRecord<'a> {
+    /// The record of a step from its info, observation and action; `with_height` says whether
+    /// the height penalty is configured (then `terms.m_height` is written).
+    pub fn new(info: &'a StepInfo, obs: &'a [f64], action: &'a [f64], with_height: bool) -> Self {
+        let r = &info.reward;
+        Self {
+            episode: info.episode,
+            t: info.t,
+            obs: Cow::Borrowed(obs),
+            action: Cow::Borrowed(action),
+            joint_targets: Cow::Borrowed(&info.joint_targets),
+            reward: r.total,
+            terms: RecordTerms {
+                r_b: r.r_b,
+                r_n: r.r_n,
+                r_e: r.r_e,
+                r_reach: r.r_reach,
+                m_yaw: r.m_yaw,
+                m_pitch: r.m_pitch,
+                m_height: with_height.then_some(r.m_height),
+                joint_penalty: r.joint_penalty,
+                fall_penalty: r.fall_penalty,
+            },
+            yaw: info.yaw,
+            pitch: info.pitch,
+            distance_to_goal: info.distance_to_goal,
+            d_n: info.d_n,
+            goal: info.goal,
+            initial_position: info.initial_position,
+            terminated: info.terminated(),
+            truncated: info.truncated(),
+            reasons: info.reasons.iter().collect(),
+        }
+    }
+
+    /// The record of `env`'s last step, taken with `action`.
+    pub fn from_env<B: Backend>(env: &'a Env<B>, action: &'a [f64]) -> Self {
+        Self::new(
+            env.info(),
+            env.observation(),
+            action,
+            env.config().task.height_penalty.is_some(),
+        )
+    }
+
+    /// The reasons as a set.
+    pub fn reason_set(&self) -> Reasons {
+        self.reasons.iter().copied().collect()
+    }
+
+    /// The record as one line of JSON (no trailing newline), numbers in full precision.
+    pub fn to_json_line(&self) -> String {
+        match serde_json::to_string(self) {
+            Ok(line) => line,
+            // Every field is a number, string, boolean or a list or object of those; the env
+            // emits no NaN or infinity, which JSON could not hold.
+            Err(e) => unreachable!("a step record serialises to JSON: {e}"),
+        }
+    }
+
+    /// Reads a record from one line of JSON; unknown keys are errors.
+    pub fn from_json_line(line: &str) -> Result<StepRecord<'static>, serde_json::Error> {
+        serde_json::from_str(line)
+    }
+}
