@@ -409,7 +409,7 @@ pub enum ConfigError {
         expected: String,
     },
     /// A key given to [`EnvConfig::set`] that names no setting, or a change it refused.
-    #[error("--set {key}={value}: {message}")]
+    #[error("setting {key} = {value}: {message}")]
     Set {
         /// The dotted key as given.
         key: String,
@@ -477,45 +477,64 @@ impl EnvConfig {
     }
 
     /// Sets one value by its dotted key, e.g. `set("task.fall_penalty", "1.5")`,
-    /// `set("goal.position", "[5, 0, 0.6]")`, `set("task.exp_rew_scaling", "off")` or
-    /// `set("physics.rapier.solver_iterations", "4")`, then validates the whole configuration.
-    ///
-    /// `value` is read as a TOML value (number, boolean, array, quoted string); anything that
-    /// is not one is taken as a bare string, so `mode=random` works unquoted. On error the
-    /// configuration is unchanged and the error names the key and the value.
+    /// `set("task.exp_rew_scaling", "off")` or `set("physics.rapier.solver_iterations", "4")`,
+    /// then validates the whole configuration. Same as [`EnvConfig::set_all`] with one pair.
     pub fn set(&mut self, key: &str, value: &str) -> Result<(), ConfigError> {
-        let fail = |message: String| ConfigError::Set {
-            key: key.to_owned(),
-            value: value.to_owned(),
-            message,
-        };
-        let path: Vec<&str> = key.split('.').collect();
-        if path.len() < 2 || path.iter().any(|p| p.is_empty()) {
-            return Err(fail(
-                "a key is `table.name`, e.g. `task.fall_penalty` or `physics.rapier.solver_iterations`"
-                    .into(),
-            ));
-        }
-        let parsed = toml::from_str::<toml::Table>(&format!("v = {value}"))
-            .ok()
-            .and_then(|mut t| t.remove("v"))
-            .unwrap_or_else(|| toml::Value::String(value.to_owned()));
-        let mut doc =
-            toml::Table::try_from(&*self).map_err(|e| fail(format!("cannot serialise: {e}")))?;
-        let mut table = &mut doc;
-        for part in &path[..path.len() - 1] {
-            let entry = table
-                .entry(part.to_string())
-                .or_insert_with(|| toml::Value::Table(toml::Table::new()));
-            table = match entry {
-                toml::Value::Table(t) => t,
-                _ => return Err(fail(format!("`{part}` is a value, not a table"))),
+        self.set_all(&[(key, value)])
+    }
+
+    /// Sets several values by their dotted keys, then validates the whole configuration once,
+    /// so that values that only make sense together can be given together
+    /// (`goal.mode=fixed` with `goal.position=[5, 1, 0.6]`). This is what the CLI's `--set`
+    /// options and the Python keyword arguments use.
+    ///
+    /// Each value is read as a TOML value (number, boolean, array, quoted string); anything
+    /// that is not one is taken as a bare string, so `mode=random` works unquoted. An unknown
+    /// key, or a value of the wrong type or outside its range, is an error naming that key and
+    /// value; a combination that is invalid as a whole is an error naming the offending key. On
+    /// error the configuration is unchanged.
+    pub fn set_all(&mut self, pairs: &[(&str, &str)]) -> Result<(), ConfigError> {
+        let mut doc = toml::Table::try_from(&*self).map_err(|e| ConfigError::Parse {
+            origin: "configuration".into(),
+            message: e.to_string(),
+        })?;
+        let mut config = self.clone();
+        for (key, value) in pairs {
+            // One line: the CLI prints errors on one line.
+            let fail = |message: String| ConfigError::Set {
+                key: (*key).to_owned(),
+                value: (*value).to_owned(),
+                message: message.trim().replace('\n', " "),
             };
+            let path: Vec<&str> = key.split('.').collect();
+            if path.len() < 2 || path.iter().any(|p| p.is_empty()) {
+                return Err(fail(
+                    "a key is `table.name`, e.g. `task.fall_penalty` or \
+                     `physics.rapier.solver_iterations`"
+                        .into(),
+                ));
+            }
+            let parsed = toml::from_str::<toml::Table>(&format!("v = {value}"))
+                .ok()
+                .and_then(|mut t| t.remove("v"))
+                .unwrap_or_else(|| toml::Value::String((*value).to_owned()));
+            let mut table = &mut doc;
+            for part in &path[..path.len() - 1] {
+                let entry = table
+                    .entry(part.to_string())
+                    .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+                table = match entry {
+                    toml::Value::Table(t) => t,
+                    _ => return Err(fail(format!("`{part}` is a value, not a table"))),
+                };
+            }
+            table.insert(path[path.len() - 1].to_owned(), parsed);
+            // Deserialised after every pair, so an unknown key or a wrong type is blamed on the
+            // pair that brought it.
+            config = EnvConfig::deserialize(toml::Value::Table(doc.clone()))
+                .map_err(|e| fail(e.to_string()))?;
         }
-        table.insert(path[path.len() - 1].to_owned(), parsed);
-        let config: EnvConfig =
-            EnvConfig::deserialize(toml::Value::Table(doc)).map_err(|e| fail(e.to_string()))?;
-        config.validate().map_err(|e| fail(e.to_string()))?;
+        config.validate()?;
         *self = config;
         Ok(())
     }

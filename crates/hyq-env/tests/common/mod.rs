@@ -1,0 +1,40 @@
+//! Helpers shared by the integration tests: environments on the scripted and rapier backends,
+//! and the action that holds the standing pose.
+#![allow(dead_code)]
+
+use hyq_env::testing::ScriptedBackend;
+use hyq_env::{Env, EnvConfig, ResetOptions};
+use hyq_physics::Backend;
+use hyq_rapier::RapierBackend;
+
+/// A configuration from `key=value` overrides of the defaults.
+pub fn config(overrides: &[(&str, &str)]) -> EnvConfig {
+    let mut c = EnvConfig::default();
+    c.set_all(overrides).unwrap_or_else(|e| panic!("{e}"));
+    c
+}
+
+pub fn env<B: Backend>(overrides: &[(&str, &str)]) -> Env<B> {
+    Env::new(hyq_physics::bundled::hyq(), config(overrides)).unwrap_or_else(|e| panic!("{e}"))
+}
+
+pub fn scripted(overrides: &[(&str, &str)]) -> Env<ScriptedBackend> {
+    env(overrides)
+}
+
+pub fn rapier(overrides: &[(&str, &str)]) -> Env<RapierBackend> {
+    env(overrides)
+}
+
+pub fn reset<B: Backend>(env: &mut Env<B>, seed: u64) {
+    env.reset(Some(seed), &ResetOptions::default())
+        .unwrap_or_else(|e| panic!("{e}"));
+}
+
+/// The action (in the env's mode) that targets the standing pose.
+pub fn stand_action<B: Backend>(env: &Env<B>) -> Vec<f64> {
+    let mut a = vec![0.0; env.action_space().len()];
+    env.action_space()
+        .action_for_targets(env.model().standing_pose(), env.joint_angles(), &mut a);
+    a
+}

@@ -1,0 +1,278 @@
+//! Invariant: the configuration file has the tables [task] [goal] [action] [control] [physics]
+//! (+ engine tables) [reset]; every key is optional with the documented default; unknown keys,
+//! misspelt engine tables and invalid values are errors naming the key (and value); `set` /
+//! `set_all` overrides by dotted key with the same checks and leave the configuration unchanged
+//! on error; engine tables become the backend's options when an env is built.
+
+mod common;
+
+use hyq_env::{ActionMode, ConfigError, Env, EnvConfig, Gains, GoalMode, OutOfRange};
+use hyq_rapier::{RapierBackend, RapierOptions};
+
+fn parse_err(text: &str) -> String {
+    match EnvConfig::from_toml_str(text, "test.toml") {
+        Ok(c) => panic!("expected an error for {text:?}, got {c:?}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn an_empty_file_is_the_documented_defaults() {
+    let c = EnvConfig::from_toml_str("", "empty").unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(c, EnvConfig::default());
+    assert_eq!(c.task, hyq_spec::TaskConfig::default());
+    assert_eq!(c.goal.mode, GoalMode::Ahead);
+    assert_eq!(c.goal.distance_m, 5.0);
+    assert_eq!(c.goal.heading_range_deg, [0.0, 0.0]);
+    assert_eq!(c.action.mode, ActionMode::Normalized);
+    assert_eq!(c.action.out_of_range, OutOfRange::Clip);
+    assert_eq!(c.action.max_delta_rad, 0.1);
+    assert_eq!(c.control.sim_steps_per_env_step, 10);
+    assert_eq!(
+        (c.control.kp.clone(), c.control.kd.clone()),
+        (Gains::Profile, Gains::Profile)
+    );
+    assert_eq!(c.physics.params, hyq_physics::PhysicsParams::default());
+    assert!(c.physics.engines.is_empty());
+    assert_eq!(c.reset.joint_noise_rad, 0.0);
+    assert_eq!(c.env_dt(), 0.01);
+}
+
+#[test]
+fn a_full_file_reads_every_table() {
+    let text = r#"
+        [task]
+        norm_rew_scaling = 10.0
+        exp_rew_scaling = "off"
+        fall_penalty = 1.5
+        max_time_steps = 500
+
+        [goal]
+        mode = "random"
+        distance_range_m = [2.0, 4.0]
+        heading_range_deg = [-20.0, 20.0]
+        height_m = 0.55
+
+        [action]
+        mode = "delta"
+        out_of_range = "error"
+        max_delta_rad = 0.05
+
+        [control]
+        sim_steps_per_env_step = 5
+        kp = 2000
+        kd = [30, 30, 30, 30, 30, 30, 30, 30, 30, 30, 30, 30]
+        velocity_limit = false
+
+        [physics]
+        dt = 0.002
+        ground_friction = 0.8
+
+        [physics.rapier]
+        solver_iterations = 4
+
+        [physics.dart]
+
+        [reset]
+        spawn_xy_m = [1.0, -2.0]
+        yaw_deg = 10.0
+        yaw_noise_deg = 5.0
+        joint_noise_rad = 0.02
+    "#;
+    let c = EnvConfig::from_toml_str(text, "full").unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(c.task.norm_rew_scaling, Some(10.0));
+    assert_eq!(c.task.exp_rew_scaling, None);
+    assert_eq!(c.task.max_time_steps, 500);
+    assert_eq!(c.goal.mode, GoalMode::Random);
+    assert_eq!(c.goal.height_m, Some(0.55));
+    assert_eq!(c.action.mode, ActionMode::Delta);
+    assert_eq!(c.control.kp, Gains::All(2000.0));
+    assert_eq!(c.control.kd, Gains::PerJoint(vec![30.0; 12]));
+    assert!(!c.control.velocity_limit);
+    assert_eq!(c.physics.params.dt, 0.002);
+    assert_eq!(c.env_dt(), 0.01);
+    assert_eq!(c.reset.spawn_xy_m, [1.0, -2.0]);
+    // Round trip through the TOML writer.
+    let again = EnvConfig::from_toml_str(&c.to_toml_string(), "round trip")
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(again, c);
+    // The engine table reaches the backend.
+    let env =
+        Env::<RapierBackend>::new(hyq_physics::bundled::hyq(), c).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(env.backend_options().solver_iterations, 4);
+    assert_eq!(env.actuator().kp(), &[2000.0; 12]);
+}
+
+#[test]
+fn unknown_keys_are_errors_naming_the_key() {
+    for (text, key) in [
+        ("[task]\nfall_penaltyy = 1", "fall_penaltyy"),
+        ("[goal]\ndistance = 1", "distance"),
+        ("[action]\nmodee = \"absolute\"", "modee"),
+        ("[control]\nsubsteps = 3", "substeps"),
+        ("[physics]\ntimestep = 0.001", "timestep"),
+        ("[reset]\nnoise = 0.1", "noise"),
+        ("[rewards]\nx = 1", "rewards"),
+        ("[physics.rapeir]\nsolver_iterations = 1", "physics.rapeir"),
+    ] {
+        let msg = parse_err(text);
+        assert!(msg.contains(key), "{msg:?} should name {key:?}");
+    }
+    // An unknown key inside an engine table is caught when an env on that engine is built.
+    let c = EnvConfig::from_toml_str("[physics.rapier]\niterations = 3", "t")
+        .unwrap_or_else(|e| panic!("{e}"));
+    let msg = Env::<RapierBackend>::new(hyq_physics::bundled::hyq(), c)
+        .err()
+        .map(|e| e.to_string())
+        .unwrap_or_default();
+    assert!(
+        msg.contains("physics.rapier") && msg.contains("iterations"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn invalid_values_are_errors_naming_the_key_and_value() {
+    for (text, needles) in [
+        (
+            "[task]\naccepted_error = -1.0",
+            &["accepted_error", "-1"][..],
+        ),
+        ("[goal]\ndistance_m = 0.0", &["goal.distance_m", "0"]),
+        ("[goal]\nmode = \"fixed\"", &["goal.position", "fixed"]),
+        (
+            "[goal]\ndistance_range_m = [5.0, 2.0]",
+            &["goal.distance_range_m", "5"],
+        ),
+        (
+            "[goal]\nheading_range_deg = [0.0, 200.0]",
+            &["goal.heading_range_deg", "200"],
+        ),
+        ("[goal]\nmode = \"sideways\"", &["sideways"]),
+        (
+            "[action]\nmax_delta_rad = -0.1",
+            &["action.max_delta_rad", "-0.1"],
+        ),
+        (
+            "[control]\nsim_steps_per_env_step = 0",
+            &["control.sim_steps_per_env_step", "0"],
+        ),
+        ("[control]\nkp = -5", &["control.kp", "-5"]),
+        ("[control]\nkp = \"stiff\"", &["stiff"]),
+        ("[physics]\ndt = 0.5", &["physics.dt", "0.5"]),
+        ("[reset]\nyaw_deg = 270", &["reset.yaw_deg", "270"]),
+        (
+            "[reset]\njoint_noise_rad = -0.1",
+            &["reset.joint_noise_rad", "-0.1"],
+        ),
+    ] {
+        let msg = parse_err(text);
+        for needle in needles {
+            assert!(msg.contains(needle), "{msg:?} should contain {needle:?}");
+        }
+    }
+    // Per-joint gains of the wrong length are caught against the robot.
+    let c = EnvConfig::from_toml_str("[control]\nkd = [1, 2, 3]", "t")
+        .unwrap_or_else(|e| panic!("{e}"));
+    let msg = Env::<RapierBackend>::new(hyq_physics::bundled::hyq(), c)
+        .err()
+        .map(|e| e.to_string())
+        .unwrap_or_default();
+    assert!(msg.contains("control.kd") && msg.contains("12"), "{msg}");
+}
+
+#[test]
+fn set_overrides_by_dotted_key() {
+    let mut c = EnvConfig::default();
+    c.set("task.fall_penalty", "1.5")
+        .unwrap_or_else(|e| panic!("{e}"));
+    c.set("task.exp_rew_scaling", "off")
+        .unwrap_or_else(|e| panic!("{e}"));
+    c.set("action.mode", "absolute")
+        .unwrap_or_else(|e| panic!("{e}"));
+    c.set("action.mode", "\"delta\"")
+        .unwrap_or_else(|e| panic!("{e}"));
+    c.set("control.kp", "[1,2,3,4,5,6,7,8,9,10,11,12]")
+        .unwrap_or_else(|e| panic!("{e}"));
+    c.set("physics.rapier.solver_iterations", "4")
+        .unwrap_or_else(|e| panic!("{e}"));
+    c.set("physics.gravity", "[0, 0, -1.62]")
+        .unwrap_or_else(|e| panic!("{e}"));
+    c.set_all(&[("goal.mode", "fixed"), ("goal.position", "[5, 1, 0.6]")])
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(c.task.fall_penalty, 1.5);
+    assert_eq!(c.task.exp_rew_scaling, None);
+    assert_eq!(c.action.mode, ActionMode::Delta);
+    assert_eq!(
+        c.control.kp,
+        Gains::PerJoint((1..=12).map(f64::from).collect())
+    );
+    assert_eq!(c.physics.params.gravity, [0.0, 0.0, -1.62]);
+    assert_eq!(c.goal.position, Some([5.0, 1.0, 0.6]));
+    let options: RapierOptions = c
+        .physics
+        .engine_options("rapier")
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(options.solver_iterations, 4);
+}
+
+#[test]
+fn bad_overrides_name_the_key_and_change_nothing() {
+    let mut c = EnvConfig::default();
+    c.set("task.fall_penalty", "2")
+        .unwrap_or_else(|e| panic!("{e}"));
+    let before = c.clone();
+    for (key, value, needles) in [
+        (
+            "task.fall_penaltyy",
+            "1",
+            &["task.fall_penaltyy", "fall_penaltyy"][..],
+        ),
+        ("tasks.fall_penalty", "1", &["tasks.fall_penalty"]),
+        ("fall_penalty", "1", &["fall_penalty", "table.name"]),
+        ("task.fall_penalty", "-3", &["task.fall_penalty", "-3"]),
+        (
+            "task.max_time_steps",
+            "1.5",
+            &["task.max_time_steps", "1.5"],
+        ),
+        ("goal.distance_m", "abc", &["goal.distance_m", "abc"]),
+        ("physics.rapeir.solver_iterations", "2", &["physics.rapeir"]),
+        ("reset.yaw_deg", "500", &["reset.yaw_deg", "500"]),
+        ("goal.mode", "fixed", &["goal.position"]),
+    ] {
+        let err = c.set(key, value).err();
+        let msg = err.as_ref().map(|e| e.to_string()).unwrap_or_default();
+        for needle in needles {
+            assert!(
+                msg.contains(needle),
+                "set({key}, {value}): {msg:?} lacks {needle:?}"
+            );
+        }
+        assert!(
+            matches!(
+                err,
+                Some(ConfigError::Set { .. } | ConfigError::Invalid { .. })
+            ),
+            "{err:?}"
+        );
+        assert_eq!(c, before, "set({key}, {value}) changed the configuration");
+    }
+}
+
+#[test]
+fn a_config_file_is_read_from_disk_and_a_missing_one_names_the_path() {
+    let dir = std::env::temp_dir().join(format!("hyq-env-config-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+    let path = dir.join("env.toml");
+    std::fs::write(&path, "[task]\nfall_penalty = 4.0\n").unwrap_or_else(|e| panic!("{e}"));
+    let c = EnvConfig::from_file(&path).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(c.task.fall_penalty, 4.0);
+    let missing = dir.join("missing.toml");
+    let msg = EnvConfig::from_file(&missing)
+        .err()
+        .map(|e| e.to_string())
+        .unwrap_or_default();
+    assert!(msg.contains("missing.toml"), "{msg}");
+    std::fs::remove_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+}
