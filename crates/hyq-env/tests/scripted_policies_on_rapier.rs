@@ -47,21 +47,17 @@ fn trot_walks_forward_for_ten_seconds_without_falling() {
     let mut trot = Trot::new(&model, TrotParams::default()).unwrap_or_else(|e| panic!("{e}"));
     let mut a = vec![0.0; 12];
     let trunk_row = env.observation_layout().trunk_contact();
-    let mut t = 0;
-    loop {
+    let t = loop {
         trot.act(&env.policy_input(), &mut a);
         let s = env.step(&a).unwrap_or_else(|e| panic!("{e}"));
-        t = s.info.t;
-        assert_eq!(
-            s.observation[trunk_row], 0.0,
-            "trunk touched the ground at t = {t}"
-        );
+        let t = s.info.t;
+        assert_eq!(s.observation[trunk_row], 0.0, "trunk touched the ground at t = {t}");
         assert!(!s.terminated, "terminated at t = {t}: {:?}", s.info.reasons);
         if s.truncated {
             assert!(s.info.reasons.contains(Reason::Timeout));
-            break;
+            break t;
         }
-    }
+    };
     assert_eq!(t, 1000);
     let p = env.trunk().pose.translation.vector;
     // Measured 4.32 m forward, 0.48 m sideways, yaw 0.2 rad (see the crate docs); the margins
