@@ -61,12 +61,19 @@ pub struct RandomPolicy {
     rng: ChaCha8Rng,
 }
 
+/// The random policy's ChaCha stream number. An environment reset with seed s draws its goals
+/// from stream 0 and its reset noise from stream 1 of the same key, so a policy given the same
+/// s (as `hyq run --seed s` does) must use another stream, or its actions would repeat the goal
+/// draws.
+const POLICY_STREAM: u64 = 2;
+
 impl RandomPolicy {
-    /// A random policy seeded with `seed`.
+    /// A random policy seeded with `seed` (independent of an environment's streams for the same
+    /// seed).
     pub fn new(seed: u64) -> Self {
-        Self {
-            rng: ChaCha8Rng::seed_from_u64(seed),
-        }
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        rng.set_stream(POLICY_STREAM);
+        Self { rng }
     }
 }
 
@@ -216,5 +223,29 @@ impl Policy for Trot {
         let space = input.space;
         let targets = self.targets_at(time_s, input.standing);
         space.action_for_targets(targets, input.joint_angles, action);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::Rng;
+
+    /// The policy's numbers are not those of an environment's goal or noise stream (ChaCha
+    /// streams 0 and 1 of the same seed), so a shared seed does not correlate actions and goals.
+    #[test]
+    fn random_policy_stream_differs_from_the_env_streams_of_the_same_seed() {
+        for seed in [0, 7, u64::MAX] {
+            let mut policy = RandomPolicy::new(seed).rng;
+            let drawn: Vec<u64> = (0..4).map(|_| policy.next_u64()).collect();
+            for stream in [0, 1] {
+                let mut env_rng = ChaCha8Rng::seed_from_u64(seed);
+                env_rng.set_stream(stream);
+                let env_drawn: Vec<u64> = (0..4).map(|_| env_rng.next_u64()).collect();
+                assert_ne!(drawn, env_drawn, "seed {seed}, stream {stream}");
+            }
+            let mut again = RandomPolicy::new(seed).rng;
+            assert_eq!(drawn, (0..4).map(|_| again.next_u64()).collect::<Vec<_>>());
+        }
     }
 }
