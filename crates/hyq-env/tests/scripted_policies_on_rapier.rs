@@ -51,7 +51,10 @@ fn trot_walks_forward_for_ten_seconds_without_falling() {
         trot.act(&env.policy_input(), &mut a);
         let s = env.step(&a).unwrap_or_else(|e| panic!("{e}"));
         let t = s.info.t;
-        assert_eq!(s.observation[trunk_row], 0.0, "trunk touched the ground at t = {t}");
+        assert_eq!(
+            s.observation[trunk_row], 0.0,
+            "trunk touched the ground at t = {t}"
+        );
         assert!(!s.terminated, "terminated at t = {t}: {:?}", s.info.reasons);
         if s.truncated {
             assert!(s.info.reasons.contains(Reason::Timeout));
