@@ -1,0 +1,676 @@
+//! Per-episode plots (PNG, drawn with plotters into an RGB buffer): the spec's Figures 3–6
+//! redrawn from a real run.
+//!
+//! - [`plot_reward_terms`]: every reward term per step (r_b, r_n, r_e, r_reach), the penalty
+//!   multipliers (m_yaw, m_pitch, m_height), the step reward with the fixed penalties, and the
+//!   cumulative reward with the cumulative r_b, r_n (the spec's Figure 4) and r_e.
+//! - [`plot_distance`]: D_n over time, and the §4.3 curve R_e(D_n) (Figures 5–6, from
+//!   `hyq_spec::reward::exponential::cumulative_exponential_reward`) with the episode's points
+//!   (D_n^t, Σ_{s≤t} r_e^s) on it. r_e is R_e's change per step and D_n^0 = 1 where R_e = 0, so
+//!   the points sit on the curve exactly when the environment paid r_e as the spec says: the
+//!   plot doubles as a visual check.
+//!
+//! Text uses the bundled DejaVu Sans (registered with plotters once per process), so plots look
+//! the same on every machine.
+
+use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
+
+use hyq_spec::reward::exponential::cumulative_exponential_reward;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use plotters::style::FontStyle;
+
+use crate::error::PlotError;
+use crate::frame::Frame;
+use crate::records::{EpisodeSeries, cumulative, read_jsonl, split_episodes};
+use crate::text::{SANS, SANS_BOLD};
+use crate::writer::write_png;
+
+/// Size of the reward-terms plot (px).
+pub const REWARD_PLOT_SIZE: (u32, u32) = (1280, 900);
+/// Size of the distance plot (px).
+pub const DISTANCE_PLOT_SIZE: (u32, u32) = (1280, 520);
+
+/// The font family name the bundled fonts are registered under.
+const FAMILY: &str = "sans-serif";
+
+const BLUE: RGBColor = RGBColor(0x4e, 0x79, 0xa7);
+const ORANGE: RGBColor = RGBColor(0xf2, 0x8e, 0x2b);
+const GREEN: RGBColor = RGBColor(0x59, 0xa1, 0x4f);
+const RED: RGBColor = RGBColor(0xe1, 0x57, 0x59);
+const TEAL: RGBColor = RGBColor(0x76, 0xb7, 0xb2);
+const YELLOW: RGBColor = RGBColor(0xed, 0xc9, 0x48);
+const PURPLE: RGBColor = RGBColor(0xb0, 0x7a, 0xa1);
+const BROWN: RGBColor = RGBColor(0x9c, 0x75, 0x5f);
+const INK: RGBColor = RGBColor(0x2b, 0x2f, 0x36);
+const GREY: RGBColor = RGBColor(0x9a, 0xa0, 0xa8);
+
+/// What to put on an episode's plots besides its data.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PlotOptions {
+    /// Title above each plot, before what the plot shows, e.g. `"rapier, seed 7, episode 3"`;
+    /// empty for none. [`plot_jsonl`] appends the episode's number.
+    pub title: String,
+    /// k_exp (`exp_rew_scaling`) of the run, for the R_e curve; `None` when r_e was off.
+    pub k_exp: Option<f64>,
+    /// The env step's duration (s): given, the time axes are in seconds (t · Δt); `None`, they
+    /// count env steps.
+    pub env_dt_s: Option<f64>,
+}
+
+impl PlotOptions {
+    /// The x values and the axis label for a series' steps.
+    fn time_axis(&self, t: &[f64]) -> (Vec<f64>, &'static str) {
+        match self.env_dt_s {
+            Some(dt) => (t.iter().map(|t| t * dt).collect(), "time (s)"),
+            None => (t.to_vec(), "t (env steps)"),
+        }
+    }
+}
+
+impl Default for PlotOptions {
+    fn default() -> Self {
+        Self {
+            title: String::new(),
+            k_exp: Some(5.0),
+            env_dt_s: None,
+        }
+    }
+}
+
+/// A plot's title: the caller's title, then what the plot shows.
+fn heading(title: &str, what: &str) -> String {
+    if title.is_empty() {
+        what.to_owned()
+    } else {
+        format!("{title}: {what}")
+    }
+}
+
+/// Checks k_exp and Δt.
+fn check_options(options: &PlotOptions) -> Result<(), PlotError> {
+    if let Some(k) = options.k_exp
+        && !(k.is_finite() && k > 0.0)
+    {
+        return Err(PlotError::KExp { value: k });
+    }
+    if let Some(dt) = options.env_dt_s
+        && !(dt.is_finite() && dt > 0.0)
+    {
+        return Err(PlotError::EnvDt { value: dt });
+    }
+    Ok(())
+}
+
+/// Registers the bundled fonts with plotters (once per process).
+fn fonts_registered() -> Result<(), PlotError> {
+    static REGISTERED: OnceLock<Result<(), String>> = OnceLock::new();
+    REGISTERED
+        .get_or_init(|| {
+            for (style, bytes) in [(FontStyle::Normal, SANS), (FontStyle::Bold, SANS_BOLD)] {
+                plotters::style::register_font(FAMILY, style, bytes)
+                    .map_err(|_| "the bundled font could not be registered".to_owned())?;
+            }
+            Ok(())
+        })
+        .clone()
+        .map_err(|message| PlotError::Draw {
+            plot: "fonts",
+            message,
+        })
+}
+
+/// Draws into a white `width × height` RGB buffer with `draw`, then writes it as a PNG.
+fn render_png(
+    path: &Path,
+    (width, height): (u32, u32),
+    plot: &'static str,
+    draw: impl FnOnce(&DrawingArea<BitMapBackend<'_>, Shift>) -> Result<(), String>,
+) -> Result<(), PlotError> {
+    fonts_registered()?;
+    let mut frame = Frame::new(width, height);
+    {
+        let root = BitMapBackend::with_buffer(&mut frame.rgb, (width, height)).into_drawing_area();
+        let result = root
+            .fill(&WHITE)
+            .map_err(|e| e.to_string())
+            .and_then(|()| draw(&root))
+            .and_then(|()| root.present().map_err(|e| e.to_string()));
+        result.map_err(|message| PlotError::Draw { plot, message })?;
+    }
+    write_png(path, &frame)?;
+    Ok(())
+}
+
+/// The range of `values` (and of `also`), padded by 6 %, never empty.
+fn padded_range<'a>(values: impl IntoIterator<Item = &'a f64>, also: &'a [f64]) -> (f64, f64) {
+    let (lo, hi) = values
+        .into_iter()
+        .chain(also)
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
+            (lo.min(v), hi.max(v))
+        });
+    if !lo.is_finite() || !hi.is_finite() {
+        return (-1.0, 1.0);
+    }
+    let span = hi - lo;
+    if span < 1e-9 {
+        let d = lo.abs().max(1.0) * 0.1;
+        return (lo - d, hi + d);
+    }
+    (lo - 0.06 * span, hi + 0.06 * span)
+}
+
+fn t_range(t: &[f64]) -> (f64, f64) {
+    let (lo, hi) = (t[0], t[t.len() - 1]);
+    if hi - lo < 1e-9 {
+        (lo - 0.5, hi + 0.5)
+    } else {
+        (lo, hi)
+    }
+}
+
+/// Points drawn as dots, with their legend label and colour.
+type Markers<'a> = (&'a str, RGBColor, Vec<(f64, f64)>);
+
+/// One line of a panel.
+struct Line<'a> {
+    label: &'a str,
+    colour: RGBColor,
+    ys: &'a [f64],
+    width: u32,
+}
+
+fn caption_font() -> TextStyle<'static> {
+    (FAMILY, 19, FontStyle::Bold).into_font().color(&INK)
+}
+
+/// A panel of lines over time, with a legend.
+fn line_panel(
+    area: &DrawingArea<BitMapBackend<'_>, Shift>,
+    caption: &str,
+    (t, x_desc): (&[f64], &str),
+    lines: &[Line<'_>],
+    y_desc: &str,
+    y_range: (f64, f64),
+    markers: &[Markers<'_>],
+) -> Result<(), String> {
+    let (t0, t1) = t_range(t);
+    let mut chart = ChartBuilder::on(area)
+        .caption(caption, caption_font())
+        .margin(14)
+        .x_label_area_size(44)
+        .y_label_area_size(64)
+        .build_cartesian_2d(t0..t1, y_range.0..y_range.1)
+        .map_err(|e| e.to_string())?;
+    chart
+        .configure_mesh()
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .label_style((FAMILY, 14).into_font().color(&INK))
+        .axis_desc_style((FAMILY, 15).into_font().color(&INK))
+        .light_line_style(RGBColor(0xf1, 0xf2, 0xf4))
+        .max_light_lines(2)
+        .bold_line_style(RGBColor(0xdc, 0xde, 0xe2))
+        .draw()
+        .map_err(|e| e.to_string())?;
+    if y_range.0 < 0.0 && y_range.1 > 0.0 {
+        chart
+            .draw_series(LineSeries::new(
+                [(t0, 0.0), (t1, 0.0)],
+                GREY.stroke_width(1),
+            ))
+            .map_err(|e| e.to_string())?;
+    }
+    for line in lines {
+        let colour = line.colour;
+        chart
+            .draw_series(LineSeries::new(
+                t.iter().copied().zip(line.ys.iter().copied()),
+                colour.stroke_width(line.width),
+            ))
+            .map_err(|e| e.to_string())?
+            .label(line.label)
+            .legend(move |(x, y)| PathElement::new([(x, y), (x + 22, y)], colour.stroke_width(3)));
+    }
+    for (label, colour, points) in markers {
+        let colour = *colour;
+        chart
+            .draw_series(
+                points
+                    .iter()
+                    .map(|&(x, y)| Circle::new((x, y), 5, colour.filled())),
+            )
+            .map_err(|e| e.to_string())?
+            .label(*label)
+            .legend(move |(x, y)| Circle::new((x + 11, y), 5, colour.filled()));
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperLeft)
+        .label_font((FAMILY, 14).into_font().color(&INK))
+        .background_style(WHITE.mix(0.88))
+        .border_style(RGBColor(0xc8, 0xcc, 0xd2))
+        .draw()
+        .map_err(|e| e.to_string())
+}
+
+/// Writes the reward-terms plot of one episode ([`REWARD_PLOT_SIZE`]) to `path`.
+pub fn plot_reward_terms(
+    series: &EpisodeSeries,
+    options: &PlotOptions,
+    path: impl AsRef<Path>,
+) -> Result<(), PlotError> {
+    series.validate()?;
+    check_options(options)?;
+    let (t, x_desc) = options.time_axis(&series.t);
+    let t = &t;
+    let total: f64 = series.reward.iter().sum();
+    let duration = match options.env_dt_s {
+        Some(_) => format!(", {:.2} s", t[t.len() - 1]),
+        None => String::new(),
+    };
+    let title = heading(
+        &options.title,
+        &format!(
+            "reward terms ({} steps{duration}, return {total:.2})",
+            series.len()
+        ),
+    );
+    let penalty_points = |values: &[f64]| -> Vec<(f64, f64)> {
+        t.iter()
+            .zip(values)
+            .filter(|(_, p)| **p != 0.0)
+            .map(|(&x, &p)| (x, -p))
+            .collect()
+    };
+    let joint = penalty_points(&series.joint_penalty);
+    let fall = penalty_points(&series.fall_penalty);
+    let cum_reward = cumulative(&series.reward);
+    let cum_b = cumulative(&series.r_b);
+    let cum_n = cumulative(&series.r_n);
+    let cum_e = cumulative(&series.r_e);
+
+    render_png(path.as_ref(), REWARD_PLOT_SIZE, "reward terms", |root| {
+        let body = root
+            .titled(
+                &title,
+                (FAMILY, 24, FontStyle::Bold).into_font().color(&INK),
+            )
+            .map_err(|e| e.to_string())?;
+        let panels = body.split_evenly((2, 2));
+        let terms = [
+            Line {
+                label: "r_b",
+                colour: BLUE,
+                ys: &series.r_b,
+                width: 2,
+            },
+            Line {
+                label: "r_n",
+                colour: ORANGE,
+                ys: &series.r_n,
+                width: 2,
+            },
+            Line {
+                label: "r_e",
+                colour: GREEN,
+                ys: &series.r_e,
+                width: 2,
+            },
+            Line {
+                label: "r_reach",
+                colour: RED,
+                ys: &series.r_reach,
+                width: 2,
+            },
+        ];
+        let range = padded_range(terms.iter().flat_map(|l| l.ys), &[0.0]);
+        line_panel(
+            &panels[0],
+            "Reward terms per step (§4)",
+            (t, x_desc),
+            &terms,
+            "reward",
+            range,
+            &[],
+        )?;
+
+        let multipliers = [
+            Line {
+                label: "m_yaw",
+                colour: TEAL,
+                ys: &series.m_yaw,
+                width: 3,
+            },
+            Line {
+                label: "m_pitch",
+                colour: YELLOW,
+                ys: &series.m_pitch,
+                width: 2,
+            },
+            Line {
+                label: "m_height",
+                colour: PURPLE,
+                ys: &series.m_height,
+                width: 2,
+            },
+        ];
+        line_panel(
+            &panels[1],
+            "Penalty multipliers (§5.1, §5.2)",
+            (t, x_desc),
+            &multipliers,
+            "multiplier",
+            (-0.05, 1.12),
+            &[],
+        )?;
+
+        let step = [Line {
+            label: "r (step reward)",
+            colour: INK,
+            ys: &series.reward,
+            width: 2,
+        }];
+        let range = padded_range(
+            series
+                .reward
+                .iter()
+                .chain(joint.iter().chain(&fall).map(|(_, y)| y)),
+            &[0.0],
+        );
+        line_panel(
+            &panels[2],
+            "Step reward and fixed penalties (§5.3, §5.4)",
+            (t, x_desc),
+            &step,
+            "reward",
+            range,
+            &[
+                ("− joint_penalty", PURPLE, joint.clone()),
+                ("− fall_penalty", BROWN, fall.clone()),
+            ],
+        )?;
+
+        let sums = [
+            Line {
+                label: "Σ r (return)",
+                colour: INK,
+                ys: &cum_reward,
+                width: 3,
+            },
+            Line {
+                label: "Σ r_b",
+                colour: BLUE,
+                ys: &cum_b,
+                width: 2,
+            },
+            Line {
+                label: "Σ r_n = R_n",
+                colour: ORANGE,
+                ys: &cum_n,
+                width: 2,
+            },
+            Line {
+                label: "Σ r_e = R_e(D_n)",
+                colour: GREEN,
+                ys: &cum_e,
+                width: 2,
+            },
+        ];
+        let range = padded_range(sums.iter().flat_map(|l| l.ys), &[0.0]);
+        line_panel(
+            &panels[3],
+            "Cumulative reward",
+            (t, x_desc),
+            &sums,
+            "cumulative reward",
+            range,
+            &[],
+        )
+    })
+}
+
+/// Writes the distance plot of one episode ([`DISTANCE_PLOT_SIZE`]) to `path`: D_n over time,
+/// and R_e(D_n) with the episode's points.
+pub fn plot_distance(
+    series: &EpisodeSeries,
+    options: &PlotOptions,
+    path: impl AsRef<Path>,
+) -> Result<(), PlotError> {
+    series.validate()?;
+    check_options(options)?;
+    let (t, x_desc) = options.time_axis(&series.t);
+    let t = &t;
+    let d_n: Vec<(f64, f64)> = t
+        .iter()
+        .zip(&series.d_n)
+        .filter_map(|(&x, d)| d.map(|d| (x, d)))
+        .collect();
+    // K = D^t / D_n^t, the same for every step; shown so that D_n can be read in metres.
+    let k_m = series
+        .d_n
+        .iter()
+        .zip(&series.distance_to_goal)
+        .find_map(|(d, &dist)| d.filter(|d| *d > 1e-9).map(|d| dist / d));
+    let cum_e = cumulative(&series.r_e);
+    let points: Vec<(f64, f64)> = series
+        .d_n
+        .iter()
+        .zip(&cum_e)
+        .filter_map(|(d, &r)| d.map(|d| (d, r)))
+        .collect();
+    let title = match k_m {
+        Some(k) => heading(&options.title, &format!("distance to goal (K = {k:.2} m)")),
+        None => heading(&options.title, "distance to goal"),
+    };
+
+    render_png(path.as_ref(), DISTANCE_PLOT_SIZE, "distance", |root| {
+        let body = root
+            .titled(
+                &title,
+                (FAMILY, 24, FontStyle::Bold).into_font().color(&INK),
+            )
+            .map_err(|e| e.to_string())?;
+        let (left, right) = body.split_horizontally(body.dim_in_pixel().0 / 2);
+
+        // D_n over time, with the start (1) and the goal (0).
+        let (t0, t1) = t_range(t);
+        let y_hi = d_n.iter().map(|p| p.1).fold(1.0, f64::max) * 1.08;
+        let mut chart = ChartBuilder::on(&left)
+            .caption("Normalised distance D_n = D / K (§4.2)", caption_font())
+            .margin(14)
+            .x_label_area_size(44)
+            .y_label_area_size(64)
+            .build_cartesian_2d(t0..t1, -0.04..y_hi)
+            .map_err(|e| e.to_string())?;
+        chart
+            .configure_mesh()
+            .x_desc(x_desc)
+            .y_desc("D_n")
+            .label_style((FAMILY, 14).into_font().color(&INK))
+            .axis_desc_style((FAMILY, 15).into_font().color(&INK))
+            .light_line_style(RGBColor(0xf1, 0xf2, 0xf4))
+            .max_light_lines(2)
+            .bold_line_style(RGBColor(0xdc, 0xde, 0xe2))
+            .draw()
+            .map_err(|e| e.to_string())?;
+        for (y, label, colour) in [
+            (1.0, "start (D_n = 1)", GREY),
+            (0.0, "goal (D_n = 0)", GREEN),
+        ] {
+            chart
+                .draw_series(DashedLineSeries::new(
+                    [(t0, y), (t1, y)],
+                    8,
+                    6,
+                    colour.stroke_width(2),
+                ))
+                .map_err(|e| e.to_string())?
+                .label(label)
+                .legend(move |(x, y)| {
+                    PathElement::new([(x, y), (x + 22, y)], colour.stroke_width(2))
+                });
+        }
+        chart
+            .draw_series(LineSeries::new(d_n.iter().copied(), BLUE.stroke_width(3)))
+            .map_err(|e| e.to_string())?
+            .label("D_n")
+            .legend(|(x, y)| PathElement::new([(x, y), (x + 22, y)], BLUE.stroke_width(3)));
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .label_font((FAMILY, 14).into_font().color(&INK))
+            .background_style(WHITE.mix(0.88))
+            .border_style(RGBColor(0xc8, 0xcc, 0xd2))
+            .draw()
+            .map_err(|e| e.to_string())?;
+
+        // R_e(D_n) and the episode's points on it.
+        let x_hi = points.iter().map(|p| p.0).fold(1.2, f64::max) * 1.06;
+        let curve: Vec<(f64, f64)> = match options.k_exp {
+            Some(k) => (0..=600)
+                .map(|i| {
+                    let d = x_hi * f64::from(i) / 600.0;
+                    (d, cumulative_exponential_reward(d, k))
+                })
+                .collect(),
+            None => Vec::new(),
+        };
+        let (y_lo, y_hi) = padded_range(curve.iter().chain(&points).map(|p| &p.1), &[0.0]);
+        let caption = match options.k_exp {
+            Some(k) => format!("R_e(D_n), k_exp = {k} (§4.3), and this episode"),
+            None => "Σ r_e against D_n (r_e off: no curve)".to_owned(),
+        };
+        let mut chart = ChartBuilder::on(&right)
+            .caption(caption, caption_font())
+            .margin(14)
+            .x_label_area_size(44)
+            .y_label_area_size(64)
+            .build_cartesian_2d(0.0..x_hi, y_lo..y_hi)
+            .map_err(|e| e.to_string())?;
+        chart
+            .configure_mesh()
+            .x_desc("D_n")
+            .y_desc("R_e")
+            .label_style((FAMILY, 14).into_font().color(&INK))
+            .axis_desc_style((FAMILY, 15).into_font().color(&INK))
+            .light_line_style(RGBColor(0xf1, 0xf2, 0xf4))
+            .max_light_lines(2)
+            .bold_line_style(RGBColor(0xdc, 0xde, 0xe2))
+            .draw()
+            .map_err(|e| e.to_string())?;
+        if !curve.is_empty() {
+            chart
+                .draw_series(LineSeries::new(
+                    curve.iter().copied(),
+                    GREEN.stroke_width(3),
+                ))
+                .map_err(|e| e.to_string())?
+                .label("R_e(D_n), the spec's curve")
+                .legend(|(x, y)| PathElement::new([(x, y), (x + 22, y)], GREEN.stroke_width(3)));
+        }
+        let n = points.len().max(2) - 1;
+        chart
+            .draw_series(points.iter().enumerate().map(|(i, &p)| {
+                // Early steps light, late steps dark.
+                let s = i as f64 / n as f64;
+                let mix = |a: u8, b: u8| (f64::from(a) + (f64::from(b) - f64::from(a)) * s) as u8;
+                let c = RGBColor(mix(0xa6, 0x1f), mix(0xc8, 0x3a), mix(0xe8, 0x6b));
+                Circle::new(p, 4, c.filled())
+            }))
+            .map_err(|e| e.to_string())?
+            .label("(D_n^t, Σ r_e), light → dark with time")
+            .legend(|(x, y)| Circle::new((x + 11, y), 4, BLUE.filled()));
+        chart
+            .draw_series(std::iter::once(Circle::new(
+                (1.0, 0.0),
+                7,
+                INK.stroke_width(2),
+            )))
+            .map_err(|e| e.to_string())?
+            .label("start: D_n = 1, R_e = 0")
+            .legend(|(x, y)| Circle::new((x + 11, y), 6, INK.stroke_width(2)));
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .label_font((FAMILY, 14).into_font().color(&INK))
+            .background_style(WHITE.mix(0.88))
+            .border_style(RGBColor(0xc8, 0xcc, 0xd2))
+            .draw()
+            .map_err(|e| e.to_string())
+    })
+}
+
+/// The two files [`plot_episode`] writes.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct EpisodePlots {
+    /// `<stem>_rewards.png`, from [`plot_reward_terms`].
+    pub rewards: PathBuf,
+    /// `<stem>_distance.png`, from [`plot_distance`].
+    pub distance: PathBuf,
+}
+
+/// Writes both plots of one episode into `dir` (created if missing) as `<stem>_rewards.png` and
+/// `<stem>_distance.png`.
+pub fn plot_episode(
+    series: &EpisodeSeries,
+    options: &PlotOptions,
+    dir: impl AsRef<Path>,
+    stem: &str,
+) -> Result<EpisodePlots, PlotError> {
+    let dir = dir.as_ref();
+    std::fs::create_dir_all(dir).map_err(|source| crate::WriteError::Io {
+        path: dir.to_owned(),
+        source,
+    })?;
+    let plots = EpisodePlots {
+        rewards: dir.join(format!("{stem}_rewards.png")),
+        distance: dir.join(format!("{stem}_distance.png")),
+    };
+    plot_reward_terms(series, options, &plots.rewards)?;
+    plot_distance(series, options, &plots.distance)?;
+    Ok(plots)
+}
+
+/// Reads a JSONL file of step records and writes both plots of every episode in it into
+/// `dir`, as `episode_001_rewards.png`, `episode_001_distance.png`, … (numbered by their
+/// order in the file). `options.title` prefixes each plot's title (`"<title>, episode 1"`);
+/// `options.k_exp` is the run's `exp_rew_scaling` and `options.env_dt_s` its env step.
+pub fn plot_jsonl(
+    path: impl AsRef<Path>,
+    options: &PlotOptions,
+    dir: impl AsRef<Path>,
+) -> Result<Vec<EpisodePlots>, PlotError> {
+    let path = path.as_ref();
+    let records = read_jsonl(path)?;
+    let episodes = split_episodes(&records);
+    if episodes.is_empty() {
+        return Err(PlotError::Empty {
+            what: path.display().to_string(),
+        });
+    }
+    episodes
+        .iter()
+        .enumerate()
+        .map(|(i, records)| {
+            let title = match (options.title.as_str(), records[0].episode) {
+                ("", Some(e)) => format!("episode {e}"),
+                ("", None) => format!("episode {}", i + 1),
+                (title, Some(e)) => format!("{title}, episode {e}"),
+                (title, None) => format!("{title}, episode {}", i + 1),
+            };
+            let options = PlotOptions {
+                title,
+                ..options.clone()
+            };
+            plot_episode(
+                &EpisodeSeries::from_records(records),
+                &options,
+                dir.as_ref(),
+                &format!("episode_{:03}", i + 1),
+            )
+        })
+        .collect()
+}

@@ -1,0 +1,275 @@
+//! The environment's per-step records (one JSON object per line, "JSONL") and the per-episode
+//! series the plots draw.
+//!
+//! The schema is `hyq-env`'s record (its `record` module); this crate reads the keys it plots
+//! and ignores the others, so it needs no environment. The keys read: `t` (env steps since
+//! reset, 1 for the first step), `reward` (the step's total reward),
+//! `terms` (`r_b`, `r_n`, `r_e`, `r_reach`, `m_yaw`, `m_pitch`, optional `m_height`,
+//! `joint_penalty`, `fall_penalty`: the spec's per-term breakdown, penalties as the positive
+//! amounts subtracted), `d_n` (D_n^t, `null` when K is too small to divide by) and
+//! `distance_to_goal` (D^t, m), and `episode` (the episode's number; optional here). Other keys
+//! (`obs`, `action`, `goal`, …) are ignored, so the environment can log more without breaking
+//! the plots.
+//!
+//! A file may hold several episodes: a record starts a new episode when its `episode` differs
+//! from the previous record's, or, when neither has one, when its `t` is not after the previous
+//! record's (the environment was reset).
+
+use std::io::BufRead;
+use std::path::Path;
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::PlotError;
+
+fn one() -> f64 {
+    1.0
+}
+
+/// One step's reward terms, with the spec's names (`hyq_spec::RewardBreakdown` serialises to
+/// these keys).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct RewardTerms {
+    /// Base reward r_b (§4.1).
+    pub r_b: f64,
+    /// Normalised reward r_n (§4.2).
+    pub r_n: f64,
+    /// Exponential reward r_e (§4.3), before multipliers: its sum over an episode is
+    /// R_e(D_n^t).
+    pub r_e: f64,
+    /// Reach bonus r_reach (§4.4).
+    pub r_reach: f64,
+    /// Yaw multiplier m_yaw in [0, 1] (§5.1.1).
+    pub m_yaw: f64,
+    /// Pitch multiplier m_pitch in [0, 1] (§5.1.2).
+    pub m_pitch: f64,
+    /// Height multiplier m_height in [0, 1] (§5.2, opt-in; 1 when absent).
+    #[serde(default = "one")]
+    pub m_height: f64,
+    /// Joint-limit penalty subtracted (§5.3), ≥ 0.
+    pub joint_penalty: f64,
+    /// Fall penalty subtracted (§5.4), ≥ 0.
+    pub fall_penalty: f64,
+}
+
+/// One line of the environment's JSONL log.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct StepRecord {
+    /// Env steps since reset, counting this one (1 for the first step).
+    pub t: u64,
+    /// The episode's number, if the log carries it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub episode: Option<u64>,
+    /// The step's total reward.
+    pub reward: f64,
+    /// The step's reward terms.
+    pub terms: RewardTerms,
+    /// D_n^t, the distance to the goal over the start's (`None` when K is too small).
+    pub d_n: Option<f64>,
+    /// D^t, the distance from the trunk to the goal (m).
+    pub distance_to_goal: f64,
+}
+
+/// Parses JSONL step records, skipping blank lines; `origin` names the input in errors.
+pub fn parse_jsonl(reader: impl BufRead, origin: &str) -> Result<Vec<StepRecord>, PlotError> {
+    let mut records = Vec::new();
+    for (i, line) in reader.lines().enumerate() {
+        let line = line.map_err(|source| PlotError::Read {
+            path: origin.into(),
+            source,
+        })?;
+        if line.trim().is_empty() {
+            continue;
+        }
+        let record = serde_json::from_str(&line).map_err(|source| PlotError::Json {
+            origin: origin.to_owned(),
+            line: i + 1,
+            source,
+        })?;
+        records.push(record);
+    }
+    Ok(records)
+}
+
+/// Reads a JSONL file of step records.
+pub fn read_jsonl(path: impl AsRef<Path>) -> Result<Vec<StepRecord>, PlotError> {
+    let path = path.as_ref();
+    let file = std::fs::File::open(path).map_err(|source| PlotError::Read {
+        path: path.to_owned(),
+        source,
+    })?;
+    parse_jsonl(std::io::BufReader::new(file), &path.display().to_string())
+}
+
+/// Splits records into episodes (see the module documentation for the rule).
+pub fn split_episodes(records: &[StepRecord]) -> Vec<&[StepRecord]> {
+    let mut episodes = Vec::new();
+    let mut start = 0;
+    for i in 1..records.len() {
+        let (prev, cur) = (&records[i - 1], &records[i]);
+        let new_episode = match (prev.episode, cur.episode) {
+            (Some(a), Some(b)) => a != b,
+            _ => cur.t <= prev.t,
+        };
+        if new_episode {
+            episodes.push(&records[start..i]);
+            start = i;
+        }
+    }
+    if start < records.len() {
+        episodes.push(&records[start..]);
+    }
+    episodes
+}
+
+/// One episode as columns, one value per step: what the plots draw.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct EpisodeSeries {
+    /// t, env steps since reset (1 for the first step), as numbers for the plots' x axis.
+    pub t: Vec<f64>,
+    /// Total reward per step.
+    pub reward: Vec<f64>,
+    /// r_b per step.
+    pub r_b: Vec<f64>,
+    /// r_n per step.
+    pub r_n: Vec<f64>,
+    /// r_e per step.
+    pub r_e: Vec<f64>,
+    /// r_reach per step.
+    pub r_reach: Vec<f64>,
+    /// m_yaw per step.
+    pub m_yaw: Vec<f64>,
+    /// m_pitch per step.
+    pub m_pitch: Vec<f64>,
+    /// m_height per step.
+    pub m_height: Vec<f64>,
+    /// Joint-limit penalty per step (≥ 0, subtracted).
+    pub joint_penalty: Vec<f64>,
+    /// Fall penalty per step (≥ 0, subtracted).
+    pub fall_penalty: Vec<f64>,
+    /// D_n per step (`None` where unavailable).
+    pub d_n: Vec<Option<f64>>,
+    /// D per step (m).
+    pub distance_to_goal: Vec<f64>,
+}
+
+impl EpisodeSeries {
+    /// An empty series.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// The series of an episode's records.
+    pub fn from_records(records: &[StepRecord]) -> Self {
+        let mut s = Self::new();
+        for r in records {
+            s.push(r);
+        }
+        s
+    }
+
+    /// Appends one step.
+    pub fn push(&mut self, r: &StepRecord) {
+        // Step counts are far below 2^53, so the conversion is exact.
+        self.t.push(r.t as f64);
+        self.reward.push(r.reward);
+        self.r_b.push(r.terms.r_b);
+        self.r_n.push(r.terms.r_n);
+        self.r_e.push(r.terms.r_e);
+        self.r_reach.push(r.terms.r_reach);
+        self.m_yaw.push(r.terms.m_yaw);
+        self.m_pitch.push(r.terms.m_pitch);
+        self.m_height.push(r.terms.m_height);
+        self.joint_penalty.push(r.terms.joint_penalty);
+        self.fall_penalty.push(r.terms.fall_penalty);
+        self.d_n.push(r.d_n);
+        self.distance_to_goal.push(r.distance_to_goal);
+    }
+
+    /// Number of steps.
+    pub fn len(&self) -> usize {
+        self.t.len()
+    }
+
+    /// Whether the series holds no step.
+    pub fn is_empty(&self) -> bool {
+        self.t.is_empty()
+    }
+
+    /// The plain columns with their names.
+    pub(crate) fn columns(&self) -> [(&'static str, &[f64]); 12] {
+        [
+            ("t", &self.t),
+            ("reward", &self.reward),
+            ("r_b", &self.r_b),
+            ("r_n", &self.r_n),
+            ("r_e", &self.r_e),
+            ("r_reach", &self.r_reach),
+            ("m_yaw", &self.m_yaw),
+            ("m_pitch", &self.m_pitch),
+            ("m_height", &self.m_height),
+            ("joint_penalty", &self.joint_penalty),
+            ("fall_penalty", &self.fall_penalty),
+            ("distance_to_goal", &self.distance_to_goal),
+        ]
+    }
+
+    /// Checks that the series is non-empty, every column has one value per step and every
+    /// value is finite (`d_n` may be `None`, not NaN).
+    pub fn validate(&self) -> Result<(), PlotError> {
+        if self.is_empty() {
+            return Err(PlotError::Empty {
+                what: "the episode".into(),
+            });
+        }
+        let n = self.len();
+        let d_n_len = self.d_n.len();
+        for (field, len) in self
+            .columns()
+            .iter()
+            .map(|(f, c)| (*f, c.len()))
+            .chain([("d_n", d_n_len)])
+        {
+            if len != n {
+                return Err(PlotError::Length {
+                    field,
+                    expected: n,
+                    got: len,
+                });
+            }
+        }
+        for (field, column) in self.columns() {
+            if let Some((index, &value)) = column.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+                return Err(PlotError::NonFinite {
+                    field,
+                    index,
+                    value,
+                });
+            }
+        }
+        if let Some((index, value)) = self
+            .d_n
+            .iter()
+            .enumerate()
+            .find_map(|(i, v)| v.filter(|v| !v.is_finite()).map(|v| (i, v)))
+        {
+            return Err(PlotError::NonFinite {
+                field: "d_n",
+                index,
+                value,
+            });
+        }
+        Ok(())
+    }
+}
+
+/// The running sum of `values` (the cumulative reward of a per-step series).
+pub fn cumulative(values: &[f64]) -> Vec<f64> {
+    values
+        .iter()
+        .scan(0.0, |sum, v| {
+            *sum += v;
+            Some(*sum)
+        })
+        .collect()
+}

@@ -1,0 +1,80 @@
+//! What one frame shows: the robot's pose, its contacts, the goal and the overlay numbers.
+//! Plain values only, so any environment, log or test can fill it.
+
+use hyq_physics::na::{Isometry3, Point3};
+
+/// Where the robot's bodies are.
+#[derive(Clone, Copy, Debug)]
+pub enum RobotPose<'a> {
+    /// The world pose of every body frame, index as in `RobotModel::links` (e.g. from
+    /// `Backend::link_poses` or `RobotModel::link_poses`).
+    Links(&'a [Isometry3<f64>]),
+    /// The trunk's world pose and the joint angles (rad, profile order); the renderer runs
+    /// the model's forward kinematics into its own buffer (no allocation).
+    Joints {
+        /// The trunk frame's world pose.
+        trunk: &'a Isometry3<f64>,
+        /// Joint angles (rad), profile order.
+        q: &'a [f64],
+    },
+}
+
+/// The numbers printed in the frame's top-left corner.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Overlay {
+    /// Simulated time since reset (s).
+    pub time_s: f64,
+    /// Distance from the trunk to the goal (m), as the environment measures it (D^t).
+    pub distance_to_goal_m: f64,
+    /// The sum of the rewards so far in this episode.
+    pub episode_return: f64,
+}
+
+/// Everything one frame shows.
+#[derive(Clone, Copy, Debug)]
+pub struct Scene<'a> {
+    /// The robot's pose.
+    pub pose: RobotPose<'a>,
+    /// One flag per tracked body (`RobotModel::tracked`: the feet, then the trunk), true when
+    /// it touches the ground, as `Backend::contacts` reports them. Feet in contact are drawn
+    /// orange with a disc on the ground under them; a trunk in contact is drawn red.
+    pub contacts: &'a [bool],
+    /// The goal (world, m): a green ball on a pole with a ring on the ground, and a dashed line
+    /// to it from under the trunk. `None` draws no goal.
+    pub goal: Option<Point3<f64>>,
+    /// The text overlay; `None` draws none.
+    pub overlay: Option<Overlay>,
+    /// The point the camera looks at; `None` (the usual) follows the trunk frame's origin.
+    pub camera_target: Option<Point3<f64>>,
+}
+
+impl<'a> Scene<'a> {
+    /// A scene of the robot alone: no goal, no overlay, the camera following the trunk.
+    pub fn new(pose: RobotPose<'a>, contacts: &'a [bool]) -> Self {
+        Self {
+            pose,
+            contacts,
+            goal: None,
+            overlay: None,
+            camera_target: None,
+        }
+    }
+
+    /// The same scene with a goal marker at `goal`.
+    pub fn with_goal(mut self, goal: Point3<f64>) -> Self {
+        self.goal = Some(goal);
+        self
+    }
+
+    /// The same scene with the text overlay.
+    pub fn with_overlay(mut self, overlay: Overlay) -> Self {
+        self.overlay = Some(overlay);
+        self
+    }
+
+    /// The same scene seen by a camera looking at `target` instead of following the trunk.
+    pub fn with_camera_target(mut self, target: Point3<f64>) -> Self {
+        self.camera_target = Some(target);
+        self
+    }
+}
