@@ -452,7 +452,7 @@ impl EnvConfig {
     pub fn from_toml_str(text: &str, origin: &str) -> Result<Self, ConfigError> {
         let config: EnvConfig = toml::from_str(text).map_err(|e| ConfigError::Parse {
             origin: origin.to_owned(),
-            message: e.to_string(),
+            message: one_line(&e.to_string()),
         })?;
         config.validate()?;
         Ok(config)
@@ -504,7 +504,7 @@ impl EnvConfig {
             let fail = |message: String| ConfigError::Set {
                 key: (*key).to_owned(),
                 value: (*value).to_owned(),
-                message: message.trim().replace('\n', " "),
+                message: one_line(&message),
             };
             let path: Vec<&str> = key.split('.').collect();
             if path.len() < 2 || path.iter().any(|p| p.is_empty()) {
@@ -666,4 +666,19 @@ fn task_value(e: &hyq_spec::ConfigError) -> String {
         hyq_spec::ConfigError::Real { value, .. } => value.to_string(),
         hyq_spec::ConfigError::Integer { value, .. } => value.to_string(),
     }
+}
+
+/// A parser message on one line (the CLI prints errors on one line): TOML's "at line L, column
+/// C" header and its explanation, without the source excerpt drawn between them.
+fn one_line(message: &str) -> String {
+    let lines: Vec<&str> = message
+        .lines()
+        .map(str::trim)
+        .filter(|l| {
+            !l.is_empty()
+                && !l.starts_with('|')
+                && !l.chars().next().is_some_and(|c| c.is_ascii_digit())
+        })
+        .collect();
+    lines.join(": ")
 }

@@ -411,8 +411,9 @@ impl<B: Backend> Env<B> {
                 .targets(action, &self.q, &mut self.info.joint_targets);
         self.info.t += 1;
         let t = self.info.t;
-        let previous_position = Point3::from(self.trunk.pose.translation.vector);
-        let previous_velocity = self.trunk.linvel;
+        let previous_trunk = self.trunk;
+        let previous_position = Point3::from(previous_trunk.pose.translation.vector);
+        let previous_velocity = previous_trunk.linvel;
         self.latched.fill(false);
         let failure = self.run_substeps();
 
@@ -438,7 +439,13 @@ impl<B: Backend> Env<B> {
             }
             Err(what) => {
                 // The last finite observation stays in `obs`; the distances and attitude keep
-                // their previous values.
+                // their previous values, and so does the state the accessors report (the
+                // observation holds the joint angles and speeds exactly).
+                self.trunk = previous_trunk;
+                self.q
+                    .copy_from_slice(&self.obs[self.layout.joint_angles()]);
+                self.qd
+                    .copy_from_slice(&self.obs[self.layout.joint_speeds()]);
                 let info = &mut self.info;
                 info.reward = ZERO_REWARD;
                 info.reasons = Reasons::NONE;

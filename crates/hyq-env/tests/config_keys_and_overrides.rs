@@ -2,7 +2,8 @@
 //! (+ engine tables) [reset]; every key is optional with the documented default; unknown keys,
 //! misspelt engine tables and invalid values are errors naming the key (and value); `set` /
 //! `set_all` overrides by dotted key with the same checks and leave the configuration unchanged
-//! on error; engine tables become the backend's options when an env is built.
+//! on error; engine tables become the backend's options when an env is built. Messages are one
+//! line (the CLI prints them as they are).
 
 mod common;
 
@@ -117,6 +118,10 @@ fn unknown_keys_are_errors_naming_the_key() {
     ] {
         let msg = parse_err(text);
         assert!(msg.contains(key), "{msg:?} should name {key:?}");
+        assert!(
+            !msg.contains('\n') && msg.contains("line "),
+            "one line with the line number: {msg:?}"
+        );
     }
     // An unknown key inside an engine table is caught when an env on that engine is built.
     let c = EnvConfig::from_toml_str("[physics.rapier]\niterations = 3", "t")

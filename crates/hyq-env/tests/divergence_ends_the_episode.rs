@@ -39,6 +39,21 @@ fn check_diverged_step(env: &mut hyq_env::Env<hyq_env::testing::ScriptedBackend>
     assert_eq!(s.info.yaw, info_before.yaw);
     assert_eq!(s.info.t, info_before.t + 1);
     assert!(s.info.divergence.is_some());
+    // The state the env reports stays the last finite one too.
+    assert_eq!(env.joint_angles(), &before[..12]);
+    let t = env.trunk();
+    assert!(
+        t.linvel
+            .iter()
+            .chain(t.pose.translation.vector.iter())
+            .all(|v| v.is_finite())
+    );
+    assert!(
+        env.policy_input()
+            .joint_angles
+            .iter()
+            .all(|v| v.is_finite())
+    );
     let err = env.step(&[0.0; 12]).err();
     assert!(matches!(err, Some(EnvError::EpisodeOver { .. })), "{err:?}");
     let r = env
