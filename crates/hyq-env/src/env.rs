@@ -341,12 +341,14 @@ impl<B: Backend> Env<B> {
             None => sample_reset_state(&self.model, &self.config.reset, &mut noise_rng),
         };
         state.validate(&self.model)?;
-        let initial = Point3::from(state.trunk.pose.translation.vector);
+        let requested = Point3::from(state.trunk.pose.translation.vector);
         let goal = match options.goal {
             Some(g) => Point3::from(g),
             None => self.goals.sample(&mut goal_rng),
         };
-        let rules = EpisodeRules::new(&self.config.task, initial, goal)?;
+        // Checked against the requested start before anything changes, so a refused goal leaves
+        // the environment as it was.
+        let requested_rules = EpisodeRules::new(&self.config.task, requested, goal)?;
         self.backend.set_state(&state)?;
 
         self.seeded |= seed.is_some();
@@ -354,6 +356,16 @@ impl<B: Backend> Env<B> {
         self.noise_rng = noise_rng;
         self.episodes += 1;
         self.read_state();
+        // C^0 is where the engine put the trunk, as the reset observation reports it; it can
+        // differ from the requested state by the engine's rounding (rapier stores f32: about
+        // 1e-8 m). The first step measures D^{t-1} from this same point, so K, D^0 and that
+        // D^{t-1} are one number and Σ r_n telescopes to k_norm (1 − D_n^T) up to summation
+        // rounding (from the requested point it was off by about 1e-9). The rules of the
+        // requested start stand in only if this point is unusable (non-finite, which the
+        // observation below reports as divergence).
+        let initial = Point3::from(self.trunk.pose.translation.vector);
+        let rules = EpisodeRules::new(&self.config.task, initial, goal).unwrap_or(requested_rules);
+        let initial = rules.initial();
         self.latched.fill(false);
         let accel = Vector3::zeros();
         self.write_observation(accel)
