@@ -415,6 +415,7 @@ impl<B: Backend> Env<B> {
                 reasons: self.info.reasons,
             });
         }
+        let rules = episode.rules;
         self.space.check(action)?;
 
         // From here on the step happens.
@@ -429,10 +430,6 @@ impl<B: Backend> Env<B> {
         self.latched.fill(false);
         let failure = self.run_substeps();
 
-        let rules = match &self.episode {
-            Some(e) => e.rules,
-            None => unreachable!("checked above: an episode is running"),
-        };
         let outcome = match failure {
             Some(what) => Err(what),
             None => self.finish_step(&rules, t, previous_position, previous_velocity),
