@@ -10,8 +10,9 @@
 //! cross-wise gradient; spheres with a radial highlight; last, the text overlay.
 //!
 //! Only the projection and the scene logic are written here; every pixel is filled by
-//! tiny-skia. A frame allocates nothing but the glyph cache's first use of a character and
-//! tiny-skia's own per-call buffers (gradient stops, paths).
+//! tiny-skia. The renderer reuses its own buffers (poses, projected shapes, the pixmap) from
+//! frame to frame; tiny-skia's API makes each frame build its paths and gradient stops anew,
+//! a few small allocations per shape, which is not on the physics path.
 
 use std::fmt::Write as _;
 use std::sync::Arc;

@@ -12,6 +12,14 @@ use hyq_render::{
 };
 
 #[test]
+fn renderer_and_frames_can_move_between_threads() {
+    // A Python env (PyO3) or a vector env keeps a renderer per environment on worker threads.
+    fn send<T: Send + 'static>() {}
+    send::<Renderer>();
+    send::<Frame>();
+}
+
+#[test]
 fn frame_has_the_configured_shape_and_one_byte_per_channel() {
     let config = RenderConfig {
         width: 320,
