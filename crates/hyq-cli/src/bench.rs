@@ -1,0 +1,336 @@
+//! `hyq bench`: env steps per second of one environment under uniformly random joint targets,
+//! and the share of the step's time in each part.
+//!
+//! # Workload
+//! The anchor harness's `env_random` case (`shared/bench/anchors/bench_mujoco.py`): one env, one
+//! thread; every env step takes a fresh action drawn uniformly from the action space (with the
+//! default `normalized` actions: joint targets uniform within the joint limits), drawn before
+//! the timed region in blocks of [`BLOCK`] so the policy is not timed; an episode that ends is
+//! reset inside the timed region. The episode ends by the environment's rules (see
+//! [`BenchReport::episodes_ended`] for why they ended), t_max = 1000 by default.
+//!
+//! # Passes
+//! 1. The throughput pass, with the per-part timing off: `env_steps_per_s` (wall clock) and
+//!    `env_steps_per_s_cpu` (the process's CPU time, `CLOCK_PROCESS_CPUTIME_ID`, which is the
+//!    better estimate of an idle core on a loaded machine: the anchors report both).
+//! 2. The timing pass: the same workload again (same seed, same actions) with
+//!    `Env::set_timing(true)`, giving the shares of physics, actuator, observation, spec
+//!    evaluation and the rest. Its own rate is reported too (`timed_pass`): the difference is
+//!    the cost of the timers.
+//!
+//! # JSON (`--json`): one object, keys stable (`schema_version` 1)
+//! See [`BenchReport`]; every key is documented there and in the crate's README.
+
+use std::time::{Duration, Instant};
+
+use clap::Args;
+use cpu_time::ProcessTime;
+use hyq_env::{Env, Policy, PolicyInput, RandomPolicy, Reason, ResetOptions, StepTiming};
+use hyq_physics::Backend;
+use serde::Serialize;
+
+use crate::Failure;
+use crate::backend::with_backend;
+use crate::options::{EnvArgs, make_env, robot};
+
+/// Actions drawn ahead of the timed region at a time.
+pub const BLOCK: usize = 1000;
+
+/// `hyq bench` arguments.
+#[derive(Debug, Args)]
+pub struct BenchArgs {
+    #[command(flatten)]
+    env: EnvArgs,
+    /// Env steps per pass (two passes: throughput, then per-part timing).
+    #[arg(long, default_value_t = 20_000, value_parser = clap::value_parser!(u64).range(1..))]
+    steps: u64,
+    /// Seed of the random actions and of the first reset.
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// Print one JSON object on stdout instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+/// How the episodes that ended during a pass ended (a step may have several reasons).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct Ended {
+    /// §6.1.
+    pub reached: u64,
+    /// §6.2.
+    pub joint_limit: u64,
+    /// §6.3.
+    pub fell: u64,
+    /// §6.4.
+    pub timeout: u64,
+    /// A non-finite physics state.
+    pub diverged: u64,
+}
+
+impl Ended {
+    /// Counts one episode that ended for `reason`.
+    pub fn add(&mut self, reason: Reason) {
+        match reason {
+            Reason::Reached => self.reached += 1,
+            Reason::JointLimit => self.joint_limit += 1,
+            Reason::Fell => self.fell += 1,
+            Reason::Timeout => self.timeout += 1,
+            Reason::Diverged => self.diverged += 1,
+        }
+    }
+}
+
+/// The share of the timed pass's step time in each part (fractions summing to 1).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct Shares {
+    /// The engine's sub-steps, contact reads and state reads.
+    pub physics: f64,
+    /// The shared PD actuator (every sub-step).
+    pub actuator: f64,
+    /// The trunk acceleration and writing the observation.
+    pub observation: f64,
+    /// hyq-spec's rewards, penalties and terminations.
+    pub spec: f64,
+    /// Everything else inside `Env::step` (action mapping, contact latching, bookkeeping).
+    pub other: f64,
+}
+
+/// The rates of the timing pass.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct TimedPass {
+    /// Env steps per wall-clock second with the per-part timers on.
+    pub env_steps_per_s: f64,
+    /// Env steps per CPU second with the per-part timers on.
+    pub env_steps_per_s_cpu: f64,
+}
+
+/// `hyq bench --json`: one object. Keys are stable; new keys may be added, none removed or
+/// renamed without raising `schema_version`.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct BenchReport {
+    /// 1.
+    pub schema_version: u32,
+    /// `"env_random"`: the anchor harness's case this reproduces.
+    pub workload: &'static str,
+    /// The backend's name (`"rapier"`, `"dart"`).
+    pub backend: &'static str,
+    /// `"release"` or `"debug"` (a build with debug assertions): compare only release figures.
+    pub profile: &'static str,
+    /// The action mode (`"normalized"` unless configured otherwise).
+    pub action_mode: String,
+    /// Physics sub-steps per env step.
+    pub substeps_per_env_step: u32,
+    /// The physics time step (s).
+    pub dt: f64,
+    /// The seed.
+    pub seed: u64,
+    /// Env steps timed (per pass).
+    pub steps: u64,
+    /// Wall-clock seconds of the throughput pass.
+    pub seconds: f64,
+    /// Process CPU seconds of the throughput pass.
+    pub cpu_seconds: f64,
+    /// steps / seconds.
+    pub env_steps_per_s: f64,
+    /// steps / cpu_seconds.
+    pub env_steps_per_s_cpu: f64,
+    /// env_steps_per_s × substeps_per_env_step.
+    pub physics_steps_per_s: f64,
+    /// Resets inside the throughput pass (episodes that ended).
+    pub resets: u64,
+    /// Why those episodes ended.
+    pub episodes_ended: Ended,
+    /// Where the step's time goes (from the timing pass).
+    pub shares: Shares,
+    /// The timing pass's own rates.
+    pub timed_pass: TimedPass,
+}
+
+/// One pass's measurements.
+struct Pass {
+    wall: Duration,
+    cpu: Duration,
+    resets: u64,
+    ended: Ended,
+    timing: StepTiming,
+}
+
+/// Runs `hyq bench`.
+pub fn execute(args: BenchArgs) -> Result<(), Failure> {
+    let config = args.env.config()?;
+    with_backend!(args.env.backend, B => {
+        let mut env = make_env::<B>(robot(), config)?;
+        let report = bench(&mut env, args.steps, args.seed)?;
+        print_report(&report, args.json);
+        Ok(())
+    })
+}
+
+fn failure(message: String) -> Failure {
+    Failure { status: 1, message }
+}
+
+fn cpu_now() -> Result<Duration, Failure> {
+    ProcessTime::try_now()
+        .map(|t| t.as_duration())
+        .map_err(|e| failure(format!("cannot read the process CPU time: {e}")))
+}
+
+/// Both passes on `env`.
+pub fn bench<B: Backend>(env: &mut Env<B>, steps: u64, seed: u64) -> Result<BenchReport, Failure> {
+    let throughput = pass(env, steps, seed, false)?;
+    let timed = pass(env, steps, seed, true)?;
+    let t = &timed.timing;
+    let total = t.total.as_secs_f64();
+    let share = |d: Duration| {
+        if total > 0.0 {
+            d.as_secs_f64() / total
+        } else {
+            0.0
+        }
+    };
+    let secs = throughput.wall.as_secs_f64();
+    let cpu = throughput.cpu.as_secs_f64();
+    let n = steps as f64;
+    let rate = |s: f64| if s > 0.0 { n / s } else { f64::INFINITY };
+    let config = env.config();
+    let substeps = config.control.sim_steps_per_env_step;
+    Ok(BenchReport {
+        schema_version: 1,
+        workload: "env_random",
+        backend: B::NAME,
+        profile: if cfg!(debug_assertions) {
+            "debug"
+        } else {
+            "release"
+        },
+        action_mode: format!("{:?}", config.action.mode).to_lowercase(),
+        substeps_per_env_step: substeps,
+        dt: config.physics.params.dt,
+        seed,
+        steps,
+        seconds: secs,
+        cpu_seconds: cpu,
+        env_steps_per_s: rate(secs),
+        env_steps_per_s_cpu: rate(cpu),
+        physics_steps_per_s: rate(secs) * f64::from(substeps),
+        resets: throughput.resets,
+        episodes_ended: throughput.ended,
+        shares: Shares {
+            physics: share(t.physics),
+            actuator: share(t.actuator),
+            observation: share(t.observation),
+            spec: share(t.spec),
+            other: share(t.other()),
+        },
+        timed_pass: TimedPass {
+            env_steps_per_s: rate(timed.wall.as_secs_f64()),
+            env_steps_per_s_cpu: rate(timed.cpu.as_secs_f64()),
+        },
+    })
+}
+
+/// One pass of `steps` env steps from a reset with `seed`.
+fn pass<B: Backend>(
+    env: &mut Env<B>,
+    steps: u64,
+    seed: u64,
+    timing: bool,
+) -> Result<Pass, Failure> {
+    let n = env.action_space().len();
+    let mut policy = RandomPolicy::new(seed);
+    let mut actions = vec![0.0; BLOCK * n];
+    env.set_timing(false);
+    env.clear_timing();
+    env.reset(Some(seed), &ResetOptions::default())
+        .map_err(|e| failure(format!("reset: {e}")))?;
+    env.set_timing(timing);
+    let mut result = Pass {
+        wall: Duration::ZERO,
+        cpu: Duration::ZERO,
+        resets: 0,
+        ended: Ended::default(),
+        timing: StepTiming::default(),
+    };
+    let mut left = steps;
+    while left > 0 {
+        let block = left.min(BLOCK as u64) as usize;
+        // The random policy reads only the action space, so one input serves the whole block.
+        {
+            let input = PolicyInput {
+                t: 0,
+                env_dt: env.env_dt(),
+                observation: env.observation(),
+                joint_angles: env.joint_angles(),
+                standing: env.model().standing_pose(),
+                space: env.action_space(),
+            };
+            for action in actions.chunks_exact_mut(n).take(block) {
+                policy.act(&input, action);
+            }
+        }
+        let cpu0 = cpu_now()?;
+        let wall0 = Instant::now();
+        for action in actions.chunks_exact(n).take(block) {
+            let step = env
+                .step(action)
+                .map_err(|e| failure(format!("step: {e}")))?;
+            if step.terminated || step.truncated {
+                for reason in step.info.reasons.iter() {
+                    result.ended.add(reason);
+                }
+                result.resets += 1;
+                env.reset(None, &ResetOptions::default())
+                    .map_err(|e| failure(format!("reset: {e}")))?;
+            }
+        }
+        result.wall += wall0.elapsed();
+        result.cpu += cpu_now()?.saturating_sub(cpu0);
+        left -= block as u64;
+    }
+    result.timing = *env.timing();
+    env.set_timing(false);
+    Ok(result)
+}
+
+fn print_report(r: &BenchReport, json: bool) {
+    if json {
+        match serde_json::to_string(r) {
+            Ok(line) => println!("{line}"),
+            // Plain numbers, strings and objects of those.
+            Err(e) => unreachable!("a bench report serialises to JSON: {e}"),
+        }
+        return;
+    }
+    let s = &r.shares;
+    let e = &r.episodes_ended;
+    println!(
+        "hyq bench: {} backend, {} build, workload {} ({} actions, {} x {} s sub-steps)",
+        r.backend, r.profile, r.workload, r.action_mode, r.substeps_per_env_step, r.dt
+    );
+    println!(
+        "  {} env steps in {:.3} s wall, {:.3} s CPU",
+        r.steps, r.seconds, r.cpu_seconds
+    );
+    println!(
+        "  {:.0} env steps/s (wall), {:.0} env steps/s (CPU), {:.0} physics steps/s (wall)",
+        r.env_steps_per_s, r.env_steps_per_s_cpu, r.physics_steps_per_s
+    );
+    println!(
+        "  {} resets: fell {}, joint_limit {}, timeout {}, reached {}, diverged {}",
+        r.resets, e.fell, e.joint_limit, e.timeout, e.reached, e.diverged
+    );
+    println!(
+        "  time shares: physics {:.1}%, actuator {:.1}%, observation {:.1}%, spec {:.1}%, \
+         other {:.1}%  (timed pass: {:.0} env steps/s wall)",
+        100.0 * s.physics,
+        100.0 * s.actuator,
+        100.0 * s.observation,
+        100.0 * s.spec,
+        100.0 * s.other,
+        r.timed_pass.env_steps_per_s
+    );
+    if r.profile == "debug" {
+        println!("  note: a debug build; measure with `cargo run --release -p hyq-cli -- bench`");
+    }
+}

@@ -1,0 +1,129 @@
+//! `hyq`: the command-line front of the HyQ walk-to-goal environment.
+//!
+//! One module per subcommand (`run`, `bench`, `soak`), each with its clap arguments and an
+//! `execute` function; the environment options every subcommand shares (backend, configuration
+//! file, `--set` overrides) live in [`options`], and the choice of physics backend in
+//! [`backend`]. Later subcommands (`compare`, `render`, `plot`) slot in beside them.
+//!
+//! Errors never panic and never print more than one line: `hyq: error: <what was wrong>` on
+//! stderr and exit status 2 for a usage error (bad option, bad value), 1 for anything else.
+
+mod backend;
+mod bench;
+mod options;
+mod run;
+mod soak;
+mod table;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+/// The `hyq` command line.
+#[derive(Debug, Parser)]
+#[command(
+    name = "hyq",
+    version,
+    about = "The HyQ walk-to-goal environment: run it, record it, benchmark it.",
+    long_about = "The HyQ walk-to-goal environment: run it with a scripted or random policy, \
+                  record every step as JSON lines, benchmark it, soak-test it.\n\n\
+                  Start with `hyq run`: one 10 s episode of the scripted trot on the rapier \
+                  backend, then a summary of where it got and what it earned."
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Run episodes with a policy and print a per-episode summary (optionally record every step).
+    Run(run::RunArgs),
+    /// Measure env steps per second under random joint targets, and where the time goes.
+    Bench(bench::BenchArgs),
+    /// Random actions for many steps: no panic, no NaN anywhere; prints the observed ranges.
+    Soak(soak::SoakArgs),
+}
+
+/// A failure of the command, already worded for the user, with its exit status.
+#[derive(Debug)]
+pub struct Failure {
+    /// 2 for usage errors, 1 otherwise.
+    pub status: u8,
+    /// The message (one line).
+    pub message: String,
+}
+
+impl From<anyhow::Error> for Failure {
+    fn from(e: anyhow::Error) -> Self {
+        Failure {
+            status: 1,
+            message: format!("{e:#}"),
+        }
+    }
+}
+
+/// Prints `message` as the one error line `hyq` ever prints, folding any line breaks.
+fn print_error(message: &str) {
+    let one_line = message
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .collect::<Vec<_>>()
+        .join(" ");
+    eprintln!("hyq: error: {one_line}");
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => return clap_exit(e),
+    };
+    let result: Result<(), Failure> = match cli.command {
+        Command::Run(args) => run::execute(args),
+        Command::Bench(args) => bench::execute(args),
+        Command::Soak(args) => soak::execute(args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(failure) => {
+            print_error(&failure.message);
+            ExitCode::from(failure.status)
+        }
+    }
+}
+
+/// Help and version go to stdout with status 0; a usage error becomes one line naming what was
+/// wrong (clap's first line: the unknown option, the invalid value and what it accepts), with a
+/// pointer to `--help`, and status 2.
+fn clap_exit(e: clap::Error) -> ExitCode {
+    use clap::error::ErrorKind;
+    match e.kind() {
+        ErrorKind::DisplayHelp
+        | ErrorKind::DisplayVersion
+        | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            // Printing help can only fail when stdout is closed; there is nothing left to say.
+            let _ = e.print();
+            if e.kind() == ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand {
+                ExitCode::from(2)
+            } else {
+                ExitCode::SUCCESS
+            }
+        }
+        _ => {
+            // clap's message is the lines before its usage block (the error, then e.g. the
+            // possible values); its tips and usage are left to `--help`.
+            let rendered = e.render().to_string();
+            let what: Vec<&str> = rendered
+                .lines()
+                .map(str::trim)
+                .take_while(|l| !l.starts_with("Usage:") && !l.starts_with("For more information"))
+                .filter(|l| !l.is_empty() && !l.starts_with("tip:"))
+                .collect();
+            let what = what.join(" ");
+            let what = what.strip_prefix("error: ").unwrap_or(&what);
+            print_error(&format!("{what} (see `hyq --help`)"));
+            ExitCode::from(2)
+        }
+    }
+}

@@ -1,0 +1,79 @@
+//! The options every subcommand shares: the physics backend, a configuration file, and `--set`
+//! overrides of single configuration values; and building the environment from them.
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use clap::Args;
+use hyq_env::{Env, EnvConfig};
+use hyq_physics::{Backend, RobotModel};
+
+use crate::Failure;
+use crate::backend::BackendChoice;
+
+/// The environment's options (shared by `run`, `bench` and `soak`).
+#[derive(Debug, Clone, Args)]
+pub struct EnvArgs {
+    /// The physics backend.
+    #[arg(long, value_enum, default_value_t = BackendChoice::Rapier)]
+    pub backend: BackendChoice,
+    /// A TOML configuration file (tables [task], [goal], [action], [control], [physics],
+    /// [reset]; every key optional). Unknown keys are errors.
+    #[arg(long, value_name = "FILE")]
+    pub config: Option<PathBuf>,
+    /// Override one configuration value, after the file: `table.key=value`, e.g.
+    /// `--set task.fall_penalty=1` or `--set goal.distance_m=3`. Repeatable; all overrides are
+    /// applied together, then the whole configuration is validated.
+    #[arg(long = "set", value_name = "TABLE.KEY=VALUE")]
+    pub set: Vec<String>,
+}
+
+/// A usage error (status 2) with `message`.
+pub fn usage(message: impl Into<String>) -> Failure {
+    Failure {
+        status: 2,
+        message: message.into(),
+    }
+}
+
+impl EnvArgs {
+    /// The configuration: the defaults, then the file, then the overrides, validated.
+    pub fn config(&self) -> Result<EnvConfig, Failure> {
+        let mut config = match &self.config {
+            Some(path) => EnvConfig::from_file(path).map_err(|e| usage(e.to_string()))?,
+            None => EnvConfig::default(),
+        };
+        let mut pairs = Vec::with_capacity(self.set.len());
+        for item in &self.set {
+            let (key, value) = item.split_once('=').ok_or_else(|| {
+                usage(format!(
+                    "--set {item:?}: expected TABLE.KEY=VALUE, e.g. --set task.fall_penalty=1"
+                ))
+            })?;
+            let key = key.trim();
+            if key.is_empty() {
+                return Err(usage(format!(
+                    "--set {item:?}: the key before `=` is empty (expected TABLE.KEY=VALUE)"
+                )));
+            }
+            pairs.push((key, value.trim()));
+        }
+        if !pairs.is_empty() {
+            config
+                .set_all(&pairs)
+                .map_err(|e| usage(format!("--set: {e}")))?;
+        }
+        Ok(config)
+    }
+}
+
+/// The bundled HyQ robot.
+pub fn robot() -> Arc<RobotModel> {
+    hyq_physics::bundled::hyq()
+}
+
+/// An environment on backend `B` with `config`.
+pub fn make_env<B: Backend>(model: Arc<RobotModel>, config: EnvConfig) -> Result<Env<B>, Failure> {
+    Env::new(model, config)
+        .map_err(|e| usage(format!("cannot build the {} environment: {e}", B::NAME)))
+}

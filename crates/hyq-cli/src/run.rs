@@ -1,0 +1,317 @@
+//! `hyq run`: episodes of a policy on the environment, a per-episode summary, and optionally a
+//! JSONL record of every step (hyq-env's `StepRecord` schema).
+//!
+//! Defaults: one episode of the scripted trot, seed 0, the rapier backend and the default
+//! configuration (t_max = 1000 env steps = 10 s simulated; goal 5 m ahead; k_exp = 5).
+//!
+//! Seeds: the first episode resets the environment with `--seed S`; later episodes reset
+//! unseeded, continuing its random streams (Gymnasium's semantics), so a run of N episodes is
+//! reproducible from S alone. The random policy draws from its own stream seeded with S.
+
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::PathBuf;
+
+use clap::{Args, ValueEnum};
+use hyq_env::{
+    Env, Policy, RandomPolicy, Reason, ResetOptions, Stand, StepRecord, Trot, TrotParams,
+};
+use hyq_physics::Backend;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use serde::Serialize;
+
+use crate::Failure;
+use crate::backend::with_backend;
+use crate::options::{EnvArgs, make_env, robot, usage};
+use crate::table::Table;
+
+/// The policies `hyq run` can drive the robot with.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum PolicyChoice {
+    /// Hold the standing pose.
+    Stand,
+    /// Uniform random actions in the action space (seeded by --seed).
+    Random,
+    /// hyq-env's scripted open-loop trot along +x.
+    Trot,
+}
+
+/// `hyq run` arguments.
+#[derive(Debug, Args)]
+pub struct RunArgs {
+    #[command(flatten)]
+    env: EnvArgs,
+    /// The policy.
+    #[arg(long, value_enum, default_value_t = PolicyChoice::Trot)]
+    policy: PolicyChoice,
+    /// Episodes to run (each ends by the spec's rules: reached, joint limit, fall or timeout).
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
+    episodes: u64,
+    /// Seed of the first reset (goal and reset-noise streams) and of the random policy.
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// Write every env step as one JSON object per line to FILE (hyq-env's StepRecord schema).
+    #[arg(long, value_name = "FILE.jsonl")]
+    record: Option<PathBuf>,
+    /// Print the per-episode summaries as JSON lines on stdout instead of a table.
+    #[arg(long)]
+    json: bool,
+}
+
+/// The sums of each additive reward term over an episode (the penalties as the positive amounts
+/// subtracted).
+#[derive(Clone, Copy, Debug, Default, Serialize)]
+pub struct TermSums {
+    /// Σ r_b.
+    pub r_b: f64,
+    /// Σ r_n.
+    pub r_n: f64,
+    /// Σ r_e.
+    pub r_e: f64,
+    /// Σ r_reach.
+    pub r_reach: f64,
+    /// Σ joint_penalty.
+    pub joint_penalty: f64,
+    /// Σ fall_penalty.
+    pub fall_penalty: f64,
+}
+
+/// One episode's summary (a table row, or one JSON line with `--json`).
+#[derive(Clone, Debug, Serialize)]
+pub struct EpisodeSummary {
+    /// The backend's name.
+    pub backend: &'static str,
+    /// The policy's name.
+    pub policy: &'static str,
+    /// The episode number (1 for the first).
+    pub episode: u64,
+    /// Env steps taken.
+    pub steps: u64,
+    /// Simulated time (s): steps × Δt_env.
+    pub simulated_s: f64,
+    /// Σ reward.
+    #[serde(rename = "return")]
+    pub ret: f64,
+    /// Σ of each term.
+    pub terms: TermSums,
+    /// The mean yaw and pitch multipliers over the steps.
+    pub mean_m_yaw: f64,
+    /// See `mean_m_yaw`.
+    pub mean_m_pitch: f64,
+    /// Gymnasium's flags on the last step.
+    pub terminated: bool,
+    /// See `terminated`.
+    pub truncated: bool,
+    /// Every reason that held on the last step.
+    pub reasons: Vec<Reason>,
+    /// D^0 = K (m).
+    pub initial_distance_to_goal: f64,
+    /// D^T (m).
+    pub final_distance_to_goal: f64,
+    /// C^0 (m).
+    pub initial_position: [f64; 3],
+    /// C^T (m).
+    pub final_position: [f64; 3],
+    /// G (m).
+    pub goal: [f64; 3],
+}
+
+/// Runs `hyq run`.
+pub fn execute(args: RunArgs) -> Result<(), Failure> {
+    let config = args.env.config()?;
+    with_backend!(args.env.backend, B => {
+        let env = make_env::<B>(robot(), config)?;
+        run_episodes(env, &args)
+    })
+}
+
+fn make_policy<B: Backend>(
+    env: &Env<B>,
+    choice: PolicyChoice,
+    seed: u64,
+) -> Result<Box<dyn Policy>, Failure> {
+    Ok(match choice {
+        PolicyChoice::Stand => Box::new(Stand),
+        PolicyChoice::Random => Box::new(RandomPolicy::new(seed)),
+        PolicyChoice::Trot => Box::new(
+            Trot::new(env.model(), TrotParams::default())
+                .map_err(|e| usage(format!("--policy trot: {e}")))?,
+        ),
+    })
+}
+
+fn progress_bar(total: u64) -> ProgressBar {
+    // Drawn on stderr only when it is a terminal (indicatif hides it otherwise), so piped and
+    // captured output stays clean.
+    let bar = ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::stderr());
+    if let Ok(style) = ProgressStyle::with_template(
+        "{spinner} [{elapsed_precise}] {bar:30} {pos}/{len} steps ({per_sec}) {msg}",
+    ) {
+        bar.set_style(style);
+    }
+    bar
+}
+
+fn run_episodes<B: Backend>(mut env: Env<B>, args: &RunArgs) -> Result<(), Failure> {
+    let mut policy = make_policy(&env, args.policy, args.seed)?;
+    let mut record = match &args.record {
+        None => None,
+        Some(path) => Some(BufWriter::new(File::create(path).map_err(|e| {
+            usage(format!(
+                "--record {}: cannot create the file: {e}",
+                path.display()
+            ))
+        })?)),
+    };
+    let t_max = env.config().task.max_time_steps;
+    let bar = progress_bar(args.episodes.saturating_mul(t_max));
+    let mut action = vec![0.0; env.action_space().len()];
+    let mut summaries = Vec::new();
+    for episode in 0..args.episodes {
+        let seed = (episode == 0).then_some(args.seed);
+        let reset = env
+            .reset(seed, &ResetOptions::default())
+            .map_err(|e| Failure {
+                status: 1,
+                message: format!("reset: {e}"),
+            })?;
+        let info = reset.info;
+        let mut summary = EpisodeSummary {
+            backend: B::NAME,
+            policy: policy.name(),
+            episode: info.episode,
+            steps: 0,
+            simulated_s: 0.0,
+            ret: 0.0,
+            terms: TermSums::default(),
+            mean_m_yaw: 0.0,
+            mean_m_pitch: 0.0,
+            terminated: false,
+            truncated: false,
+            reasons: Vec::new(),
+            initial_distance_to_goal: info.distance_to_goal,
+            final_distance_to_goal: info.distance_to_goal,
+            initial_position: info.initial_position,
+            final_position: info.initial_position,
+            goal: info.goal,
+        };
+        bar.set_message(format!("episode {}/{}", episode + 1, args.episodes));
+        loop {
+            policy.act(&env.policy_input(), &mut action);
+            let step = env.step(&action).map_err(|e| Failure {
+                status: 1,
+                message: format!("step: {e}"),
+            })?;
+            let info = step.info;
+            let r = &info.reward;
+            summary.steps = info.t;
+            summary.ret += r.total;
+            let s = &mut summary.terms;
+            s.r_b += r.r_b;
+            s.r_n += r.r_n;
+            s.r_e += r.r_e;
+            s.r_reach += r.r_reach;
+            s.joint_penalty += r.joint_penalty;
+            s.fall_penalty += r.fall_penalty;
+            summary.mean_m_yaw += r.m_yaw;
+            summary.mean_m_pitch += r.m_pitch;
+            let done = step.terminated || step.truncated;
+            if done {
+                summary.terminated = step.terminated;
+                summary.truncated = step.truncated;
+                summary.reasons = info.reasons.iter().collect();
+                summary.final_distance_to_goal = info.distance_to_goal;
+                let p = &env.trunk().pose.translation;
+                summary.final_position = [p.x, p.y, p.z];
+            }
+            if let Some(out) = record.as_mut() {
+                let line = StepRecord::from_env(&env, &action).to_json_line();
+                writeln!(out, "{line}").map_err(|e| record_error(args, e))?;
+            }
+            bar.set_position(episode * t_max + env.info().t);
+            if done {
+                break;
+            }
+        }
+        let n = summary.steps.max(1) as f64;
+        summary.mean_m_yaw /= n;
+        summary.mean_m_pitch /= n;
+        summary.simulated_s = summary.steps as f64 * env.env_dt();
+        bar.set_position((episode + 1) * t_max);
+        if args.json {
+            bar.suspend(|| print_json(&summary));
+        }
+        summaries.push(summary);
+    }
+    if let Some(mut out) = record {
+        out.flush().map_err(|e| record_error(args, e))?;
+    }
+    bar.finish_and_clear();
+    if !args.json {
+        print!("{}", summary_table(&summaries));
+    }
+    Ok(())
+}
+
+fn record_error(args: &RunArgs, e: std::io::Error) -> Failure {
+    let path = args
+        .record
+        .as_deref()
+        .map(|p| p.display().to_string())
+        .unwrap_or_default();
+    Failure {
+        status: 1,
+        message: format!("--record {path}: cannot write: {e}"),
+    }
+}
+
+fn print_json(summary: &EpisodeSummary) {
+    match serde_json::to_string(summary) {
+        Ok(line) => println!("{line}"),
+        // Every field is a finite number (the environment never emits NaN), a string, a
+        // boolean or a list of those, all of which JSON holds.
+        Err(e) => unreachable!("an episode summary serialises to JSON: {e}"),
+    }
+}
+
+/// The per-episode table of `hyq run`.
+pub fn summary_table(summaries: &[EpisodeSummary]) -> String {
+    let mut table = Table::new(&[
+        "episode",
+        "steps",
+        "time_s",
+        "return",
+        "r_b",
+        "r_n",
+        "r_e",
+        "r_reach",
+        "joint_penalty",
+        "fall_penalty",
+        "<end",
+        "distance_m",
+        "dx_m",
+    ]);
+    let num = |v: f64| format!("{v:.3}");
+    for s in summaries {
+        let end: Vec<&str> = s.reasons.iter().map(|r| r.as_str()).collect();
+        table.row(vec![
+            s.episode.to_string(),
+            s.steps.to_string(),
+            format!("{:.2}", s.simulated_s),
+            num(s.ret),
+            num(s.terms.r_b),
+            num(s.terms.r_n),
+            num(s.terms.r_e),
+            num(s.terms.r_reach),
+            num(s.terms.joint_penalty),
+            num(s.terms.fall_penalty),
+            end.join("+"),
+            format!(
+                "{:.3} -> {:.3}",
+                s.initial_distance_to_goal, s.final_distance_to_goal
+            ),
+            format!("{:.3}", s.final_position[0] - s.initial_position[0]),
+        ]);
+    }
+    table.render()
+}

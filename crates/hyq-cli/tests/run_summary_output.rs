@@ -1,0 +1,121 @@
+//! Invariant: `hyq run` prints one summary per episode: as a table by default (header, rule, one
+//! row per episode naming the steps, return, each reward term's sum, the reasons and the
+//! distance to the goal), or with `--json` one JSON object per line whose numbers agree with
+//! the episode (the return is the sum of the terms composed per step; a timeout at t_max).
+
+// In tests a failed unwrap is a failed test, with its location.
+#![allow(clippy::unwrap_used)]
+
+mod common;
+
+use common::hyq_ok;
+use serde_json::Value;
+
+#[test]
+fn the_default_run_is_one_ten_second_trot_episode_in_a_table() {
+    let out = hyq_ok(&["run"]);
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines.len(), 3, "header, rule, one episode:\n{out}");
+    for column in [
+        "episode",
+        "steps",
+        "return",
+        "r_b",
+        "r_n",
+        "r_e",
+        "r_reach",
+        "joint_penalty",
+        "fall_penalty",
+        "end",
+        "distance_m",
+    ] {
+        assert!(
+            lines[0].split_whitespace().any(|c| c == column),
+            "no `{column}` column: {}",
+            lines[0]
+        );
+    }
+    assert!(lines[1].chars().all(|c| c == '-' || c == ' '));
+    let row: Vec<&str> = lines[2].split_whitespace().collect();
+    assert_eq!(&row[..3], &["1", "1000", "10.00"], "{}", lines[2]);
+    assert!(lines[2].contains("timeout"), "{}", lines[2]);
+}
+
+#[test]
+fn json_lines_carry_the_same_summary_per_episode() {
+    let out = hyq_ok(&[
+        "run",
+        "--json",
+        "--policy",
+        "random",
+        "--episodes",
+        "2",
+        "--seed",
+        "3",
+        "--set",
+        "task.max_time_steps=40",
+        "--set",
+        "task.norm_rew_scaling=10",
+    ]);
+    let episodes: Vec<Value> = out
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap_or_else(|e| panic!("{e}: {l}")))
+        .collect();
+    assert_eq!(episodes.len(), 2, "{out}");
+    for (i, e) in episodes.iter().enumerate() {
+        assert_eq!(e["episode"], i as u64 + 1);
+        assert_eq!(e["backend"], "rapier");
+        assert_eq!(e["policy"], "random");
+        let steps = e["steps"].as_u64().unwrap();
+        let reasons: Vec<&str> = e["reasons"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|r| r.as_str().unwrap())
+            .collect();
+        assert!(!reasons.is_empty());
+        if reasons == ["timeout"] {
+            assert_eq!(steps, 40);
+            assert_eq!(e["truncated"], true);
+            assert_eq!(e["terminated"], false);
+        } else {
+            assert!(steps <= 40);
+            assert_eq!(e["terminated"], true);
+        }
+        let terms = &e["terms"];
+        for key in [
+            "r_b",
+            "r_n",
+            "r_e",
+            "r_reach",
+            "joint_penalty",
+            "fall_penalty",
+        ] {
+            assert!(terms[key].is_f64(), "terms.{key}: {terms}");
+        }
+        // Σ r_n telescopes to k_norm (D^0 − D^T) / K (RULINGS §4.1).
+        let d0 = e["initial_distance_to_goal"].as_f64().unwrap();
+        let dt = e["final_distance_to_goal"].as_f64().unwrap();
+        let r_n = terms["r_n"].as_f64().unwrap();
+        assert!(
+            (r_n - 10.0 * (d0 - dt) / d0).abs() < 1e-12,
+            "Σ r_n {r_n} vs {}",
+            10.0 * (d0 - dt) / d0
+        );
+        // Level enough while flailing for 0.4 s that the multipliers are 1 most of the time,
+        // and the return is the terms' sum when they are.
+        let m = e["mean_m_yaw"].as_f64().unwrap() * e["mean_m_pitch"].as_f64().unwrap();
+        let sum = ["r_b", "r_n", "r_e", "r_reach"]
+            .iter()
+            .map(|k| terms[*k].as_f64().unwrap())
+            .sum::<f64>()
+            - terms["joint_penalty"].as_f64().unwrap()
+            - terms["fall_penalty"].as_f64().unwrap();
+        let ret = e["return"].as_f64().unwrap();
+        if m == 1.0 {
+            assert!((ret - sum).abs() < 1e-9, "return {ret} vs terms {sum}");
+        }
+        let goal = e["goal"].as_array().unwrap();
+        assert_eq!(goal[0].as_f64(), Some(5.0));
+    }
+}
