@@ -6,6 +6,7 @@
 //! fails when a part that was required (`--require dart`, `--require python`) cannot run.
 
 mod docs;
+mod soak;
 mod stages;
 
 use std::process::ExitCode;
@@ -18,6 +19,10 @@ commands:
                                         backend), the DART backend when DART is installed, the
                                         Python package when its tools are installed; --require
                                         makes a part that cannot run a failure (CI uses it)
+  soak [--steps N] [--backend rapier|dart] [--seed S]
+                                        random actions for N env steps (default 10^6) in a
+                                        release build of `hyq`: no panic, no NaN in any output;
+                                        prints the episodes and the observed range of each row
   help                                  this text
 ";
 
@@ -25,6 +30,7 @@ fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let result = match args.first().map(String::as_str) {
         Some("test") => stages::test(&args[1..]),
+        Some("soak") => soak::soak(&args[1..]),
         Some("help") | Some("--help") | Some("-h") | None => {
             print!("{HELP}");
             Ok(())

@@ -1,0 +1,168 @@
+//! `cargo xtask soak [--steps N] [--backend rapier|dart] [--seed S]`: the long random-action
+//! soak. It builds the `hyq` command in release mode and runs `hyq soak`, which takes N env
+//! steps (10⁶ by default) of uniformly random actions, resetting whenever an episode ends, and
+//! fails on a panic or on the first non-finite number in any observation, reward term or info
+//! field; it prints the steps, the episodes and why they ended, and the range seen on every
+//! observation row (the measured ranges of the rows the spec only estimates, 33–38).
+//!
+//! The test suite runs a short soak (2·10⁴ steps, `crates/hyq-cli/tests`); this is the long one.
+
+use std::path::Path;
+use std::process::Command;
+
+use crate::stages::{DART_INSTALL, workspace_root};
+
+/// The soak's settings.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SoakArgs {
+    /// Env steps in all.
+    pub steps: u64,
+    /// `rapier` or `dart`.
+    pub backend: String,
+    /// The seed of the random actions and of the first reset.
+    pub seed: u64,
+}
+
+/// Parses `--steps N`, `--backend rapier|dart` and `--seed S`.
+pub fn parse(args: &[String]) -> Result<SoakArgs, String> {
+    let mut out = SoakArgs {
+        steps: 1_000_000,
+        backend: "rapier".into(),
+        seed: 0,
+    };
+    let mut it = args.iter();
+    while let Some(arg) = it.next() {
+        let mut value = |name: &str| {
+            it.next()
+                .ok_or_else(|| format!("`cargo xtask soak {name}` needs a value"))
+        };
+        match arg.as_str() {
+            "--steps" => {
+                let v = value("--steps")?;
+                out.steps = v
+                    .parse()
+                    .ok()
+                    .filter(|n| *n > 0)
+                    .ok_or_else(|| format!("`--steps {v}`: expected a whole number > 0"))?;
+            }
+            "--seed" => {
+                let v = value("--seed")?;
+                out.seed = v
+                    .parse()
+                    .map_err(|_| format!("`--seed {v}`: expected a whole number"))?;
+            }
+            "--backend" => {
+                let v = value("--backend")?;
+                if v != "rapier" && v != "dart" {
+                    return Err(format!("`--backend {v}`: expected rapier or dart"));
+                }
+                out.backend = v.clone();
+            }
+            other => return Err(format!("`cargo xtask soak`: unknown argument `{other}`")),
+        }
+    }
+    Ok(out)
+}
+
+/// The cargo arguments that build and run the soak.
+pub fn cargo_args(args: &SoakArgs) -> Vec<String> {
+    let mut cargo: Vec<String> = ["run", "--release", "--locked", "-p", "hyq-cli"]
+        .map(String::from)
+        .to_vec();
+    if args.backend == "dart" {
+        cargo.extend(["--features".into(), "dart".into()]);
+    }
+    cargo.extend(
+        [
+            "--",
+            "soak",
+            "--backend",
+            &args.backend,
+            "--steps",
+            &args.steps.to_string(),
+            "--seed",
+            &args.seed.to_string(),
+        ]
+        .map(String::from),
+    );
+    cargo
+}
+
+/// `cargo xtask soak`.
+pub fn soak(args: &[String]) -> Result<(), String> {
+    let args = parse(args)?;
+    // The same check as the test stages' (DART's headers, with the Bullet detector).
+    if args.backend == "dart"
+        && !Path::new("/usr/include/dart/collision/bullet/BulletCollisionDetector.hpp").exists()
+    {
+        return Err(format!(
+            "the DART backend needs DART installed: {DART_INSTALL}"
+        ));
+    }
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".to_string());
+    let cargo_args = cargo_args(&args);
+    println!("$ cargo {}", cargo_args.join(" "));
+    let status = Command::new(cargo)
+        .args(&cargo_args)
+        .current_dir(workspace_root())
+        .status()
+        .map_err(|e| format!("cannot start cargo: {e}"))?;
+    if status.success() {
+        Ok(())
+    } else {
+        Err(format!("the soak failed ({status})"))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn args(s: &[&str]) -> Vec<String> {
+        s.iter().map(|a| a.to_string()).collect()
+    }
+
+    #[test]
+    fn defaults_are_a_million_steps_on_rapier() {
+        let parsed = parse(&[]).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(
+            parsed,
+            SoakArgs {
+                steps: 1_000_000,
+                backend: "rapier".into(),
+                seed: 0
+            }
+        );
+        assert_eq!(
+            cargo_args(&parsed).join(" "),
+            "run --release --locked -p hyq-cli -- soak --backend rapier --steps 1000000 --seed 0"
+        );
+    }
+
+    #[test]
+    fn dart_builds_the_feature_and_bad_arguments_are_named() {
+        let parsed = parse(&args(&[
+            "--backend",
+            "dart",
+            "--steps",
+            "5000",
+            "--seed",
+            "3",
+        ]))
+        .unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(
+            cargo_args(&parsed).join(" "),
+            "run --release --locked -p hyq-cli --features dart -- soak --backend dart --steps 5000 --seed 3"
+        );
+        for (bad, named) in [
+            (&["--steps", "0"][..], "--steps 0"),
+            (&["--steps", "many"], "--steps many"),
+            (&["--backend", "bullet"], "bullet"),
+            (&["--steps"], "--steps"),
+            (&["--fast"], "--fast"),
+        ] {
+            let err = parse(&args(bad)).err().unwrap_or_default();
+            assert!(err.contains(named), "{bad:?}: {err}");
+        }
+    }
+}
