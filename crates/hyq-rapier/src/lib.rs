@@ -55,6 +55,15 @@ use hyq_physics::{
 use rapier3d::prelude::*;
 use serde::{Deserialize, Serialize};
 
+#[cfg(test)]
+mod limit_gating;
+
+/// Distance (rad) beyond `|q̇|·dt` within which a joint's limit constraint is kept on (see
+/// `RapierBackend::gate_limit_constraints`): it covers what the joint's speed can change within
+/// one step. Under full torque into the limits, the farthest a joint came from to cross its
+/// limit within one step was 0.006 rad beyond `|q̇|·dt`.
+const LIMIT_REACH_MARGIN: Real = 0.05;
+
 /// rapier-specific settings (`[physics.rapier]` in an environment's TOML).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -180,6 +189,11 @@ pub struct RapierBackend {
     body_torques: Vec<Vector>,
     /// Contact flags of the last step (tracked order).
     contacts: Vec<bool>,
+    /// Each joint's `[lower, upper]` position limit (rad, profile order).
+    joint_limits: Vec<[Real; 2]>,
+    /// Whether `step` switches off the limit constraints of joints that cannot reach a limit
+    /// (always, except in the test that proves it changes nothing).
+    gate_limits: bool,
 }
 
 impl std::fmt::Debug for RapierBackend {
@@ -266,6 +280,35 @@ impl RapierBackend {
             }
         }
         None
+    }
+
+    /// Switches each joint's limit constraint on only if the joint may reach one of its limits
+    /// during the coming step: within `|q̇|·dt +` [`LIMIT_REACH_MARGIN`] of it.
+    ///
+    /// rapier's multibody limit constraint only acts on a joint that is already past its limit
+    /// when an internal substep starts (its impulse is bounded to zero otherwise), yet it costs
+    /// a solve with the factorised mass matrix and a solver row at every internal substep. A
+    /// joint farther than that from its limits has an inert constraint, so switching it off
+    /// changes nothing; `limit_gating` proves it bitwise under full torque into the limits.
+    fn gate_limit_constraints(&mut self) {
+        let dt = self.params.dt as Real;
+        let Some(mb) = self
+            .world
+            .multibody_joints
+            .get_multibody_mut(self.multibody)
+        else {
+            return;
+        };
+        for (j, &id) in self.joint_links.iter().enumerate() {
+            let reach =
+                mb.generalized_velocity()[self.joint_dofs[j]].abs() * dt + LIMIT_REACH_MARGIN;
+            let [lower, upper] = self.joint_limits[j];
+            if let Some(link) = mb.link_mut(id) {
+                let q = link.joint().coords()[3];
+                let near = q - reach <= lower || q + reach >= upper;
+                link.joint.data.limit_axes.set(JointAxesMask::ANG_X, near);
+            }
+        }
     }
 
     fn update_contacts(&mut self) {
@@ -532,6 +575,11 @@ impl Backend for RapierBackend {
             torques: vec![0.0; n],
             body_torques: vec![Vector::ZERO; links.len()],
             contacts: vec![false; model.tracked().len()],
+            joint_limits: joints
+                .iter()
+                .map(|j| [j.lower as Real, j.upper as Real])
+                .collect(),
+            gate_limits: true,
         };
         backend.apply_state(&spawn);
         Ok(backend)
@@ -605,6 +653,9 @@ impl Backend for RapierBackend {
             // User torques persist in rapier until reset.
             body.reset_torques(false);
             body.add_torque(*torque, false);
+        }
+        if self.gate_limits {
+            self.gate_limit_constraints();
         }
         let w = &mut self.world;
         self.pipeline.step(
