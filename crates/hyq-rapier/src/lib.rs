@@ -39,7 +39,10 @@
 //! See [`RapierOptions`]. The rapier settings that are not options: contact recycling off (a
 //! recycled contact's distance can be stale, and the contact flags read it), CCD off (the
 //! ground is a half-space; fast bodies cannot tunnel through it), contact clustering and the
-//! remaining integration parameters at rapier's defaults.
+//! remaining integration parameters at rapier's defaults. A joint's limit constraint is
+//! switched on before each step only if the joint may reach the limit during it (rapier's
+//! limit constraint is inert until the joint is past its limit, but costs a mass-matrix solve
+//! at every internal substep); this changes no result.
 //!
 //! # Speed
 //! See the crate's `README.md` for measured figures and the command that produced them.
@@ -70,10 +73,10 @@ const LIMIT_REACH_MARGIN: Real = 0.05;
 pub struct RapierOptions {
     /// Internal solver substeps per physics step (rapier's `num_solver_iterations`)
     /// (default: 2; rapier's own default is 4). The main cost knob: a HyQ sub-step costs about
-    /// 42, 73 and 124 µs at 1, 2 and 4. The conformance suite passes at all three; fewer make
-    /// joint limits softer under full torque (worst overshoot 0.087 rad at 1, 0.032 at 2, 0.013
-    /// at 4) and free-floating momentum drift larger (6.4, 1.8, 0.7 mm in a violent second).
-    /// Standing is the same at 1 to 4.
+    /// 34–39, 59–64 and 107–115 µs at 1, 2 and 4 (see the crate's README). The conformance
+    /// suite passes at all three; fewer make joint limits softer under full torque (worst
+    /// overshoot 0.087 rad at 1, 0.032 at 2, 0.013 at 4) and free-floating momentum drift
+    /// larger (6.4, 1.8, 0.7 mm in a violent second). Standing is the same at 1 to 4.
     pub solver_iterations: usize,
     /// Natural frequency (Hz) of the ground-contact constraint (rapier's
     /// `static_contact_softness`) (default: 240; rapier's own default is 60). A standing HyQ's
