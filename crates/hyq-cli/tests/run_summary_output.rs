@@ -119,3 +119,26 @@ fn json_lines_carry_the_same_summary_per_episode() {
         assert_eq!(goal[0].as_f64(), Some(5.0));
     }
 }
+
+#[cfg(feature = "dart")]
+#[test]
+fn the_dart_backend_runs_when_built_in() {
+    let out = hyq_ok(&[
+        "run",
+        "--backend",
+        "dart",
+        "--json",
+        "--set",
+        "task.max_time_steps=200",
+    ]);
+    let e: Value = serde_json::from_str(out.trim()).unwrap();
+    assert_eq!(e["backend"], "dart");
+    assert_eq!(e["steps"], 200);
+    assert_eq!(e["reasons"], serde_json::json!(["timeout"]));
+    let dx = e["final_position"][0].as_f64().unwrap() - e["initial_position"][0].as_f64().unwrap();
+    // After the gait's 1 s ramp the trot carries HyQ forward (about 0.5 m in 2 s).
+    assert!(
+        dx > 0.2,
+        "the trot walks forward on DART too ({dx} m in 2 s)"
+    );
+}
