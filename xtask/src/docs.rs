@@ -33,9 +33,13 @@ mod tests {
         let readme = read("README.md");
         let ci = read(".ci/run");
         let command = "cargo xtask test";
-        assert!(readme.contains(command), "README.md does not give `{command}`");
         assert!(
-            ci.lines().any(|l| !l.trim_start().starts_with('#') && l.contains(command)),
+            readme.contains(command),
+            "README.md does not give `{command}`"
+        );
+        assert!(
+            ci.lines()
+                .any(|l| !l.trim_start().starts_with('#') && l.contains(command)),
             ".ci/run does not run `{command}`"
         );
     }

@@ -35,7 +35,9 @@ fn main() -> ExitCode {
             print!("{HELP}");
             Ok(())
         }
-        Some(other) => Err(format!("unknown xtask command `{other}` (try `cargo xtask help`)")),
+        Some(other) => Err(format!(
+            "unknown xtask command `{other}` (try `cargo xtask help`)"
+        )),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

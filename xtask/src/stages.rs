@@ -140,7 +140,12 @@ fn passed_count(line: &str) -> u64 {
         return 0;
     };
     rest.split(';')
-        .filter_map(|part| part.trim().trim_start_matches("ok.").trim().strip_suffix(" passed"))
+        .filter_map(|part| {
+            part.trim()
+                .trim_start_matches("ok.")
+                .trim()
+                .strip_suffix(" passed")
+        })
         .filter_map(|n| n.trim().parse::<u64>().ok())
         .sum()
 }
@@ -204,7 +209,9 @@ fn summarize(results: &[(&str, Outcome)], required: &[Part]) -> Result<(), Strin
             Outcome::Skipped { why } => {
                 println!("  {stage:<34} NOT RUN: {why}");
                 if required.iter().any(|p| p.name() == *stage) {
-                    problems.push(format!("stage `{stage}` was required but did not run: {why}"));
+                    problems.push(format!(
+                        "stage `{stage}` was required but did not run: {why}"
+                    ));
                 }
             }
         }
