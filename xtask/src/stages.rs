@@ -178,7 +178,13 @@ pub fn test(args: &[String]) -> Result<(), String> {
             why: format!("DART is not installed; to run these tests: {DART_INSTALL}"),
         }
     } else {
-        let tests = cargo_test(&root, &["test", "--locked", "-p", "hyq-dart"])?;
+        let tests = cargo_test(
+            &root,
+            &dart_stage_args(&members)
+                .iter()
+                .map(String::as_str)
+                .collect::<Vec<_>>(),
+        )?;
         Outcome::Passed { tests }
     };
     results.push((Part::Dart.name(), dart));
@@ -192,6 +198,29 @@ pub fn test(args: &[String]) -> Result<(), String> {
     ));
 
     summarize(&results, &required)
+}
+
+/// The crates whose `dart` feature runs their tests on the DART backend too (the spec section by
+/// section, the env, the command line, the comparison runs).
+const DART_FEATURE_CRATES: [&str; 4] = ["spec-tests", "hyq-env", "hyq-cli", "hyq-compare"];
+
+/// The DART stage's `cargo test` arguments: the backend's own tests plus every member crate that
+/// has a `dart` feature, built with it (members not in the workspace yet are left out).
+fn dart_stage_args(members: &[String]) -> Vec<String> {
+    let mut args: Vec<String> = ["test", "--locked", "-p", "hyq-dart"]
+        .map(String::from)
+        .to_vec();
+    let mut features = Vec::new();
+    for name in DART_FEATURE_CRATES {
+        if members.iter().any(|m| m == name) {
+            args.extend(["-p".to_string(), name.to_string()]);
+            features.push(format!("{name}/dart"));
+        }
+    }
+    if !features.is_empty() {
+        args.extend(["--features".to_string(), features.join(",")]);
+    }
+    args
 }
 
 /// Prints the summary table and turns a required-but-skipped part or an empty stage into an error.
@@ -247,6 +276,17 @@ mod tests {
         let err = parse_required(&args(&["--require", "matlab"])).unwrap_err();
         assert!(err.contains("matlab"), "{err}");
         assert!(parse_required(&args(&["--require"])).is_err());
+    }
+
+    #[test]
+    fn the_dart_stage_runs_every_dart_feature_crate_with_its_feature() {
+        let members: Vec<String> = ["hyq-spec", "hyq-dart", "spec-tests", "hyq-env"]
+            .map(String::from)
+            .to_vec();
+        assert_eq!(
+            dart_stage_args(&members).join(" "),
+            "test --locked -p hyq-dart -p spec-tests -p hyq-env --features spec-tests/dart,hyq-env/dart"
+        );
     }
 
     #[test]
