@@ -832,6 +832,8 @@ impl Renderer {
             self.text
                 .draw(&mut self.pixmap, label, TEXT_PX, x0, baseline, &label_paint);
             self.line.clear();
+            // A small negative value would print as "-0.00"; what shows is zero.
+            let value = if value.abs() < 0.005 { 0.0 } else { value };
             // Writing to a String cannot fail.
             let _ = write!(self.line, "{value:.2}{unit}");
             let w = self.bold.width(&self.line, TEXT_PX);

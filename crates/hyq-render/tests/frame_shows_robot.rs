@@ -1,7 +1,8 @@
 //! A rendered frame is a `height × width × 3` byte image that shows the robot: the trunk covers
 //! the pixel its centre projects to, a fallen robot looks different from a standing one, a foot
 //! in contact changes colour, the overlay prints its numbers, rendering is deterministic, and
-//! bad input is refused with an error naming what was wrong.
+//! bad input is refused with an error naming what was wrong. A value that rounds to zero prints as
+//! `0.00`, never `-0.00`.
 
 mod common;
 
@@ -189,6 +190,31 @@ fn overlay_prints_its_numbers_in_the_top_left_corner() {
     let text = differing_pixels(&one, &two, 30);
     assert!(text.len() > 10, "{} pixels", text.len());
     assert!(text.iter().all(|&(x, y)| x < 240 && y < 40));
+}
+
+#[test]
+fn overlay_shows_a_tiny_negative_return_as_zero_not_minus_zero() {
+    let mut r = renderer();
+    let (trunk, q) = standing_at(0.0, 0.0);
+    let contacts = no_contacts();
+    let scene = Scene::new(
+        RobotPose::Joints {
+            trunk: &trunk,
+            q: &q,
+        },
+        &contacts,
+    );
+    let overlay = |episode_return| Overlay {
+        time_s: 0.2,
+        distance_to_goal_m: 5.0,
+        episode_return,
+    };
+    let zero = r.render(&scene.with_overlay(overlay(0.0))).unwrap();
+    let tiny = r.render(&scene.with_overlay(overlay(-0.0004))).unwrap();
+    let small = r.render(&scene.with_overlay(overlay(-0.01))).unwrap();
+    // "-0.00" would be a different picture from "0.00"; "-0.01" must still show its sign.
+    assert_eq!(zero, tiny);
+    assert_ne!(zero, small);
 }
 
 #[test]
