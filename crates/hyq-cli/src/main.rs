@@ -11,6 +11,8 @@
 mod backend;
 mod bench;
 mod options;
+mod plot;
+mod render;
 mod run;
 mod soak;
 mod table;
@@ -43,6 +45,14 @@ enum Command {
     Bench(bench::BenchArgs),
     /// Random actions for many steps: no panic, no NaN anywhere; prints the observed ranges.
     Soak(soak::SoakArgs),
+    /// Render an episode (CPU, headless) to an animated GIF or PNG frames.
+    Render(render::RenderArgs),
+    /// Plot a recorded JSONL run: every reward term, the cumulative reward, and D_n with R_e(D_n).
+    ///
+    /// Two PNGs per episode. Give the run's --config and --set: the record does not hold the
+    /// configuration, and k_exp (for the R_e curve) and the env step (for the time axis) are
+    /// read from them.
+    Plot(plot::PlotArgs),
 }
 
 /// A failure of the command, already worded for the user, with its exit status.
@@ -83,6 +93,8 @@ fn main() -> ExitCode {
         Command::Run(args) => run::execute(args),
         Command::Bench(args) => bench::execute(args),
         Command::Soak(args) => soak::execute(args),
+        Command::Render(args) => render::execute(args),
+        Command::Plot(args) => plot::execute(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,22 +1,34 @@
-//! The options every subcommand shares: the physics backend, a configuration file, and `--set`
-//! overrides of single configuration values; and building the environment from them.
+//! The options subcommands share: the physics backend, a configuration file and `--set`
+//! overrides of single configuration values ([`EnvArgs`], with the configuration part alone in
+//! [`ConfigArgs`] for commands that build no environment), the policy and seed of the commands
+//! that run an episode ([`PolicyArgs`]); and building the environment and the policy from them.
 
 use std::path::PathBuf;
 use std::sync::Arc;
 
 use clap::Args;
-use hyq_env::{Env, EnvConfig};
+use hyq_env::{Env, EnvConfig, Policy, RandomPolicy, Stand, Trot, TrotParams};
 use hyq_physics::{Backend, RobotModel};
 
 use crate::Failure;
 use crate::backend::BackendChoice;
+use crate::run::PolicyChoice;
 
-/// The environment's options (shared by `run`, `bench` and `soak`).
+/// The environment's options (shared by `run`, `bench`, `soak` and `render`).
 #[derive(Debug, Clone, Args)]
 pub struct EnvArgs {
     /// The physics backend.
     #[arg(long, value_enum, default_value_t = BackendChoice::Rapier)]
     pub backend: BackendChoice,
+    /// The configuration file and overrides.
+    #[command(flatten)]
+    pub configuration: ConfigArgs,
+}
+
+/// The configuration options alone: a file and `--set` overrides (`hyq plot` reads k_exp and
+/// the env step from them without building an environment).
+#[derive(Debug, Clone, Args)]
+pub struct ConfigArgs {
     /// A TOML configuration file (tables [task], [goal], [action], [control], [physics],
     /// [reset]; every key optional). Unknown keys are errors.
     #[arg(long, value_name = "FILE")]
@@ -37,6 +49,13 @@ pub fn usage(message: impl Into<String>) -> Failure {
 }
 
 impl EnvArgs {
+    /// The configuration: the defaults, then the file, then the overrides, validated.
+    pub fn config(&self) -> Result<EnvConfig, Failure> {
+        self.configuration.config()
+    }
+}
+
+impl ConfigArgs {
     /// The configuration: the defaults, then the file, then the overrides, validated.
     pub fn config(&self) -> Result<EnvConfig, Failure> {
         let mut config = match &self.config {
@@ -76,4 +95,29 @@ pub fn robot() -> Arc<RobotModel> {
 pub fn make_env<B: Backend>(model: Arc<RobotModel>, config: EnvConfig) -> Result<Env<B>, Failure> {
     Env::new(model, config)
         .map_err(|e| usage(format!("cannot build the {} environment: {e}", B::NAME)))
+}
+
+/// The policy and seed of a command that runs episodes (`run`, `render`).
+#[derive(Debug, Clone, Args)]
+pub struct PolicyArgs {
+    /// The policy.
+    #[arg(long, value_enum, default_value_t = PolicyChoice::Trot)]
+    pub policy: PolicyChoice,
+    /// Seed of the first reset (goal and reset-noise streams) and of the random policy.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+}
+
+impl PolicyArgs {
+    /// The chosen policy for `env`'s robot (the random one seeded with `--seed`).
+    pub fn make<B: Backend>(&self, env: &Env<B>) -> Result<Box<dyn Policy>, Failure> {
+        Ok(match self.policy {
+            PolicyChoice::Stand => Box::new(Stand),
+            PolicyChoice::Random => Box::new(RandomPolicy::new(self.seed)),
+            PolicyChoice::Trot => Box::new(
+                Trot::new(env.model(), TrotParams::default())
+                    .map_err(|e| usage(format!("--policy trot: {e}")))?,
+            ),
+        })
+    }
 }

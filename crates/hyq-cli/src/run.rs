@@ -1,5 +1,5 @@
 //! `hyq run`: episodes of a policy on the environment, a per-episode summary, and optionally a
-//! JSONL record of every step (hyq-env's `StepRecord` schema).
+//! JSONL record of every step (hyq-env's `StepRecord` schema) and per-episode reward plots.
 //!
 //! Defaults: one episode of the scripted trot, seed 0, the rapier backend and the default
 //! configuration (t_max = 1000 env steps = 10 s simulated; goal 5 m ahead; k_exp = 5).
@@ -13,16 +13,15 @@ use std::io::{BufWriter, Write};
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
-use hyq_env::{
-    Env, Policy, RandomPolicy, Reason, ResetOptions, Stand, StepRecord, Trot, TrotParams,
-};
+use hyq_env::{Env, Reason, ResetOptions, StepRecord};
 use hyq_physics::Backend;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde::Serialize;
 
 use crate::Failure;
 use crate::backend::with_backend;
-use crate::options::{EnvArgs, make_env, robot, usage};
+use crate::options::{EnvArgs, PolicyArgs, make_env, robot, usage};
+use crate::plot::LivePlots;
 use crate::table::Table;
 
 /// The policies `hyq run` can drive the robot with.
@@ -41,18 +40,18 @@ pub enum PolicyChoice {
 pub struct RunArgs {
     #[command(flatten)]
     env: EnvArgs,
-    /// The policy.
-    #[arg(long, value_enum, default_value_t = PolicyChoice::Trot)]
-    policy: PolicyChoice,
+    #[command(flatten)]
+    policy: PolicyArgs,
     /// Episodes to run (each ends by the spec's rules: reached, joint limit, fall or timeout).
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..))]
     episodes: u64,
-    /// Seed of the first reset (goal and reset-noise streams) and of the random policy.
-    #[arg(long, default_value_t = 0)]
-    seed: u64,
     /// Write every env step as one JSON object per line to FILE (hyq-env's StepRecord schema).
     #[arg(long, value_name = "FILE.jsonl")]
     record: Option<PathBuf>,
+    /// Write two PNG plots per episode into DIR (created if missing): every reward term and the
+    /// cumulative reward over time, and D_n with the spec's §4.3 curve (see `hyq plot`).
+    #[arg(long, value_name = "DIR")]
+    plot: Option<PathBuf>,
     /// Print the per-episode summaries as JSON lines on stdout instead of a table.
     #[arg(long)]
     json: bool,
@@ -125,22 +124,8 @@ pub fn execute(args: RunArgs) -> Result<(), Failure> {
     })
 }
 
-fn make_policy<B: Backend>(
-    env: &Env<B>,
-    choice: PolicyChoice,
-    seed: u64,
-) -> Result<Box<dyn Policy>, Failure> {
-    Ok(match choice {
-        PolicyChoice::Stand => Box::new(Stand),
-        PolicyChoice::Random => Box::new(RandomPolicy::new(seed)),
-        PolicyChoice::Trot => Box::new(
-            Trot::new(env.model(), TrotParams::default())
-                .map_err(|e| usage(format!("--policy trot: {e}")))?,
-        ),
-    })
-}
-
-fn progress_bar(total: u64) -> ProgressBar {
+/// A progress bar of `total` env steps (shared with `render`).
+pub fn progress_bar(total: u64) -> ProgressBar {
     // Drawn on stderr only when it is a terminal (indicatif hides it otherwise), so piped and
     // captured output stays clean.
     let bar = ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::stderr());
@@ -153,7 +138,7 @@ fn progress_bar(total: u64) -> ProgressBar {
 }
 
 fn run_episodes<B: Backend>(mut env: Env<B>, args: &RunArgs) -> Result<(), Failure> {
-    let mut policy = make_policy(&env, args.policy, args.seed)?;
+    let mut policy = args.policy.make(&env)?;
     let mut record = match &args.record {
         None => None,
         Some(path) => Some(BufWriter::new(File::create(path).map_err(|e| {
@@ -163,12 +148,20 @@ fn run_episodes<B: Backend>(mut env: Env<B>, args: &RunArgs) -> Result<(), Failu
             ))
         })?)),
     };
+    let mut plots = match &args.plot {
+        None => None,
+        Some(dir) => {
+            let title = format!("{}, {}, seed {}", B::NAME, policy.name(), args.policy.seed);
+            Some(LivePlots::new(dir, env.config(), title)?)
+        }
+    };
+    let mut plots_written = 0;
     let t_max = env.config().task.max_time_steps;
     let bar = progress_bar(args.episodes.saturating_mul(t_max));
     let mut action = vec![0.0; env.action_space().len()];
     let mut summaries = Vec::new();
     for episode in 0..args.episodes {
-        let seed = (episode == 0).then_some(args.seed);
+        let seed = (episode == 0).then_some(args.policy.seed);
         let reset = env
             .reset(seed, &ResetOptions::default())
             .map_err(|e| Failure {
@@ -228,10 +221,16 @@ fn run_episodes<B: Backend>(mut env: Env<B>, args: &RunArgs) -> Result<(), Failu
                 let line = StepRecord::from_env(&env, &action).to_json_line();
                 writeln!(out, "{line}").map_err(|e| record_error(args, e))?;
             }
+            if let Some(plots) = plots.as_mut() {
+                plots.push(env.info());
+            }
             bar.set_position(episode * t_max + env.info().t);
             if done {
                 break;
             }
+        }
+        if let Some(plots) = plots.as_mut() {
+            plots_written += plots.finish_episode(summary.episode)?.len();
         }
         let n = summary.steps.max(1) as f64;
         summary.mean_m_yaw /= n;
@@ -249,6 +248,9 @@ fn run_episodes<B: Backend>(mut env: Env<B>, args: &RunArgs) -> Result<(), Failu
     bar.finish_and_clear();
     if !args.json {
         print!("{}", summary_table(&summaries));
+        if let Some(dir) = &args.plot {
+            println!("wrote {plots_written} plots to {}", dir.display());
+        }
     }
     Ok(())
 }

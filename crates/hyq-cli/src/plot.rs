@@ -1,0 +1,167 @@
+//! `hyq plot` and `hyq run --plot`: per-episode PNG plots drawn by hyq-render, the spec's
+//! Figures 3–6 redrawn from a real run.
+//!
+//! Two files per episode, `episode_NNN_rewards.png` (every reward term per step, the §5.1
+//! multipliers, the step reward with the fixed penalties, and the cumulative reward with the
+//! cumulative r_b, r_n and r_e) and `episode_NNN_distance.png` (D_n over time, and the §4.3
+//! curve R_e(D_n) with the episode's points (D_n^t, Σ r_e) on it). NNN counts the episodes of
+//! the run or file from 001.
+//!
+//! A JSONL record does not carry the configuration it was made with, so `hyq plot` reads k_exp
+//! (for the R_e curve) and the env step (for the time axis) from the same `--config` and `--set`
+//! options as `hyq run`: given the run's options, the plots of a record are the plots
+//! `hyq run --plot` drew live, byte for byte (tested). Given other options, the episode's points
+//! leave the curve, which shows the mismatch.
+
+use std::path::{Path, PathBuf};
+
+use clap::Args;
+use hyq_env::{EnvConfig, StepInfo};
+use hyq_render::{EpisodeSeries, PlotError, PlotOptions, RewardTerms, StepRecord};
+
+use crate::Failure;
+use crate::options::{ConfigArgs, usage};
+
+/// `hyq plot` arguments.
+#[derive(Debug, Args)]
+pub struct PlotArgs {
+    /// A JSONL step record, as `hyq run --record` writes it (one object per env step).
+    #[arg(value_name = "FILE.jsonl")]
+    file: PathBuf,
+    /// The directory the PNGs are written to (created if missing) [default: beside FILE, named
+    /// after it: `runs/a.jsonl` gives `runs/a_plots/`].
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+    /// The start of each plot's title, before ", episode N" [default: FILE's name].
+    #[arg(long)]
+    title: Option<String>,
+    /// The run's configuration (k_exp and the env step are read from it).
+    #[command(flatten)]
+    configuration: ConfigArgs,
+}
+
+/// The plot options of a run with `config`: its k_exp and env step, and `title`.
+pub fn plot_options(config: &EnvConfig, title: String) -> PlotOptions {
+    PlotOptions {
+        title,
+        k_exp: config.task.exp_rew_scaling,
+        env_dt_s: Some(config.env_dt()),
+    }
+}
+
+/// A plotting failure as the command reports it: bad input (an unreadable or malformed record,
+/// an empty one, an unwritable directory) is a usage error; a drawing failure is not.
+fn plot_failure(e: PlotError) -> Failure {
+    let status = match e {
+        PlotError::Draw { .. } => 1,
+        _ => 2,
+    };
+    Failure {
+        status,
+        message: e.to_string(),
+    }
+}
+
+/// The default output directory for `file`: `<dir>/<stem>_plots`.
+fn default_out(file: &Path) -> PathBuf {
+    let stem = file
+        .file_stem()
+        .map_or_else(|| "hyq".into(), |s| s.to_string_lossy().into_owned());
+    file.with_file_name(format!("{stem}_plots"))
+}
+
+/// Runs `hyq plot`.
+pub fn execute(args: PlotArgs) -> Result<(), Failure> {
+    let config = args.configuration.config()?;
+    let out = args.out.clone().unwrap_or_else(|| default_out(&args.file));
+    let title = args.title.clone().unwrap_or_else(|| {
+        args.file
+            .file_name()
+            .map_or_else(String::new, |n| n.to_string_lossy().into_owned())
+    });
+    let options = plot_options(&config, title);
+    let plots = hyq_render::plot_jsonl(&args.file, &options, &out).map_err(plot_failure)?;
+    for p in &plots {
+        println!("{}", p.rewards.display());
+        println!("{}", p.distance.display());
+    }
+    Ok(())
+}
+
+/// Collects the steps of each episode of a live run and plots it when it ends
+/// (`hyq run --plot DIR`).
+#[derive(Debug)]
+pub struct LivePlots {
+    dir: PathBuf,
+    options: PlotOptions,
+    /// Whether the run's terms carry m_height (the opt-in height penalty is configured); as in
+    /// the JSONL record, m_height is 1 otherwise.
+    height_penalty: bool,
+    series: EpisodeSeries,
+    written: usize,
+}
+
+impl LivePlots {
+    /// Plots into `dir`, created now so that an unwritable directory fails before the run.
+    pub fn new(dir: &Path, config: &EnvConfig, title: String) -> Result<Self, Failure> {
+        std::fs::create_dir_all(dir).map_err(|e| {
+            usage(format!(
+                "--plot {}: cannot create the directory: {e}",
+                dir.display()
+            ))
+        })?;
+        Ok(Self {
+            dir: dir.to_owned(),
+            options: plot_options(config, title),
+            height_penalty: config.task.height_penalty.is_some(),
+            series: EpisodeSeries::new(),
+            written: 0,
+        })
+    }
+
+    /// Adds one env step of the current episode.
+    pub fn push(&mut self, info: &StepInfo) {
+        let r = &info.reward;
+        self.series.push(&StepRecord {
+            t: info.t,
+            episode: Some(info.episode),
+            reward: r.total,
+            terms: RewardTerms {
+                r_b: r.r_b,
+                r_n: r.r_n,
+                r_e: r.r_e,
+                r_reach: r.r_reach,
+                m_yaw: r.m_yaw,
+                m_pitch: r.m_pitch,
+                m_height: if self.height_penalty { r.m_height } else { 1.0 },
+                joint_penalty: r.joint_penalty,
+                fall_penalty: r.fall_penalty,
+            },
+            d_n: info.d_n,
+            distance_to_goal: info.distance_to_goal,
+        });
+    }
+
+    /// Plots the episode collected so far as episode number `episode` and starts the next one;
+    /// returns the two files written.
+    pub fn finish_episode(&mut self, episode: u64) -> Result<[PathBuf; 2], Failure> {
+        self.written += 1;
+        let options = PlotOptions {
+            title: if self.options.title.is_empty() {
+                format!("episode {episode}")
+            } else {
+                format!("{}, episode {episode}", self.options.title)
+            },
+            ..self.options.clone()
+        };
+        let stem = format!("episode_{:03}", self.written);
+        let plots =
+            hyq_render::plot_episode(&self.series, &options, &self.dir, &stem).map_err(|e| {
+                let mut failure = plot_failure(e);
+                failure.message = format!("--plot {}: {}", self.dir.display(), failure.message);
+                failure
+            })?;
+        self.series = EpisodeSeries::new();
+        Ok([plots.rewards, plots.distance])
+    }
+}
