@@ -3,6 +3,9 @@
 //!
 //! `cargo bench -p hyq-render --bench render_frame`
 
+// In tests and benches a failed unwrap is a failed run, with its location.
+#![allow(clippy::unwrap_used)]
+
 use criterion::{Criterion, criterion_group, criterion_main};
 use hyq_physics::na::Point3;
 use hyq_render::{Frame, GifWriter, Overlay, RenderConfig, Renderer, RobotPose, Scene, encode_png};

@@ -3,6 +3,9 @@
 //! the spec's curve for records made by the spec's rules; bad records are refused by line and
 //! key.
 
+// In tests and benches a failed unwrap is a failed run, with its location.
+#![allow(clippy::unwrap_used)]
+
 mod common;
 
 use common::*;

@@ -4,6 +4,9 @@
 //! bad input is refused with an error naming what was wrong. A value that rounds to zero prints as
 //! `0.00`, never `-0.00`.
 
+// In tests and benches a failed unwrap is a failed run, with its location.
+#![allow(clippy::unwrap_used)]
+
 mod common;
 
 use common::*;

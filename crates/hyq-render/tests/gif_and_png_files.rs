@@ -2,6 +2,9 @@
 //! content (PNG exactly; GIF within its 256-colour palette), at the frame rate asked; bad
 //! sequences and rates are refused by name.
 
+// In tests and benches a failed unwrap is a failed run, with its location.
+#![allow(clippy::unwrap_used)]
+
 mod common;
 
 use std::fs::File;

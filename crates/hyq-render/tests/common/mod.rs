@@ -1,6 +1,8 @@
 //! Shared helpers for the rendering tests: the bundled robot standing, a renderer, frame
 //! comparisons and scratch directories.
 
+// In tests and benches a failed unwrap is a failed run, with its location.
+#![allow(clippy::unwrap_used)]
 #![allow(dead_code)]
 
 use std::path::PathBuf;
