@@ -18,20 +18,31 @@
 //!    evaluation and the rest. Its own rate is reported too (`timed_pass`): the difference is
 //!    the cost of the timers.
 //!
+//! # Batched mode (`--num-envs N`, N ≥ 2)
+//! N envs in a [`VecEnv`] (the vector env the Python binding uses) on a pool of `--threads T`
+//! threads (default N, capped at the machine's cores), same workload per env (env i's actions
+//! from its own random stream seeded seed + i, Gymnasium's next-step autoreset). One pass, no
+//! per-part timing; the report is a [`VecBenchReport`]. Comparing `--threads 1` with
+//! `--threads 2` at N = 2 measures how the vector env scales.
+//!
 //! # JSON (`--json`): one object, keys stable (`schema_version` 1)
-//! See [`BenchReport`]; every key is documented there and in the crate's README.
+//! See [`BenchReport`] and [`VecBenchReport`]; every key is documented there and in the
+//! crate's README.
 
 use std::time::{Duration, Instant};
 
 use clap::Args;
 use cpu_time::ProcessTime;
-use hyq_env::{Env, Policy, PolicyInput, RandomPolicy, Reason, ResetOptions, StepTiming};
+use hyq_env::{
+    AutoReset, Env, Policy, PolicyInput, RandomPolicy, Reason, ResetOptions, StepTiming, VecEnv,
+    VecStepOut,
+};
 use hyq_physics::Backend;
 use serde::Serialize;
 
 use crate::Failure;
 use crate::backend::with_backend;
-use crate::options::{EnvArgs, make_env, robot};
+use crate::options::{EnvArgs, make_env, robot, usage};
 
 /// Actions drawn ahead of the timed region at a time.
 pub const BLOCK: usize = 1000;
@@ -50,6 +61,14 @@ pub struct BenchArgs {
     /// Print one JSON object on stdout instead of text.
     #[arg(long)]
     json: bool,
+    /// Envs stepped together in a vector env (batched mode when ≥ 2); `--steps` then counts
+    /// vector steps, each of N env steps.
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..=4096))]
+    num_envs: u64,
+    /// Threads of the vector env's pool (batched mode only; default: N, at most the number of
+    /// cores).
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=4096))]
+    threads: Option<u64>,
 }
 
 /// How the episodes that ended during a pass ended (a step may have several reasons).
@@ -146,6 +165,41 @@ pub struct BenchReport {
     pub timed_pass: TimedPass,
 }
 
+/// `hyq bench --num-envs N --json` (N ≥ 2): one object, keys stable like [`BenchReport`]'s.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct VecBenchReport {
+    /// 1.
+    pub schema_version: u32,
+    /// `"env_random_vec"`: `env_random` in every env of a vector env.
+    pub workload: &'static str,
+    /// The backend's name (`"rapier"`, `"dart"`).
+    pub backend: &'static str,
+    /// `"release"` or `"debug"`.
+    pub profile: &'static str,
+    /// N, the envs in the vector env.
+    pub num_envs: u64,
+    /// Threads in the vector env's pool.
+    pub threads: u64,
+    /// Physics sub-steps per env step.
+    pub substeps_per_env_step: u32,
+    /// The seed (env i's is seed + i).
+    pub seed: u64,
+    /// Vector steps timed.
+    pub steps: u64,
+    /// Env steps timed: steps × N (autoreset steps included: they cost a reset each).
+    pub env_steps: u64,
+    /// Wall-clock seconds.
+    pub seconds: f64,
+    /// Process CPU seconds (all threads, including the pool's idle waits that spin).
+    pub cpu_seconds: f64,
+    /// env_steps / seconds: the throughput the caller sees.
+    pub env_steps_per_s: f64,
+    /// env_steps / cpu_seconds: throughput per CPU second.
+    pub env_steps_per_s_cpu: f64,
+    /// Episodes that ended (each is reset on its env's next step).
+    pub resets: u64,
+}
+
 /// One pass's measurements.
 struct Pass {
     wall: Duration,
@@ -158,12 +212,145 @@ struct Pass {
 /// Runs `hyq bench`.
 pub fn execute(args: BenchArgs) -> Result<(), Failure> {
     let config = args.env.config()?;
+    if args.num_envs >= 2 {
+        let cores = std::thread::available_parallelism().map_or(1, |n| n.get() as u64);
+        let threads = args.threads.unwrap_or(args.num_envs.min(cores));
+        return with_backend!(args.env.backend, B => {
+            let n = usize::try_from(args.num_envs)
+                .map_err(|_| usage(format!("--num-envs {}: too many", args.num_envs)))?;
+            let vec = VecEnv::<B>::new(robot(), config, n, AutoReset::NextStep)
+                .map_err(|e| usage(format!("cannot build the {} vector env: {e}", B::NAME)))?;
+            let t = usize::try_from(threads)
+                .map_err(|_| usage(format!("--threads {threads}: too many")))?;
+            let mut vec = vec
+                .with_threads(t)
+                .map_err(|e| failure(format!("vector env: {e}")))?;
+            let report = bench_vec(&mut vec, args.steps, args.seed, threads)?;
+            print_vec_report(&report, args.json);
+            Ok(())
+        });
+    }
+    if args.threads.is_some() {
+        return Err(usage("--threads needs --num-envs N with N ≥ 2"));
+    }
     with_backend!(args.env.backend, B => {
         let mut env = make_env::<B>(robot(), config)?;
         let report = bench(&mut env, args.steps, args.seed)?;
         print_report(&report, args.json);
         Ok(())
     })
+}
+
+/// The batched pass: `steps` vector steps of `vec` under random actions.
+pub fn bench_vec<B: Backend>(
+    vec: &mut VecEnv<B>,
+    steps: u64,
+    seed: u64,
+    threads: u64,
+) -> Result<VecBenchReport, Failure> {
+    let n = vec.num_envs();
+    let (obs_len, act_len) = (vec.observation_len(), vec.action_len());
+    let mut policies: Vec<RandomPolicy> = (0..n)
+        .map(|i| RandomPolicy::new(seed.wrapping_add(i as u64)))
+        .collect();
+    let mut actions = vec![0.0; BLOCK * n * act_len];
+    let mut observations = vec![0.0f32; n * obs_len];
+    let mut rewards = vec![0.0; n];
+    let mut terminated = vec![false; n];
+    let mut truncated = vec![false; n];
+    vec.reset(Some(seed), &mut observations)
+        .map_err(|e| failure(format!("reset: {e}")))?;
+    let (mut wall, mut cpu, mut resets) = (Duration::ZERO, Duration::ZERO, 0u64);
+    let mut left = steps;
+    while left > 0 {
+        let block = left.min(BLOCK as u64) as usize;
+        // As in the single-env pass, the random policy reads only the action space.
+        {
+            let input = vec.env(0).policy_input();
+            for step_actions in actions.chunks_exact_mut(n * act_len).take(block) {
+                for (policy, action) in policies
+                    .iter_mut()
+                    .zip(step_actions.chunks_exact_mut(act_len))
+                {
+                    policy.act(&input, action);
+                }
+            }
+        }
+        let cpu0 = cpu_now()?;
+        let wall0 = Instant::now();
+        for step_actions in actions.chunks_exact(n * act_len).take(block) {
+            vec.step(
+                step_actions,
+                VecStepOut {
+                    observations: &mut observations,
+                    rewards: &mut rewards,
+                    terminated: &mut terminated,
+                    truncated: &mut truncated,
+                },
+            )
+            .map_err(|e| failure(format!("vector step: {e}")))?;
+            resets += terminated
+                .iter()
+                .zip(&truncated)
+                .filter(|(a, b)| **a || **b)
+                .count() as u64;
+        }
+        wall += wall0.elapsed();
+        cpu += cpu_now()?.saturating_sub(cpu0);
+        left -= block as u64;
+    }
+    let env_steps = steps * n as u64;
+    let rate = |s: f64| {
+        if s > 0.0 {
+            env_steps as f64 / s
+        } else {
+            f64::INFINITY
+        }
+    };
+    Ok(VecBenchReport {
+        schema_version: 1,
+        workload: "env_random_vec",
+        backend: B::NAME,
+        profile: if cfg!(debug_assertions) {
+            "debug"
+        } else {
+            "release"
+        },
+        num_envs: n as u64,
+        threads,
+        substeps_per_env_step: vec.env(0).config().control.sim_steps_per_env_step,
+        seed,
+        steps,
+        env_steps,
+        seconds: wall.as_secs_f64(),
+        cpu_seconds: cpu.as_secs_f64(),
+        env_steps_per_s: rate(wall.as_secs_f64()),
+        env_steps_per_s_cpu: rate(cpu.as_secs_f64()),
+        resets,
+    })
+}
+
+fn print_vec_report(r: &VecBenchReport, json: bool) {
+    if json {
+        match serde_json::to_string(r) {
+            Ok(line) => println!("{line}"),
+            // Plain numbers and strings.
+            Err(e) => unreachable!("a bench report serialises to JSON: {e}"),
+        }
+        return;
+    }
+    println!(
+        "hyq bench: {} backend, {} build, workload {} ({} envs, {} pool threads, {} sub-steps each)",
+        r.backend, r.profile, r.workload, r.num_envs, r.threads, r.substeps_per_env_step
+    );
+    println!(
+        "  {} vector steps ({} env steps) in {:.3} s wall, {:.3} s CPU, {} resets",
+        r.steps, r.env_steps, r.seconds, r.cpu_seconds, r.resets
+    );
+    println!(
+        "  {:.0} env steps/s (wall), {:.0} env steps/s (CPU)",
+        r.env_steps_per_s, r.env_steps_per_s_cpu
+    );
 }
 
 fn failure(message: String) -> Failure {
