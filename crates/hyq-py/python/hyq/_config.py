@@ -1,0 +1,95 @@
+"""Keyword arguments and ``env_config`` dicts as the core's dotted configuration keys.
+
+The configuration mirrors the TOML file (``hyq run --config``) table for table:
+
+* the spec's user variables by their own names, e.g. ``fall_penalty=1.0``,
+  ``exp_rew_scaling=None`` (off), ``max_time_steps=500`` (these are the ``[task]`` table; a
+  ``task={...}`` dict works too);
+* the other tables as dicts: ``goal={"mode": "fixed", "position": [5, 1, 0.6]}``,
+  ``action={"mode": "absolute"}``, ``control={...}``, ``physics={...}``, ``reset={...}``;
+* ``config_file="hyq.toml"``: a TOML file read first, the keyword arguments applied on top.
+
+Everything is checked by the core (one parser for TOML files, ``hyq run --set`` and Python):
+an unknown key or a bad value raises ``ValueError`` naming the key and the value.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from collections.abc import Mapping
+from typing import Any
+
+#: The TOML tables other than ``[task]``, given as dicts.
+TABLES = ("task", "goal", "action", "control", "physics", "reset")
+
+#: Keyword arguments that are not configuration keys.
+ENV_KEYS = (
+    "render_mode",
+    "config_file",
+    "clip_observations",
+    "render_width",
+    "render_height",
+)
+
+
+def toml_value(value: Any, key: str) -> str:
+    """``value`` written as a TOML value (``None`` is ``"off"``, which unsets an optional
+    reward scaling)."""
+    if value is None:
+        return "off"
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        if math.isnan(value):
+            return "nan"
+        if math.isinf(value):
+            return "inf" if value > 0 else "-inf"
+        return repr(value)
+    if isinstance(value, str):
+        # A JSON string is a valid TOML basic string.
+        return json.dumps(value)
+    if isinstance(value, Mapping):
+        items = ", ".join(f"{k} = {toml_value(v, f'{key}.{k}')}" for k, v in value.items())
+        return "{" + items + "}"
+    if hasattr(value, "tolist"):  # NumPy arrays and scalars
+        return toml_value(value.tolist(), key)
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(toml_value(v, key) for v in value) + "]"
+    raise ValueError(f"{key} = {value!r}: not a number, boolean, string, list or dict")
+
+
+def config_pairs(options: Mapping[str, Any]) -> list[tuple[str, str]]:
+    """The dotted ``(key, TOML value)`` pairs of configuration keyword arguments."""
+    pairs: list[tuple[str, str]] = []
+    for name, value in options.items():
+        if name in TABLES:
+            if not isinstance(value, Mapping):
+                raise ValueError(
+                    f"{name} = {value!r}: the [{name}] table is given as a dict, "
+                    f"e.g. {name}={{...}}"
+                )
+            for key, v in value.items():
+                pairs.append((f"{name}.{key}", toml_value(v, f"{name}.{key}")))
+        else:
+            # Every other name is a spec user variable of the [task] table; the core names
+            # the accepted ones if this is not one of them.
+            pairs.append((f"task.{name}", toml_value(value, name)))
+    return pairs
+
+
+def split_options(
+    env_config: Mapping[str, Any] | None, kwargs: Mapping[str, Any]
+) -> tuple[dict[str, Any], dict[str, Any]]:
+    """Merges ``env_config`` (RLlib's single dict) and keyword arguments (which win), then
+    splits them into (environment options, configuration options)."""
+    merged: dict[str, Any] = {}
+    if env_config is not None:
+        if not isinstance(env_config, Mapping):
+            raise ValueError(f"env_config = {env_config!r}: expected a dict")
+        merged.update(env_config)
+    merged.update(kwargs)
+    env_options = {k: merged.pop(k) for k in ENV_KEYS if k in merged}
+    return env_options, merged

@@ -1,0 +1,178 @@
+"""``HyQEnv``: the Gymnasium environment (``HyQ-v0``) around the Rust core."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+import gymnasium
+import numpy as np
+from gymnasium import spaces
+
+from hyq import _core
+from hyq._config import config_pairs, split_options
+
+#: The render modes this environment implements.
+RENDER_MODES = ["rgb_array"]
+
+
+def check_render_mode(render_mode: str | None) -> None:
+    """Refuses, at construction, a render mode that is not implemented."""
+    if render_mode is not None and render_mode not in RENDER_MODES:
+        raise ValueError(
+            f"render_mode={render_mode!r} is not implemented: use None or 'rgb_array' "
+            "(for a window, wrap an 'rgb_array' env in gymnasium.wrappers.HumanRendering; "
+            "gym.make(..., render_mode='human') does this for you)"
+        )
+
+
+def reset_goal(options: Mapping[str, Any] | None) -> list[float] | None:
+    """The goal in ``reset(options=...)``; any key but ``goal`` is refused."""
+    if not options:
+        return None
+    unknown = sorted(set(options) - {"goal"})
+    if unknown:
+        raise ValueError(f"reset options {unknown}: unknown (the only option is 'goal')")
+    goal = options.get("goal")
+    if goal is None:
+        return None
+    goal = np.asarray(goal, dtype=np.float64)
+    if goal.shape != (3,):
+        raise ValueError(f"reset option goal has shape {goal.shape}, expected (3,): [x, y, z] in m")
+    return [float(v) for v in goal]
+
+
+def check_seed(seed: int | None) -> int | None:
+    """A seed for the core: an integer in [0, 2**64)."""
+    if seed is None:
+        return None
+    if isinstance(seed, (bool, float)) or not isinstance(seed, (int, np.integer)):
+        raise ValueError(f"seed = {seed!r}: expected an integer in [0, 2**64)")
+    if not 0 <= int(seed) < 2**64:
+        raise ValueError(f"seed = {seed}: expected an integer in [0, 2**64)")
+    return int(seed)
+
+
+class HyQEnv(gymnasium.Env):
+    """IIT's HyQ quadruped (87 kg, 12 joints) walking its trunk to a goal, on rapier physics.
+
+    **Observation**: ``Box(39,)`` float32, the spec's §3 table in order and units (joint angles,
+    joint speeds, four foot contact flags, trunk contact flag, trunk quaternion w x y z, trunk
+    acceleration, trunk position); the bounds are the table's. The physics does leave them
+    (joint speeds past ±12 rad/s in about a quarter of first steps under random actions,
+    accelerations past ±50 m/s² on impacts), so by default each value is clipped to its row's
+    bounds and ``info["observation_clipped"]`` says when that happened; this keeps the
+    observation in the observation space, as Gymnasium and Stable-Baselines3 require.
+    ``clip_observations=False`` gives the core's raw values (those ``hyq run --record``
+    writes), which may then lie outside the Box.
+
+    **Action**: ``Box(-1, 1, (12,), float32)`` joint position targets in the default
+    ``normalized`` mode (−1 a joint's lower limit, +1 its upper); ``action={"mode":
+    "absolute"}`` takes radians within the joint limits, ``action={"mode": "delta"}`` a change
+    of ±``max_delta_rad`` from the current angle. A NaN or a wrong shape raises ``ValueError``.
+
+    **Reward and info**: the spec's reward; ``info`` holds every term (``r_b``, ``r_n``,
+    ``r_e``, ``r_reach``, ``m_yaw``, ``m_pitch``, ``m_height``, ``joint_penalty``,
+    ``fall_penalty``), every reason the episode ended (``reasons`` and one flag each), the
+    distance to the goal, the attitude, the goal and the joint targets.
+
+    **Episode end**: ``terminated`` when the goal is reached, a joint reaches a limit, the
+    trunk touches the ground, or the physics diverges; ``truncated`` at ``max_time_steps``
+    (default 1000 env steps = 10 s).
+
+    Arguments: ``render_mode`` (None or ``"rgb_array"``), ``env_config`` (one dict, RLlib's
+    convention), ``config_file`` (a TOML file), ``clip_observations``, ``render_width`` and
+    ``render_height`` (pixels, default 480 × 360), and the configuration keys (see
+    ``hyq._config``): the spec's user variables by name, the other TOML tables as dicts.
+    """
+
+    # One frame per env step: 100 fps at the default 10 sub-steps of 1 ms (set per instance
+    # from the configuration).
+    metadata = {"render_modes": RENDER_MODES, "render_fps": 100}
+
+    def __init__(
+        self,
+        render_mode: str | None = None,
+        env_config: Mapping[str, Any] | None = None,
+        **kwargs: Any,
+    ) -> None:
+        env_options, config = split_options(env_config, kwargs)
+        render_mode = env_options.pop("render_mode", render_mode)
+        check_render_mode(render_mode)
+        self.render_mode = render_mode
+        self._core = _core.Core(
+            config_pairs(config),
+            config_file=env_options.get("config_file"),
+            clip_observations=bool(env_options.get("clip_observations", True)),
+            render_width=int(env_options.get("render_width", 480)),
+            render_height=int(env_options.get("render_height", 360)),
+        )
+        self.observation_space = spaces.Box(
+            low=self._core.observation_low(),
+            high=self._core.observation_high(),
+            dtype=np.float32,
+        )
+        self.action_space = spaces.Box(
+            low=self._core.action_low(),
+            high=self._core.action_high(),
+            dtype=np.float32,
+        )
+        # Simulated frames per second of an episode: one frame per env step.
+        self.metadata = {**self.metadata, "render_fps": round(1.0 / self._core.env_dt)}
+        self._closed = False
+
+    @property
+    def max_time_steps(self) -> int:
+        """t_max: the env step at which the core truncates the episode."""
+        return self._core.max_time_steps
+
+    @property
+    def observation_names(self) -> list[str]:
+        """The 39 observation rows' names, in order."""
+        return self._core.observation_names()
+
+    @property
+    def joint_names(self) -> list[str]:
+        """The 12 joints' names, in action order."""
+        return self._core.joint_names()
+
+    def config_toml(self) -> str:
+        """The whole configuration in force, as TOML (readable by ``hyq run --config``)."""
+        return self._core.config_toml()
+
+    def reset(
+        self, *, seed: int | None = None, options: dict[str, Any] | None = None
+    ) -> tuple[np.ndarray, dict[str, Any]]:
+        """Starts an episode. ``seed`` seeds the core's goal and reset-noise streams exactly as
+        ``hyq run --seed`` does (None continues them); ``options={"goal": [x, y, z]}`` sets
+        this episode's goal."""
+        seed = check_seed(seed)
+        goal = reset_goal(options)
+        super().reset(seed=seed)
+        return self._core.reset(seed=seed, goal=goal)
+
+    def step(
+        self, action: Any
+    ) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
+        """One env step (10 physics sub-steps of 1 ms by default)."""
+        action = np.asarray(action, dtype=np.float64)
+        if action.ndim != 1:
+            # A 1-D action of the wrong length is refused by the core, with its message.
+            raise ValueError(
+                f"action has shape {action.shape}, expected {self.action_space.shape}"
+            )
+        return self._core.step(np.ascontiguousarray(action))
+
+    def render(self) -> np.ndarray | None:
+        """With ``render_mode="rgb_array"``: the current state as a uint8 (H, W, 3) frame."""
+        if self.render_mode is None:
+            gymnasium.logger.warn(
+                "render() called without a render_mode: make the env with "
+                'render_mode="rgb_array"'
+            )
+            return None
+        return self._core.render()
+
+    def close(self) -> None:
+        """Nothing to release but memory; safe to call twice."""
+        self._closed = True

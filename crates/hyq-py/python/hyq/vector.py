@@ -1,0 +1,171 @@
+"""``HyQVectorEnv``: N HyQ environments stepped together in Rust (rayon, GIL released).
+
+Registered as ``HyQ-v0``'s ``vector_entry_point``, so ``gym.make_vec("HyQ-v0", num_envs=N)``
+returns it. Env i of ``reset(seed=s)`` is seeded ``s + i``, as Gymnasium's own vector envs do,
+and gives exactly what a single ``HyQEnv`` reset with that seed and given the same actions
+gives, across autoresets too.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+import gymnasium
+import numpy as np
+from gymnasium import spaces
+from gymnasium.vector import AutoresetMode, VectorEnv
+from gymnasium.vector.utils import batch_space
+
+from hyq import _core
+from hyq._config import config_pairs, split_options
+from hyq.env import check_render_mode, check_seed, reset_goal
+
+_MODES = {
+    AutoresetMode.NEXT_STEP: "next_step",
+    AutoresetMode.SAME_STEP: "same_step",
+    AutoresetMode.DISABLED: "disabled",
+}
+
+
+class HyQVectorEnv(VectorEnv):
+    """``num_envs`` HyQ environments of one configuration, stepped in one call.
+
+    Arguments: ``num_envs``; ``autoreset_mode`` (``AutoresetMode.NEXT_STEP`` by default, the
+    Gymnasium default: the step after an episode ends resets that env, ignoring its action and
+    returning its first observation with reward 0; also ``SAME_STEP`` and ``DISABLED``);
+    ``max_episode_steps`` (what ``gym.make_vec`` passes from the registration: the core's t_max
+    unless ``max_time_steps`` is given); ``threads`` (a dedicated rayon pool; results do not
+    depend on it); and every argument of ``HyQEnv``.
+
+    ``infos`` holds every numeric and flag key of ``HyQEnv``'s info as an array over the envs,
+    each with Gymnasium's ``_key`` mask.
+    """
+
+    metadata = {
+        "autoreset_mode": AutoresetMode.NEXT_STEP,
+        "render_modes": ["rgb_array"],
+        "render_fps": 100,
+    }
+
+    def __init__(
+        self,
+        num_envs: int = 1,
+        render_mode: str | None = None,
+        env_config: Mapping[str, Any] | None = None,
+        autoreset_mode: AutoresetMode | str = AutoresetMode.NEXT_STEP,
+        max_episode_steps: int | None = None,
+        threads: int | None = None,
+        **kwargs: Any,
+    ) -> None:
+        env_options, config = split_options(env_config, kwargs)
+        render_mode = env_options.pop("render_mode", render_mode)
+        check_render_mode(render_mode)
+        mode = AutoresetMode(autoreset_mode)
+        # t_max is `max_time_steps` when given, else `max_episode_steps` (which
+        # gym.make_vec passes from the registration), else the core's default.
+        task = config.get("task")
+        given = "max_time_steps" in config or (
+            isinstance(task, Mapping) and "max_time_steps" in task
+        )
+        if max_episode_steps is not None and not given:
+            config["max_time_steps"] = int(max_episode_steps)
+        self.render_mode = render_mode
+        self._core = _core.VecCore(
+            config_pairs(config),
+            int(num_envs),
+            autoreset_mode=_MODES[mode],
+            config_file=env_options.get("config_file"),
+            threads=threads,
+            clip_observations=bool(env_options.get("clip_observations", True)),
+            render_width=int(env_options.get("render_width", 480)),
+            render_height=int(env_options.get("render_height", 360)),
+        )
+        self.num_envs = self._core.num_envs
+        self.single_observation_space = spaces.Box(
+            low=self._core.observation_low(),
+            high=self._core.observation_high(),
+            dtype=np.float32,
+        )
+        self.single_action_space = spaces.Box(
+            low=self._core.action_low(),
+            high=self._core.action_high(),
+            dtype=np.float32,
+        )
+        self.observation_space = batch_space(self.single_observation_space, self.num_envs)
+        self.action_space = batch_space(self.single_action_space, self.num_envs)
+        self.metadata = {
+            **self.metadata,
+            "autoreset_mode": mode,
+            "render_fps": round(1.0 / self._core.env_dt),
+        }
+
+    @property
+    def max_time_steps(self) -> int:
+        """t_max: the env step at which the core truncates an episode."""
+        return self._core.max_time_steps
+
+    def reset(
+        self,
+        *,
+        seed: int | Sequence[int | None] | None = None,
+        options: dict[str, Any] | None = None,
+    ) -> tuple[np.ndarray, dict[str, Any]]:
+        """Resets the envs. ``seed``: an int (env i gets ``seed + i``), a list of one seed (or
+        None) per env, or None (each env continues its streams). ``options``: ``goal`` (every
+        env reset gets this goal) and ``reset_mask`` (reset only these envs; the others report
+        their current observation)."""
+        options = dict(options or {})
+        mask = options.pop("reset_mask", None)
+        goal = reset_goal(options)
+        if mask is not None:
+            mask = np.asarray(mask, dtype=bool)
+            if mask.shape != (self.num_envs,):
+                raise ValueError(
+                    f"reset_mask has shape {mask.shape}, expected ({self.num_envs},)"
+                )
+            mask = [bool(m) for m in mask]
+        seeds = None
+        if seed is not None and not isinstance(seed, (int, np.integer)):
+            seeds = [check_seed(s) for s in seed]
+            if len(seeds) != self.num_envs:
+                raise ValueError(f"{len(seeds)} seeds given for {self.num_envs} envs")
+            seed = None
+        seed = check_seed(seed)
+        super().reset(seed=seed)
+        return self._core.reset(seed=seed, seeds=seeds, goal=goal, mask=mask)
+
+    def step(
+        self, actions: Any
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, dict[str, Any]]:
+        """Steps every env with its row of ``actions`` (shape (num_envs, 12))."""
+        actions = np.ascontiguousarray(actions, dtype=np.float64)
+        if actions.ndim != 2:
+            raise ValueError(
+                f"actions have shape {actions.shape}, expected {self.action_space.shape}"
+            )
+        return self._core.step(actions)
+
+    def render(self) -> tuple[np.ndarray, ...] | None:
+        """With ``render_mode="rgb_array"``: one uint8 (H, W, 3) frame per env."""
+        if self.render_mode is None:
+            gymnasium.logger.warn(
+                "render() called without a render_mode: make the env with "
+                'render_mode="rgb_array"'
+            )
+            return None
+        return tuple(self._core.render(i) for i in range(self.num_envs))
+
+    def env_info(self, i: int) -> dict[str, Any]:
+        """Env ``i``'s info of its last step or reset, as ``HyQEnv`` gives it."""
+        return self._core.env_info(i)
+
+    def final_observation(self, i: int) -> np.ndarray | None:
+        """With ``SAME_STEP`` autoreset: env ``i``'s final observation if its episode ended in
+        the last step, else None."""
+        return self._core.final_observation(i)
+
+    def final_info(self, i: int) -> dict[str, Any] | None:
+        """With ``SAME_STEP`` autoreset: env ``i``'s final info if its episode ended in the last
+        step, else None."""
+        return self._core.final_info(i)

@@ -1,0 +1,51 @@
+//! The extension module `hyq._core`: the Rust side of the Python package `hyq`.
+//!
+//! It holds the environment ([`hyq_env::Env`] on the rapier backend) and the vector env
+//! ([`hyq_env::VecEnv`]) and hands their results to Python as fresh NumPy arrays and dicts. The
+//! Gymnasium classes users see (`hyq.HyQEnv`, `hyq.HyQVectorEnv`) are thin Python subclasses of
+//! `gymnasium.Env` and `gymnasium.vector.VectorEnv` in `python/hyq/`, because a `#[pyclass]`
+//! cannot pass the `isinstance(env, gymnasium.Env)` checks of Gymnasium's and
+//! Stable-Baselines3's checkers.
+//!
+//! Contract with the Python side:
+//! - configuration crosses as dotted `(key, TOML value)` pairs applied with
+//!   [`hyq_env::EnvConfig::set_all`] on top of an optional TOML file, so Python keyword
+//!   arguments, `hyq run --set` and TOML files share one parser and one set of error messages;
+//! - every array returned is newly allocated (Gymnasium's data-reuse check);
+//! - errors keep the core's messages: a refused action, a bad configuration or an unusable goal
+//!   is a `ValueError`; a step before reset or after the episode ended, or a physics failure
+//!   while building or resetting, is a `RuntimeError`;
+//! - the physics runs with the GIL released (`Python::detach`), the vector env on rayon.
+
+mod config;
+mod errors;
+mod frames;
+mod info;
+mod single;
+mod vector;
+
+use pyo3::prelude::*;
+
+/// The default t_max (`task.max_time_steps`): the `max_episode_steps` `HyQ-v0` is registered
+/// with.
+#[pyfunction]
+fn default_max_time_steps() -> u64 {
+    hyq_env::EnvConfig::default().task.max_time_steps
+}
+
+/// The default configuration as TOML text, every key written.
+#[pyfunction]
+fn default_config_toml() -> String {
+    hyq_env::EnvConfig::default().to_toml_string()
+}
+
+/// The `hyq._core` module.
+#[pymodule]
+fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<single::Core>()?;
+    m.add_class::<vector::VecCore>()?;
+    m.add_function(wrap_pyfunction!(default_max_time_steps, m)?)?;
+    m.add_function(wrap_pyfunction!(default_config_toml, m)?)?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}

@@ -1,0 +1,264 @@
+//! `hyq._core.Core`: one environment on the rapier backend, for `hyq.HyQEnv`.
+
+use hyq_env::{Env, ResetOptions};
+use hyq_rapier::RapierBackend;
+use numpy::{IntoPyArray, PyArray1, PyArray3, PyReadonlyArray1};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::config;
+use crate::errors::env_error;
+use crate::frames::FrameSource;
+use crate::info::info_dict;
+
+/// One HyQ environment (rapier backend). Built by `hyq.HyQEnv`, which adds the Gymnasium API.
+#[pyclass(module = "hyq._core")]
+pub struct Core {
+    env: Env<RapierBackend>,
+    /// The observation's declared bounds (f32) when observations are clipped to them.
+    clip: Option<(Vec<f32>, Vec<f32>)>,
+    /// The frame size for `render`; the renderer is built on the first frame.
+    render_size: (u32, u32),
+    frames: Option<FrameSource>,
+    /// Σ reward since the last reset, for the frame overlay.
+    episode_return: f64,
+}
+
+/// The observation's declared bounds as f32 (the §3 table's for HyQ).
+pub fn observation_bounds<B: hyq_physics::Backend>(env: &Env<B>) -> (Vec<f32>, Vec<f32>) {
+    let rows = env.observation_layout().rows();
+    (
+        rows.iter().map(|r| r.min as f32).collect(),
+        rows.iter().map(|r| r.max as f32).collect(),
+    )
+}
+
+/// A fresh copy of `obs`, clipped to `clip`'s bounds when given, and whether any value was
+/// outside them (and so clipped).
+pub fn observation_copy(obs: &[f32], clip: Option<&(Vec<f32>, Vec<f32>)>) -> (Vec<f32>, bool) {
+    match clip {
+        Some((low, high)) => {
+            let mut clipped = false;
+            let out = obs
+                .iter()
+                .zip(low.iter().zip(high))
+                .map(|(v, (lo, hi))| {
+                    let c = v.clamp(*lo, *hi);
+                    clipped |= c != *v;
+                    c
+                })
+                .collect();
+            (out, clipped)
+        }
+        None => (obs.to_vec(), false),
+    }
+}
+
+impl Core {
+    /// The current observation (clipped if configured) and the info, which says whether the
+    /// observation was clipped.
+    fn observation_and_info<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyArray1<f32>>, Bound<'py, PyDict>)> {
+        let (obs, clipped) = observation_copy(self.env.observation_f32(), self.clip.as_ref());
+        let info = info_dict(py, self.env.info(), self.env.model())?;
+        info.set_item("observation_clipped", clipped)?;
+        Ok((obs.into_pyarray(py), info))
+    }
+}
+
+#[pymethods]
+impl Core {
+    /// Builds the environment from an optional TOML file and dotted `(key, TOML value)` pairs
+    /// (`("task.fall_penalty", "1.5")`); errors name the key and value.
+    #[new]
+    #[pyo3(signature = (pairs, config_file=None, clip_observations=true, render_width=480, render_height=360))]
+    fn new(
+        pairs: Vec<(String, String)>,
+        config_file: Option<String>,
+        clip_observations: bool,
+        render_width: u32,
+        render_height: u32,
+    ) -> PyResult<Self> {
+        let config = config::build(config_file.as_deref(), &pairs)?;
+        let env =
+            Env::<RapierBackend>::new(hyq_physics::bundled::hyq(), config).map_err(env_error)?;
+        let clip = clip_observations.then(|| observation_bounds(&env));
+        // The size is checked now, so a bad one fails at construction, not at the first frame.
+        hyq_render::RenderConfig {
+            width: render_width,
+            height: render_height,
+            ..hyq_render::RenderConfig::default()
+        }
+        .validate()
+        .map_err(crate::errors::render_error)?;
+        Ok(Self {
+            env,
+            clip,
+            render_size: (render_width, render_height),
+            frames: None,
+            episode_return: 0.0,
+        })
+    }
+
+    /// Starts an episode: `seed` reseeds the goal and reset-noise streams (None continues
+    /// them), `goal` overrides this episode's goal. Returns (observation, info).
+    #[pyo3(signature = (seed=None, goal=None))]
+    fn reset<'py>(
+        &mut self,
+        py: Python<'py>,
+        seed: Option<u64>,
+        goal: Option<[f64; 3]>,
+    ) -> PyResult<(Bound<'py, PyArray1<f32>>, Bound<'py, PyDict>)> {
+        let options = ResetOptions {
+            goal,
+            ..ResetOptions::default()
+        };
+        let env = &mut self.env;
+        py.detach(|| env.reset(seed, &options).map(|_| ()))
+            .map_err(env_error)?;
+        self.episode_return = 0.0;
+        self.observation_and_info(py)
+    }
+
+    /// One env step with `action` (float64, one value per joint). Returns (observation,
+    /// reward, terminated, truncated, info).
+    #[allow(clippy::type_complexity)]
+    fn step<'py>(
+        &mut self,
+        py: Python<'py>,
+        action: PyReadonlyArray1<'py, f64>,
+    ) -> PyResult<(
+        Bound<'py, PyArray1<f32>>,
+        f64,
+        bool,
+        bool,
+        Bound<'py, PyDict>,
+    )> {
+        let action = action
+            .as_slice()
+            .map_err(|e| PyValueError::new_err(format!("action: {e}")))?
+            .to_vec();
+        let env = &mut self.env;
+        let (reward, terminated, truncated) = py
+            .detach(|| {
+                env.step(&action)
+                    .map(|s| (s.reward, s.terminated, s.truncated))
+            })
+            .map_err(env_error)?;
+        self.episode_return += reward;
+        let (obs, info) = self.observation_and_info(py)?;
+        Ok((obs, reward, terminated, truncated, info))
+    }
+
+    /// A frame of the current state: uint8, (height, width, 3). Before the first reset it
+    /// shows the robot at its spawn pose without goal or overlay.
+    fn render<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyArray3<u8>>> {
+        let frames = match &mut self.frames {
+            Some(f) => f,
+            None => self.frames.insert(FrameSource::new(
+                &self.env,
+                self.render_size.0,
+                self.render_size.1,
+            )?),
+        };
+        frames.frame(py, &self.env, self.episode_return)
+    }
+
+    /// The observation's declared lower bounds (float32; the §3 table's).
+    fn observation_low<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f32>> {
+        observation_bounds(&self.env).0.into_pyarray(py)
+    }
+
+    /// The observation's declared upper bounds (float32).
+    fn observation_high<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f32>> {
+        observation_bounds(&self.env).1.into_pyarray(py)
+    }
+
+    /// The action space's lower bounds (float32; −1 in the normalized and delta modes, the
+    /// joints' lower limits in the absolute mode).
+    fn action_low<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f32>> {
+        let low: Vec<f32> = self
+            .env
+            .action_space()
+            .low()
+            .iter()
+            .map(|v| *v as f32)
+            .collect();
+        low.into_pyarray(py)
+    }
+
+    /// The action space's upper bounds (float32).
+    fn action_high<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f32>> {
+        let high: Vec<f32> = self
+            .env
+            .action_space()
+            .high()
+            .iter()
+            .map(|v| *v as f32)
+            .collect();
+        high.into_pyarray(py)
+    }
+
+    /// The observation rows' names, in order (`lf_haa_angle`, …, `trunk_position_z`).
+    fn observation_names(&self) -> Vec<String> {
+        self.env
+            .observation_layout()
+            .rows()
+            .iter()
+            .map(|r| r.name.to_string())
+            .collect()
+    }
+
+    /// The joints' names in action order.
+    fn joint_names(&self) -> Vec<String> {
+        self.env
+            .model()
+            .joints()
+            .iter()
+            .map(|j| j.name.clone())
+            .collect()
+    }
+
+    /// t_max (`task.max_time_steps`).
+    #[getter]
+    fn max_time_steps(&self) -> u64 {
+        self.env.config().task.max_time_steps
+    }
+
+    /// Δt_env = sub-steps × dt (s).
+    #[getter]
+    fn env_dt(&self) -> f64 {
+        self.env.env_dt()
+    }
+
+    /// The action mode (`normalized`, `absolute` or `delta`).
+    #[getter]
+    fn action_mode(&self) -> &'static str {
+        config::action_mode_name(self.env.config().action.mode)
+    }
+
+    /// Whether observations are clipped to the declared bounds.
+    #[getter]
+    fn clip_observations(&self) -> bool {
+        self.clip.is_some()
+    }
+
+    /// The frame size (width, height) of `render`.
+    #[getter]
+    fn render_size(&self) -> (u32, u32) {
+        self.render_size
+    }
+
+    /// The whole validated configuration as TOML text.
+    fn config_toml(&self) -> String {
+        self.env.config().to_toml_string()
+    }
+
+    /// Whether the next call must be `reset` (no episode started, or it ended).
+    fn needs_reset(&self) -> bool {
+        self.env.needs_reset()
+    }
+}

@@ -1,0 +1,373 @@
+//! `hyq._core.VecCore`: N environments stepped together on rayon with the GIL released, for
+//! `hyq.HyQVectorEnv` (Gymnasium) and `hyq.sb3.HyQVecEnv` (Stable-Baselines3).
+//!
+//! The autoreset modes are hyq-env's [`AutoReset`]: `next_step` (Gymnasium's default),
+//! `same_step` (what Stable-Baselines3 expects, with the final observation and info kept until
+//! the next step) and `disabled`.
+
+use hyq_env::{AutoReset, ResetOptions, VecEnv, VecStepOut};
+use hyq_rapier::RapierBackend;
+use numpy::ndarray::Array2;
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3, PyReadonlyArray2};
+use pyo3::exceptions::{PyIndexError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::config;
+use crate::errors::{render_error, vec_env_error};
+use crate::frames::FrameSource;
+use crate::info::{info_dict, vector_info_dict};
+use crate::single::{observation_bounds, observation_copy};
+
+/// N HyQ environments (rapier backend) stepped in parallel.
+#[pyclass(module = "hyq._core")]
+pub struct VecCore {
+    vec: VecEnv<RapierBackend>,
+    clip: Option<(Vec<f32>, Vec<f32>)>,
+    /// Σ reward of each env's current episode, for the frame overlay.
+    returns: Vec<f64>,
+    render_size: (u32, u32),
+    frames: Option<FrameSource>,
+}
+
+/// The autoreset mode named as in Gymnasium's `AutoresetMode` values.
+fn autoreset_mode(name: &str) -> PyResult<AutoReset> {
+    match name {
+        "next_step" | "NextStep" => Ok(AutoReset::NextStep),
+        "same_step" | "SameStep" => Ok(AutoReset::SameStep),
+        "disabled" | "Disabled" => Ok(AutoReset::Disabled),
+        other => Err(PyValueError::new_err(format!(
+            "autoreset_mode = {other:?}: expected \"next_step\", \"same_step\" or \"disabled\""
+        ))),
+    }
+}
+
+type StepArrays<'py> = (
+    Bound<'py, PyArray2<f32>>,
+    Bound<'py, PyArray1<f64>>,
+    Bound<'py, PyArray1<bool>>,
+    Bound<'py, PyArray1<bool>>,
+    Bound<'py, PyDict>,
+);
+
+impl VecCore {
+    fn check_index(&self, i: usize) -> PyResult<()> {
+        if i < self.vec.num_envs() {
+            Ok(())
+        } else {
+            Err(PyIndexError::new_err(format!(
+                "env index {i} out of range: there are {} envs",
+                self.vec.num_envs()
+            )))
+        }
+    }
+
+    /// (N, obs_len) observations from a flat buffer (clipped if configured) and the vector
+    /// info, with each env's `observation_clipped` flag.
+    fn observations_and_infos<'py>(
+        &self,
+        py: Python<'py>,
+        mut flat: Vec<f32>,
+    ) -> PyResult<(Bound<'py, PyArray2<f32>>, Bound<'py, PyDict>)> {
+        let mut clipped = vec![false; self.vec.num_envs()];
+        if self.clip.is_some() {
+            for (o, c) in flat
+                .chunks_mut(self.vec.observation_len())
+                .zip(clipped.iter_mut())
+            {
+                let (copy, was_clipped) = observation_copy(o, self.clip.as_ref());
+                o.copy_from_slice(&copy);
+                *c = was_clipped;
+            }
+        }
+        let array = Array2::from_shape_vec((self.vec.num_envs(), self.vec.observation_len()), flat)
+            .map_err(|e| PyValueError::new_err(format!("observations: {e}")))?;
+        let infos: Vec<_> = (0..self.vec.num_envs()).map(|i| self.vec.info(i)).collect();
+        let info = vector_info_dict(py, &infos)?;
+        info.set_item("observation_clipped", clipped.into_pyarray(py))?;
+        info.set_item(
+            "_observation_clipped",
+            vec![true; infos.len()].into_pyarray(py),
+        )?;
+        Ok((array.into_pyarray(py), info))
+    }
+
+    fn current_observations(&self) -> Vec<f32> {
+        (0..self.vec.num_envs())
+            .flat_map(|i| self.vec.env(i).observation_f32().iter().copied())
+            .collect()
+    }
+}
+
+#[pymethods]
+impl VecCore {
+    /// `num_envs` environments of one configuration (as `Core`), with the autoreset mode
+    /// `"next_step"`, `"same_step"` or `"disabled"`, on rayon's global pool or on a pool of
+    /// `threads` threads.
+    #[new]
+    #[pyo3(signature = (pairs, num_envs, autoreset_mode="next_step", config_file=None, threads=None, clip_observations=true, render_width=480, render_height=360))]
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        pairs: Vec<(String, String)>,
+        num_envs: usize,
+        autoreset_mode: &str,
+        config_file: Option<String>,
+        threads: Option<usize>,
+        clip_observations: bool,
+        render_width: u32,
+        render_height: u32,
+    ) -> PyResult<Self> {
+        let mode = self::autoreset_mode(autoreset_mode)?;
+        let config = config::build(config_file.as_deref(), &pairs)?;
+        let mut vec =
+            VecEnv::<RapierBackend>::new(hyq_physics::bundled::hyq(), config, num_envs, mode)
+                .map_err(vec_env_error)?;
+        if let Some(threads) = threads {
+            vec = vec.with_threads(threads).map_err(vec_env_error)?;
+        }
+        let clip = clip_observations.then(|| observation_bounds(vec.env(0)));
+        hyq_render::RenderConfig {
+            width: render_width,
+            height: render_height,
+            ..hyq_render::RenderConfig::default()
+        }
+        .validate()
+        .map_err(render_error)?;
+        Ok(Self {
+            returns: vec![0.0; vec.num_envs()],
+            vec,
+            clip,
+            render_size: (render_width, render_height),
+            frames: None,
+        })
+    }
+
+    /// Resets envs; returns ((N, obs_len) observations, vector info).
+    ///
+    /// `seed`: env i is seeded `seed + i`; `seeds`: one seed (or None) per env instead; `goal`:
+    /// this episode's goal for every env reset; `mask`: reset only the envs whose flag is true
+    /// (the others keep their state and report their current observation).
+    #[pyo3(signature = (seed=None, seeds=None, goal=None, mask=None))]
+    fn reset<'py>(
+        &mut self,
+        py: Python<'py>,
+        seed: Option<u64>,
+        seeds: Option<Vec<Option<u64>>>,
+        goal: Option<[f64; 3]>,
+        mask: Option<Vec<bool>>,
+    ) -> PyResult<(Bound<'py, PyArray2<f32>>, Bound<'py, PyDict>)> {
+        let n = self.vec.num_envs();
+        for (what, len) in [
+            ("seeds", seeds.as_ref().map(Vec::len)),
+            ("mask", mask.as_ref().map(Vec::len)),
+        ] {
+            if let Some(len) = len
+                && len != n
+            {
+                return Err(PyValueError::new_err(format!(
+                    "{what} has {len} values, expected one per env ({n})"
+                )));
+            }
+        }
+        if seeds.is_none() && goal.is_none() && mask.is_none() {
+            let mut flat = vec![0.0f32; n * self.vec.observation_len()];
+            let vec = &mut self.vec;
+            py.detach(|| vec.reset(seed, &mut flat))
+                .map_err(vec_env_error)?;
+            self.returns.fill(0.0);
+            return self.observations_and_infos(py, flat);
+        }
+        let options = ResetOptions {
+            goal,
+            ..ResetOptions::default()
+        };
+        for i in 0..n {
+            if mask.as_ref().is_some_and(|m| !m[i]) {
+                continue;
+            }
+            let seed_i = match &seeds {
+                Some(s) => s[i],
+                None => seed.map(|s| s.wrapping_add(i as u64)),
+            };
+            self.vec
+                .reset_env(i, seed_i, &options)
+                .map_err(vec_env_error)?;
+            self.returns[i] = 0.0;
+        }
+        let flat = self.current_observations();
+        self.observations_and_infos(py, flat)
+    }
+
+    /// Steps every env with its row of `actions` ((N, action_len) float64); returns
+    /// (observations, rewards, terminated, truncated, vector info).
+    fn step<'py>(
+        &mut self,
+        py: Python<'py>,
+        actions: PyReadonlyArray2<'py, f64>,
+    ) -> PyResult<StepArrays<'py>> {
+        let (n, width) = (self.vec.num_envs(), self.vec.action_len());
+        let shape = actions.as_array().shape().to_vec();
+        if shape != [n, width] {
+            return Err(PyValueError::new_err(format!(
+                "actions have shape {shape:?}, expected ({n}, {width})"
+            )));
+        }
+        // Copied while the GIL is held: another Python thread may write to the array while
+        // the envs step.
+        let actions: Vec<f64> = actions.as_array().iter().copied().collect();
+        let mut observations = vec![0.0f32; n * self.vec.observation_len()];
+        let mut rewards = vec![0.0f64; n];
+        let mut terminated = vec![false; n];
+        let mut truncated = vec![false; n];
+        let vec = &mut self.vec;
+        py.detach(|| {
+            vec.step(
+                &actions,
+                VecStepOut {
+                    observations: &mut observations,
+                    rewards: &mut rewards,
+                    terminated: &mut terminated,
+                    truncated: &mut truncated,
+                },
+            )
+        })
+        .map_err(vec_env_error)?;
+        for (i, r) in rewards.iter().enumerate() {
+            // t = 0: the env was reset in this step (an autoreset), so a new episode began.
+            self.returns[i] = if self.vec.info(i).t == 0 {
+                0.0
+            } else {
+                self.returns[i] + r
+            };
+        }
+        let (observations, infos) = self.observations_and_infos(py, observations)?;
+        Ok((
+            observations,
+            rewards.into_pyarray(py),
+            terminated.into_pyarray(py),
+            truncated.into_pyarray(py),
+            infos,
+        ))
+    }
+
+    /// Env `i`'s info of its last step or reset, as the single env's dict.
+    fn env_info<'py>(&self, py: Python<'py>, i: usize) -> PyResult<Bound<'py, PyDict>> {
+        self.check_index(i)?;
+        let info = info_dict(py, self.vec.info(i), self.vec.env(i).model())?;
+        let (_, clipped) = observation_copy(self.vec.env(i).observation_f32(), self.clip.as_ref());
+        info.set_item("observation_clipped", clipped)?;
+        Ok(info)
+    }
+
+    /// With `same_step` autoreset: env `i`'s final observation if its episode ended in the
+    /// last step, else None.
+    fn final_observation<'py>(
+        &self,
+        py: Python<'py>,
+        i: usize,
+    ) -> PyResult<Option<Bound<'py, PyArray1<f32>>>> {
+        self.check_index(i)?;
+        Ok(self
+            .vec
+            .final_observation(i)
+            .map(|o| observation_copy(o, self.clip.as_ref()).0.into_pyarray(py)))
+    }
+
+    /// With `same_step` autoreset: env `i`'s final step's info if its episode ended in the last
+    /// step, else None.
+    fn final_info<'py>(&self, py: Python<'py>, i: usize) -> PyResult<Option<Bound<'py, PyDict>>> {
+        self.check_index(i)?;
+        let (Some(info), Some(obs)) = (self.vec.final_info(i), self.vec.final_observation(i))
+        else {
+            return Ok(None);
+        };
+        let info = info_dict(py, info, self.vec.env(i).model())?;
+        let (_, clipped) = observation_copy(obs, self.clip.as_ref());
+        info.set_item("observation_clipped", clipped)?;
+        Ok(Some(info))
+    }
+
+    /// A frame of env `i`'s current state (uint8, (height, width, 3)).
+    fn render<'py>(&mut self, py: Python<'py>, i: usize) -> PyResult<Bound<'py, PyArray3<u8>>> {
+        self.check_index(i)?;
+        let frames = match &mut self.frames {
+            Some(f) => f,
+            None => self.frames.insert(FrameSource::new(
+                self.vec.env(0),
+                self.render_size.0,
+                self.render_size.1,
+            )?),
+        };
+        frames.frame(py, self.vec.env(i), self.returns[i])
+    }
+
+    /// N.
+    #[getter]
+    fn num_envs(&self) -> usize {
+        self.vec.num_envs()
+    }
+
+    /// The observation's declared lower bounds (float32).
+    fn observation_low<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f32>> {
+        observation_bounds(self.vec.env(0)).0.into_pyarray(py)
+    }
+
+    /// The observation's declared upper bounds (float32).
+    fn observation_high<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f32>> {
+        observation_bounds(self.vec.env(0)).1.into_pyarray(py)
+    }
+
+    /// The action space's lower bounds (float32).
+    fn action_low<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f32>> {
+        let low: Vec<f32> = self
+            .vec
+            .env(0)
+            .action_space()
+            .low()
+            .iter()
+            .map(|v| *v as f32)
+            .collect();
+        low.into_pyarray(py)
+    }
+
+    /// The action space's upper bounds (float32).
+    fn action_high<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f32>> {
+        let high: Vec<f32> = self
+            .vec
+            .env(0)
+            .action_space()
+            .high()
+            .iter()
+            .map(|v| *v as f32)
+            .collect();
+        high.into_pyarray(py)
+    }
+
+    /// t_max (`task.max_time_steps`).
+    #[getter]
+    fn max_time_steps(&self) -> u64 {
+        self.vec.env(0).config().task.max_time_steps
+    }
+
+    /// Δt_env (s).
+    #[getter]
+    fn env_dt(&self) -> f64 {
+        self.vec.env(0).env_dt()
+    }
+
+    /// The action mode.
+    #[getter]
+    fn action_mode(&self) -> &'static str {
+        config::action_mode_name(self.vec.env(0).config().action.mode)
+    }
+
+    /// The autoreset mode (`next_step`, `same_step` or `disabled`).
+    #[getter]
+    fn autoreset_mode(&self) -> &'static str {
+        match self.vec.autoreset() {
+            AutoReset::NextStep => "next_step",
+            AutoReset::SameStep => "same_step",
+            AutoReset::Disabled => "disabled",
+        }
+    }
+}
