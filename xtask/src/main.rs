@@ -5,6 +5,7 @@
 //! it. It runs every test the machine can run, says loudly what it could not run and why, and
 //! fails when a part that was required (`--require dart`, `--require python`) cannot run.
 
+mod bench;
 mod docs;
 mod soak;
 mod stages;
@@ -23,6 +24,14 @@ commands:
                                         random actions for N env steps (default 10^6) in a
                                         release build of `hyq`: no panic, no NaN in any output;
                                         prints the episodes and the observed range of each row
+  bench-vs-anchors [--reps R] [--steps N] [--vec-steps N] [--anchor-steps N]
+                   [--anchors DIR] [--venv DIR] [--no-dart]
+                                        the speed targets: hyq bench (rapier, DART when
+                                        installed, the vector env on 1 and 2 threads) and the
+                                        anchors (MuJoCo, DART from Python; venv outside the
+                                        repository, default /tmp/anchor-venv) interleaved R
+                                        times (default 5); prints medians, min/max and ratios
+                                        and writes target/bench-vs-anchors.md
   help                                  this text
 ";
 
@@ -31,6 +40,7 @@ fn main() -> ExitCode {
     let result = match args.first().map(String::as_str) {
         Some("test") => stages::test(&args[1..]),
         Some("soak") => soak::soak(&args[1..]),
+        Some("bench-vs-anchors") => bench::bench_vs_anchors(&args[1..]),
         Some("help") | Some("--help") | Some("-h") | None => {
             print!("{HELP}");
             Ok(())
