@@ -84,6 +84,8 @@
 //!   the other. The robot's parts are convex and mostly apart, so this rarely shows.
 //! - Cylinders are drawn as capsules; a collision shape of a kind this crate does not know is
 //!   neither drawn nor shadowed. Meshes never reach it (the model refuses them).
+//! - The overlay's text has a fixed size (13 px): a frame under about 300 × 190 px is drawn
+//!   without the overlay rather than with a panel that hides the robot.
 //! - Text is DejaVu Sans cut to Latin, Greek and a few symbols (`assets/fonts/README.md`).
 
 mod camera;

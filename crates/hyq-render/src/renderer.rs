@@ -161,6 +161,9 @@ const GOAL_BALL_M: f64 = 0.06;
 const GOAL_POLE_M: f64 = 0.01;
 /// Feet are small (HyQ's are 2 cm spheres): never draw one smaller than this radius (px).
 const MIN_FOOT_PX: f32 = 2.5;
+/// The largest share of the image's width and of its height the overlay panel may take; a
+/// frame too small for it (under about 300 × 190 px for HyQ) is drawn without the overlay.
+const OVERLAY_MAX_SHARE: [f32; 2] = [2.0 / 3.0, 1.0 / 2.0];
 /// Overlay text size (px per em) and line height (px).
 const TEXT_PX: f32 = 13.0;
 const LINE_PX: f32 = 18.0;
@@ -809,6 +812,15 @@ impl Renderer {
         let rows = labels.len() as f32 + if self.foot_names.is_empty() { 0.0 } else { 1.0 };
         let panel_w = inner_w + 2.0 * pad;
         let panel_h = rows * LINE_PX + 2.0 * pad - 2.0;
+        // The text has a fixed pixel size, so in a small frame (an 84 × 84 rgb_array for
+        // pixel-based learning) the panel would hide the robot: it is left out when it would
+        // take more than OVERLAY_MAX_SHARE of the width or of the height.
+        let (w, h) = (self.config.width as f32, self.config.height as f32);
+        if margin + panel_w > OVERLAY_MAX_SHARE[0] * w
+            || margin + panel_h > OVERLAY_MAX_SHARE[1] * h
+        {
+            return;
+        }
         if let Some(path) = rounded_rect(margin, margin, panel_w, panel_h, 6.0) {
             self.pixmap.fill_path(
                 &path,

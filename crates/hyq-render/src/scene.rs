@@ -42,7 +42,9 @@ pub struct Scene<'a> {
     /// The goal (world, m): a green ball on a pole with a ring on the ground, and a dashed line
     /// to it from under the trunk. `None` draws no goal.
     pub goal: Option<Point3<f64>>,
-    /// The text overlay; `None` draws none.
+    /// The text overlay; `None` draws none. Its text has a fixed size (13 px), so a frame too
+    /// small to hold it beside the robot (the panel would take more than 2/3 of the width or
+    /// 1/2 of the height: under about 300 × 190 px) is drawn without it.
     pub overlay: Option<Overlay>,
     /// The point the camera looks at; `None` (the usual) follows the trunk frame's origin.
     pub camera_target: Option<Point3<f64>>,

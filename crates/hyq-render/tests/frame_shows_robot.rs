@@ -2,7 +2,7 @@
 //! the pixel its centre projects to, a fallen robot looks different from a standing one, a foot
 //! in contact changes colour, the overlay prints its numbers, rendering is deterministic, and
 //! bad input is refused with an error naming what was wrong. A value that rounds to zero prints as
-//! `0.00`, never `-0.00`.
+//! `0.00`, never `-0.00`; a frame too small for the overlay is drawn without it.
 
 // In tests and benches a failed unwrap is a failed run, with its location.
 #![allow(clippy::unwrap_used)]
@@ -193,6 +193,40 @@ fn overlay_prints_its_numbers_in_the_top_left_corner() {
     let text = differing_pixels(&one, &two, 30);
     assert!(text.len() > 10, "{} pixels", text.len());
     assert!(text.iter().all(|&(x, y)| x < 240 && y < 40));
+}
+
+#[test]
+fn small_frames_leave_the_overlay_out_so_that_the_robot_shows() {
+    let contacts = no_contacts();
+    let (trunk, q) = standing_at(0.0, 0.0);
+    let scene = Scene::new(
+        RobotPose::Joints {
+            trunk: &trunk,
+            q: &q,
+        },
+        &contacts,
+    );
+    let overlay = Overlay {
+        time_s: 1.0,
+        distance_to_goal_m: 4.0,
+        episode_return: 1.5,
+    };
+    let drawn = |width, height| {
+        let config = RenderConfig {
+            width,
+            height,
+            ..RenderConfig::default()
+        };
+        let mut r = Renderer::new(model(), config).unwrap();
+        r.render(&scene).unwrap() != r.render(&scene.with_overlay(overlay)).unwrap()
+    };
+    // An 84 × 84 rgb_array (pixel-based learning) and a small GIF: the panel would cover the
+    // robot, so it is left out.
+    assert!(!drawn(84, 84));
+    assert!(!drawn(240, 180));
+    // From 320 × 240 on it fits.
+    assert!(drawn(320, 240));
+    assert!(drawn(480, 360));
 }
 
 #[test]
