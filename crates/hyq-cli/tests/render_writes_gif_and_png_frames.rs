@@ -1,7 +1,7 @@
 //! Invariant: `hyq render` writes an episode as an animated GIF (a path ending in `.gif`) or as
 //! numbered PNG frames (a directory), every frame of the requested size, one frame per 1/fps
-//! simulated seconds from the reset on, each showing a scene (not one flat colour) that changes
-//! as the robot moves; the same seed writes the same frames; and bad `--out`, `--width`,
+//! simulated seconds from the reset on, each showing a scene (not one flat colour) with the
+//! trunk at the image centre, changing as the robot moves; the same seed writes the same frames; and bad `--out`, `--width`,
 //! `--fps` or `--seconds` values are refused with one error line naming them.
 
 // In tests a failed unwrap is a failed test, with its location.
@@ -147,6 +147,16 @@ fn png_directory_gets_numbered_frames_and_the_same_seed_gives_the_same_bytes() {
             "{}: {} colours",
             f.display(),
             colours(&rgb)
+        );
+        // The camera follows the trunk, whose centre projects to the image centre: that pixel
+        // is the trunk's steel blue, not the pale ground or sky.
+        let i = (30 * 80 + 40) * 3;
+        let [r, g, b] = [rgb[i], rgb[i + 1], rgb[i + 2]];
+        assert!(
+            b > r + 30 && b < 220,
+            "{}: centre pixel {:?} is not the trunk",
+            f.display(),
+            [r, g, b]
         );
     }
     let files_b = png_frames(&b);
