@@ -1,0 +1,349 @@
+//! One comparison: the scenario's script on two backends, the measurements, the one-step
+//! comparison from shared states, and the ledger's verdict on each metric.
+
+use std::sync::Arc;
+
+use hyq_env::{EnvConfig, Reason};
+use hyq_physics::{Backend, RobotModel};
+use serde::Serialize;
+
+use crate::error::CompareError;
+use crate::ledger::{Ledger, Metric, ToleranceSource};
+use crate::metrics::{
+    OneStepErrors, OneStepSummary, TrajectoryComparison, compare_trajectories, one_step_errors,
+    sample_indices, summarise_one_step,
+};
+use crate::report::{Report, Series, SideReport};
+use crate::run::{Trajectory, build_env, one_step, run_script, standing_height};
+use crate::scenario::{Scenario, check_seconds};
+
+/// The default number of shared states in the one-step comparison.
+pub const DEFAULT_ONE_STEP_STATES: usize = 50;
+
+/// What to compare: the scenario, its seed and length, the number of shared states, and
+/// configuration overrides (dotted `KEY`, `VALUE` pairs as `EnvConfig::set_all` takes them).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ComparisonSpec {
+    /// The scenario.
+    pub scenario: Scenario,
+    /// The seed of both resets and of the random policy.
+    pub seed: u64,
+    /// Simulated seconds; `None` for the scenario's default.
+    pub seconds: Option<f64>,
+    /// Shared states sampled from the first backend's run for the one-step comparison.
+    pub one_step_states: usize,
+    /// Overrides applied to both sides, after the scenario's configuration.
+    pub overrides: Vec<(String, String)>,
+    /// Overrides applied to the second side only, after `overrides` (e.g. a perturbation).
+    pub overrides_b: Vec<(String, String)>,
+}
+
+impl ComparisonSpec {
+    /// The scenario with its defaults: seed 0, default length, 50 shared states, no overrides.
+    pub fn new(scenario: Scenario) -> Self {
+        Self {
+            scenario,
+            seed: 0,
+            seconds: None,
+            one_step_states: DEFAULT_ONE_STEP_STATES,
+            overrides: Vec::new(),
+            overrides_b: Vec::new(),
+        }
+    }
+
+    /// The run length (s).
+    pub fn seconds(&self) -> f64 {
+        self.seconds.unwrap_or(self.scenario.default_seconds())
+    }
+}
+
+/// A parsed `KEY=VALUE` override, as the CLI's `--set` takes it.
+pub fn parse_override(item: &str) -> Result<(String, String), CompareError> {
+    let (key, value) = item.split_once('=').ok_or_else(|| CompareError::Override {
+        item: item.to_owned(),
+        reason: "expected TABLE.KEY=VALUE, e.g. physics.ground_friction=0.8".into(),
+    })?;
+    if key.trim().is_empty() {
+        return Err(CompareError::Override {
+            item: item.to_owned(),
+            reason: "the key before `=` is empty".into(),
+        });
+    }
+    Ok((key.trim().to_owned(), value.trim().to_owned()))
+}
+
+fn apply(config: &mut EnvConfig, overrides: &[(String, String)]) -> Result<(), CompareError> {
+    if overrides.is_empty() {
+        return Ok(());
+    }
+    let pairs: Vec<(&str, &str)> = overrides
+        .iter()
+        .map(|(k, v)| (k.as_str(), v.as_str()))
+        .collect();
+    config.set_all(&pairs).map_err(|e| CompareError::Override {
+        item: overrides
+            .iter()
+            .map(|(k, v)| format!("{k}={v}"))
+            .collect::<Vec<_>>()
+            .join(" "),
+        reason: e.to_string(),
+    })
+}
+
+/// The configuration of one side: the scenario's, then the shared overrides, then the side's.
+/// The script's length stays the scenario's even if an override changes `max_time_steps`.
+fn side_config(
+    spec: &ComparisonSpec,
+    base: &EnvConfig,
+    own: &[(String, String)],
+) -> Result<EnvConfig, CompareError> {
+    let mut config = base.clone();
+    apply(&mut config, &spec.overrides)?;
+    apply(&mut config, own)?;
+    Ok(config)
+}
+
+/// FNV-1a (64 bit) of the script's bits: a short fingerprint saying which actions were fed.
+fn fingerprint(script: &[f64]) -> String {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for v in script {
+        for byte in v.to_bits().to_le_bytes() {
+            h ^= u64::from(byte);
+            h = h.wrapping_mul(0x0000_0100_0000_01b3);
+        }
+    }
+    format!("{h:016x}")
+}
+
+/// Runs the comparison of backend `A` (labelled `labels[0]`) against backend `B`
+/// (`labels[1]`), both on `model`, and checks every metric against `ledger`.
+///
+/// Both sides get the identical action script (see [`Scenario::actions`]). The one-step
+/// comparison samples its shared states from `A`'s run.
+pub fn compare<A: Backend, B: Backend>(
+    model: Arc<RobotModel>,
+    spec: &ComparisonSpec,
+    labels: [&str; 2],
+    ledger: &Ledger,
+) -> Result<Report, CompareError> {
+    let seconds = spec.seconds();
+    check_seconds(seconds)?;
+    if !(1..=1000).contains(&spec.one_step_states) {
+        return Err(CompareError::OneStepStates {
+            value: spec.one_step_states,
+        });
+    }
+    let scenario = spec.scenario;
+    let base = scenario.config(seconds)?;
+    let config_a = side_config(spec, &base, &[])?;
+    let config_b = side_config(spec, &base, &spec.overrides_b)?;
+    let steps = base.task.max_time_steps;
+    // The script is built from the first side's action space; the second side must read
+    // actions the same way or "the same actions" would mean different targets.
+    if config_a.action != config_b.action {
+        return Err(CompareError::Override {
+            item: "action.*".into(),
+            reason: "the two sides must share the action configuration".into(),
+        });
+    }
+    let script = scenario.actions(&model, &config_a, spec.seed, steps)?;
+
+    let mut env_a = build_env::<A>(labels[0], model.clone(), config_a.clone())?;
+    let mut env_b = build_env::<B>(labels[1], model.clone(), config_b.clone())?;
+    let start = scenario.initial_state(&model);
+    let traj_a = run_script(labels[0], &mut env_a, spec.seed, start.as_ref(), &script)?;
+    let traj_b = run_script(labels[1], &mut env_b, spec.seed, start.as_ref(), &script)?;
+
+    // Standing height under each side's physics (the default task and control, with the
+    // side's overrides).
+    let stand_a = side_config(spec, &EnvConfig::default(), &[])?;
+    let stand_b = side_config(spec, &EnvConfig::default(), &spec.overrides_b)?;
+    let height_a = standing_height::<A>(labels[0], model.clone(), stand_a)?;
+    let height_b = standing_height::<B>(labels[1], model.clone(), stand_b)?;
+
+    let picked = sample_indices(&traj_a, spec.one_step_states);
+    let shared: Vec<(u64, &hyq_physics::RobotState, &[f64])> = picked
+        .iter()
+        .map(|&t| (t as u64, &traj_a.states[t], traj_a.targets_after(t)))
+        .collect();
+    let after_a = one_step(labels[0], &mut env_a, &shared)?;
+    let after_b = one_step(labels[1], &mut env_b, &shared)?;
+    let errors: Vec<OneStepErrors> = after_a
+        .iter()
+        .zip(&after_b)
+        .map(|(a, b)| one_step_errors(a, b))
+        .collect();
+    let one_step_summary = summarise_one_step(&errors);
+
+    let trajectory = compare_trajectories(&traj_a, &traj_b);
+    let sides = [
+        side_report(&traj_a, height_a, &spec.overrides, &[]),
+        side_report(&traj_b, height_b, &spec.overrides, &spec.overrides_b),
+    ];
+    let values = metric_values(
+        &traj_a,
+        &traj_b,
+        &trajectory,
+        &one_step_summary,
+        [height_a, height_b],
+    );
+    let series =
+        Series::from_runs(&traj_a, &traj_b).with_divergences(&trajectory, config_a.env_dt());
+    let engines = [A::NAME, B::NAME];
+    let checks: Vec<Check> = values
+        .iter()
+        .map(|(metric, value)| {
+            let (tolerance, source) = ledger.tolerance(engines, scenario, *metric);
+            Check {
+                metric: *metric,
+                value: *value,
+                tolerance,
+                // A NaN never passes.
+                within: *value <= tolerance,
+                source,
+            }
+        })
+        .collect();
+    Ok(Report {
+        scenario,
+        description: scenario.description(),
+        seed: spec.seed,
+        seconds,
+        env_dt_s: config_a.env_dt(),
+        script_steps: steps,
+        script_fingerprint: fingerprint(&script),
+        overrides: spec
+            .overrides
+            .iter()
+            .map(|(k, v)| format!("{k}={v}"))
+            .collect(),
+        overrides_b: spec
+            .overrides_b
+            .iter()
+            .map(|(k, v)| format!("{k}={v}"))
+            .collect(),
+        engines: [A::NAME.to_owned(), B::NAME.to_owned()],
+        ledger: ledger.origin.clone(),
+        sides,
+        trajectory,
+        one_step: OneStepReport {
+            states: errors.len(),
+            states_in_contact: errors.iter().filter(|e| e.in_contact).count(),
+            sub_steps: 1,
+            summary: one_step_summary,
+            per_state: errors,
+        },
+        flagged: checks.iter().filter(|c| !c.within).count(),
+        checks,
+        series,
+    })
+}
+
+/// The one-step comparison's part of the report.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct OneStepReport {
+    /// Shared states compared.
+    pub states: usize,
+    /// Of those, states where either backend touched the ground during the sub-step.
+    pub states_in_contact: usize,
+    /// Physics sub-steps taken from each shared state (1).
+    pub sub_steps: u32,
+    /// Per quantity: max, median, max without contact.
+    pub summary: Vec<OneStepSummary>,
+    /// Per state.
+    pub per_state: Vec<OneStepErrors>,
+}
+
+/// One metric checked against the ledger.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Check {
+    /// The metric.
+    pub metric: Metric,
+    /// Its measured value.
+    pub value: f64,
+    /// Its tolerance.
+    pub tolerance: f64,
+    /// value ≤ tolerance.
+    pub within: bool,
+    /// Where the tolerance came from.
+    #[serde(flatten)]
+    pub source: ToleranceSource,
+}
+
+fn side_report(
+    traj: &Trajectory,
+    standing_height_m: f64,
+    shared: &[(String, String)],
+    own: &[(String, String)],
+) -> SideReport {
+    let zs = traj.positions.iter().map(|p| p[2]);
+    let mean_z = zs.clone().sum::<f64>() / traj.len().max(1) as f64;
+    SideReport {
+        label: traj.label.clone(),
+        engine: traj.engine.to_owned(),
+        end_reasons: traj.reasons.clone(),
+        end_step: traj.end_step,
+        end_time_s: traj.end_step as f64 * traj.env_dt,
+        sums: traj.sums,
+        standing_height_m,
+        mean_trunk_z_m: mean_z,
+        final_position: traj.positions.last().copied().unwrap_or([f64::NAN; 3]),
+        overrides: shared
+            .iter()
+            .chain(own)
+            .map(|(k, v)| format!("{k}={v}"))
+            .collect(),
+    }
+}
+
+fn reasons_key(r: &[Reason]) -> Vec<Reason> {
+    let mut r = r.to_vec();
+    r.sort();
+    r
+}
+
+fn metric_values(
+    a: &Trajectory,
+    b: &Trajectory,
+    t: &TrajectoryComparison,
+    one: &[OneStepSummary],
+    heights: [f64; 2],
+) -> Vec<(Metric, f64)> {
+    let one_max = |name: &str| {
+        one.iter()
+            .find(|s| s.quantity == name)
+            .map_or(0.0, |s| s.max)
+    };
+    let worst_contact = t
+        .contacts
+        .iter()
+        .map(|c| 100.0 - c.agreement_pct)
+        .fold(0.0, f64::max);
+    Metric::ALL
+        .into_iter()
+        .map(|m| {
+            let v = match m {
+                Metric::TerminationReasonMismatch => {
+                    f64::from(u8::from(reasons_key(&a.reasons) != reasons_key(&b.reasons)))
+                }
+                Metric::TerminationStepDiff => a.end_step.abs_diff(b.end_step) as f64,
+                Metric::TrunkPositionRms => t.trunk_position.rms,
+                Metric::TrunkPositionMax => t.trunk_position.max,
+                Metric::TrunkOrientationRms => t.trunk_orientation.rms,
+                Metric::TrunkOrientationMax => t.trunk_orientation.max,
+                Metric::JointAngleRms => t.joint_angles.rms,
+                Metric::JointAngleMax => t.joint_angles.max,
+                Metric::ContactDisagreementMax => worst_contact,
+                Metric::ReturnDiff => (a.sums.ret - b.sums.ret).abs(),
+                Metric::StandingHeightDiff => (heights[0] - heights[1]).abs(),
+                Metric::OneStepQ => one_max("q"),
+                Metric::OneStepQd => one_max("qd"),
+                Metric::OneStepTrunkPosition => one_max("trunk_position"),
+                Metric::OneStepTrunkOrientation => one_max("trunk_orientation"),
+                Metric::OneStepTrunkLinvel => one_max("trunk_linvel"),
+                Metric::OneStepTrunkAngvel => one_max("trunk_angvel"),
+            };
+            (m, v)
+        })
+        .collect()
+}

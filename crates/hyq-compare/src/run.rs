@@ -1,0 +1,261 @@
+//! Running one side of a comparison: the environment on one backend, fed the scenario's action
+//! script, recording what the comparison needs at every env step; the standing height; and the
+//! one-step runs from shared states.
+
+use std::sync::Arc;
+
+use hyq_env::{Env, EnvConfig, Reason, ResetOptions};
+use hyq_physics::na::UnitQuaternion;
+use hyq_physics::{Backend, RobotModel, RobotState, TrunkState};
+use serde::Serialize;
+
+use crate::error::CompareError;
+
+/// The sums of each additive reward term over a run (the penalties as the positive amounts
+/// subtracted), and the return.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct TermSums {
+    /// Σ r_b.
+    pub r_b: f64,
+    /// Σ r_n.
+    pub r_n: f64,
+    /// Σ r_e.
+    pub r_e: f64,
+    /// Σ r_reach.
+    pub r_reach: f64,
+    /// Σ joint_penalty.
+    pub joint_penalty: f64,
+    /// Σ fall_penalty.
+    pub fall_penalty: f64,
+    /// Σ reward (the return).
+    #[serde(rename = "return")]
+    pub ret: f64,
+}
+
+/// What one backend did with the action script, sampled after reset (index 0) and after every
+/// env step t (index t) until the episode ended.
+#[derive(Clone, Debug)]
+pub struct Trajectory {
+    /// The side's label (e.g. `"rapier"`, `"dart"`).
+    pub label: String,
+    /// The engine's name (`Backend::NAME`).
+    pub engine: &'static str,
+    /// Δt_env (s).
+    pub env_dt: f64,
+    /// Joints per sample.
+    pub num_joints: usize,
+    /// The tracked bodies' names (feet, then the trunk).
+    pub tracked: Vec<String>,
+    /// Trunk position C^t (m).
+    pub positions: Vec<[f64; 3]>,
+    /// Trunk orientation.
+    pub orientations: Vec<UnitQuaternion<f64>>,
+    /// Joint angles (rad), `num_joints` per sample.
+    pub joint_angles: Vec<f64>,
+    /// Latched contact flags (rows 24–28), one per tracked body per sample; all false after
+    /// reset.
+    pub contacts: Vec<bool>,
+    /// The full state after each sample (for the one-step comparison).
+    pub states: Vec<RobotState>,
+    /// The joint targets of the step that followed each sample (rad); the last sample's are
+    /// those of the last step (nothing followed it).
+    pub targets: Vec<f64>,
+    /// Why the episode ended (empty if the script ran out first, which cannot happen: the
+    /// episode's t_max is the script's length).
+    pub reasons: Vec<Reason>,
+    /// The step on which it ended.
+    pub end_step: u64,
+    /// Reward-term sums.
+    pub sums: TermSums,
+}
+
+impl Trajectory {
+    /// Samples recorded (steps taken + 1).
+    pub fn len(&self) -> usize {
+        self.positions.len()
+    }
+
+    /// Always false: the reset sample is always there.
+    pub fn is_empty(&self) -> bool {
+        self.positions.is_empty()
+    }
+
+    /// The joint angles of sample `t`.
+    pub fn q(&self, t: usize) -> &[f64] {
+        &self.joint_angles[t * self.num_joints..(t + 1) * self.num_joints]
+    }
+
+    /// The contact flags of sample `t`.
+    pub fn contacts_at(&self, t: usize) -> &[bool] {
+        let k = self.tracked.len();
+        &self.contacts[t * k..(t + 1) * k]
+    }
+
+    /// The joint targets of the step after sample `t`.
+    pub fn targets_after(&self, t: usize) -> &[f64] {
+        &self.targets[t * self.num_joints..(t + 1) * self.num_joints]
+    }
+}
+
+fn env_error(label: &str, e: impl std::fmt::Display) -> CompareError {
+    CompareError::Env {
+        backend: label.to_owned(),
+        message: e.to_string(),
+    }
+}
+
+/// Builds the environment of one side on backend `B`.
+pub fn build_env<B: Backend>(
+    label: &str,
+    model: Arc<RobotModel>,
+    config: EnvConfig,
+) -> Result<Env<B>, CompareError> {
+    Env::<B>::new(model, config).map_err(|e| env_error(label, e))
+}
+
+/// Resets `env` with `seed` and feeds it `script` (one action per env step, flattened) until
+/// the episode ends, recording a [`Trajectory`].
+pub fn run_script<B: Backend>(
+    label: &str,
+    env: &mut Env<B>,
+    seed: u64,
+    start: Option<&RobotState>,
+    script: &[f64],
+) -> Result<Trajectory, CompareError> {
+    let n = env.action_space().len();
+    let layout = env.observation_layout().clone();
+    let model = env.model().clone();
+    let tracked: Vec<String> = model.tracked().iter().map(|t| t.name.clone()).collect();
+    let options = ResetOptions {
+        state: start.cloned(),
+        ..ResetOptions::default()
+    };
+    env.reset(Some(seed), &options)
+        .map_err(|e| env_error(label, e))?;
+    let steps = script.len() / n.max(1);
+    let mut traj = Trajectory {
+        label: label.to_owned(),
+        engine: B::NAME,
+        env_dt: env.env_dt(),
+        num_joints: n,
+        tracked,
+        positions: Vec::with_capacity(steps + 1),
+        orientations: Vec::with_capacity(steps + 1),
+        joint_angles: Vec::with_capacity((steps + 1) * n),
+        contacts: Vec::new(),
+        states: Vec::with_capacity(steps + 1),
+        targets: Vec::with_capacity((steps + 1) * n),
+        reasons: Vec::new(),
+        end_step: 0,
+        sums: TermSums::default(),
+    };
+    let record = |traj: &mut Trajectory, env: &Env<B>| {
+        let trunk: &TrunkState = env.trunk();
+        let p = trunk.pose.translation.vector;
+        traj.positions.push([p.x, p.y, p.z]);
+        traj.orientations.push(trunk.pose.rotation);
+        traj.joint_angles.extend_from_slice(env.joint_angles());
+        let obs = env.observation();
+        traj.contacts
+            .extend(obs[layout.foot_contacts()].iter().map(|c| *c > 0.5));
+        traj.contacts.push(obs[layout.trunk_contact()] > 0.5);
+        traj.states.push(env.backend().state());
+    };
+    record(&mut traj, env);
+    for action in script.chunks_exact(n) {
+        let step = env.step(action).map_err(|e| env_error(label, e))?;
+        let info = step.info;
+        let r = &info.reward;
+        let s = &mut traj.sums;
+        s.r_b += r.r_b;
+        s.r_n += r.r_n;
+        s.r_e += r.r_e;
+        s.r_reach += r.r_reach;
+        s.joint_penalty += r.joint_penalty;
+        s.fall_penalty += r.fall_penalty;
+        s.ret += r.total;
+        traj.targets.extend_from_slice(&info.joint_targets);
+        let done = info.reasons.done();
+        if done {
+            traj.reasons = info.reasons.iter().collect();
+        }
+        traj.end_step = info.t;
+        record(&mut traj, env);
+        if done {
+            break;
+        }
+    }
+    // The last sample has no step after it: repeat the last step's targets so that every
+    // sample has targets (the one-step comparison never samples the last state).
+    let last = traj.targets[traj.targets.len().saturating_sub(n)..].to_vec();
+    traj.targets.extend_from_slice(&last);
+    Ok(traj)
+}
+
+/// How long the standing-height run holds the pose (s): HyQ settles within about 1 s.
+pub const STANDING_SECONDS: f64 = 2.0;
+
+/// The trunk height (m) after holding the standing pose for [`STANDING_SECONDS`] on backend `B`
+/// under `config` (the default configuration with the side's overrides).
+pub fn standing_height<B: Backend>(
+    label: &str,
+    model: Arc<RobotModel>,
+    mut config: EnvConfig,
+) -> Result<f64, CompareError> {
+    let steps = (STANDING_SECONDS / config.env_dt()).round() as u64;
+    config.task.max_time_steps = steps;
+    let mut env = build_env::<B>(label, model.clone(), config)?;
+    let script = crate::Scenario::Stand.actions(&model, env.config(), 0, steps)?;
+    let traj = run_script(label, &mut env, 0, None, &script)?;
+    Ok(traj.positions.last().map_or(f64::NAN, |p| p[2]))
+}
+
+/// The state one backend reached one physics sub-step after a shared state.
+#[derive(Clone, Debug)]
+pub struct OneStepResult {
+    /// The reference run's sample index the shared state came from.
+    pub step: u64,
+    /// The state after the sub-step.
+    pub after: RobotState,
+    /// Whether any tracked body touched the ground during the sub-step.
+    pub in_contact: bool,
+}
+
+/// Puts `env`'s backend into each shared state, applies the torques the shared actuator gives
+/// for that state and the targets that followed it in the reference run, advances one physics
+/// sub-step, and reads the state. The torques are computed once from the shared state, so both
+/// backends receive the same numbers.
+pub fn one_step<B: Backend>(
+    label: &str,
+    env: &mut Env<B>,
+    shared: &[(u64, &RobotState, &[f64])],
+) -> Result<Vec<OneStepResult>, CompareError> {
+    let actuator = env.actuator().clone();
+    let n = actuator.num_joints();
+    let backend = env.backend_mut();
+    let mut tau = vec![0.0; n];
+    let mut contacts = vec![false; backend.model().tracked().len()];
+    let mut out = Vec::with_capacity(shared.len());
+    for (step, state, targets) in shared {
+        let fail = |message: String| CompareError::OneStep {
+            backend: label.to_owned(),
+            step: *step,
+            message,
+        };
+        actuator
+            .torques(targets, &state.q, &state.qd, &mut tau)
+            .map_err(|e| fail(e.to_string()))?;
+        backend.set_state(state).map_err(|e| fail(e.to_string()))?;
+        backend
+            .set_joint_torques(&tau)
+            .map_err(|e| fail(e.to_string()))?;
+        backend.step().map_err(|e| fail(e.to_string()))?;
+        backend.contacts(&mut contacts);
+        out.push(OneStepResult {
+            step: *step,
+            after: backend.state(),
+            in_contact: contacts.iter().any(|c| *c),
+        });
+    }
+    Ok(out)
+}
