@@ -10,6 +10,7 @@
 
 mod backend;
 mod bench;
+mod compare;
 mod options;
 mod plot;
 mod render;
@@ -45,6 +46,8 @@ enum Command {
     Bench(bench::BenchArgs),
     /// Random actions for many steps: no panic, no NaN anywhere; prints the observed ranges.
     Soak(soak::SoakArgs),
+    /// Feed the same actions to two physics backends and report where they agree and differ.
+    Compare(compare::CompareArgs),
     /// Render an episode (CPU, headless) to an animated GIF or PNG frames.
     Render(render::RenderArgs),
     /// Plot a recorded JSONL run: every reward term, the cumulative reward, and D_n with R_e(D_n).
@@ -93,6 +96,7 @@ fn main() -> ExitCode {
         Command::Run(args) => run::execute(args),
         Command::Bench(args) => bench::execute(args),
         Command::Soak(args) => soak::execute(args),
+        Command::Compare(args) => compare::execute(args),
         Command::Render(args) => render::execute(args),
         Command::Plot(args) => plot::execute(args),
     };
