@@ -206,8 +206,8 @@ impl VecCore {
         actions: PyReadonlyArray2<'py, f64>,
     ) -> PyResult<StepArrays<'py>> {
         let (n, width) = (self.vec.num_envs(), self.vec.action_len());
-        let shape = actions.as_array().shape().to_vec();
-        if shape != [n, width] {
+        let shape = actions.as_array().dim();
+        if shape != (n, width) {
             return Err(PyValueError::new_err(format!(
                 "actions have shape {shape:?}, expected ({n}, {width})"
             )));
