@@ -27,6 +27,12 @@ impl Part {
 /// The install line printed when DART is missing (the README gives the same line).
 pub const DART_INSTALL: &str = "sudo apt-get install -y libdart-dev libdart-collision-bullet-dev";
 
+/// The install line printed when Python 3 (with venv and pip) is missing.
+pub const PYTHON_INSTALL: &str = "sudo apt-get install -y python3 python3-venv python3-pip";
+
+/// The oldest CPython the pinned test requirements install on (numpy 2.4 needs 3.11).
+const PYTHON_MIN: (u32, u32) = (3, 11);
+
 /// What happened to one stage.
 enum Outcome {
     Passed { tests: u64 },
@@ -190,14 +196,194 @@ pub fn test(args: &[String]) -> Result<(), String> {
     results.push((Part::Dart.name(), dart));
 
     // Stage 3: the Python package.
-    results.push((
-        Part::Python.name(),
+    let python = if !has("hyq-py") {
         Outcome::Skipped {
-            why: "the Python package is not in the workspace yet".into(),
-        },
-    ));
+            why: "the hyq-py crate is not in the workspace yet".into(),
+        }
+    } else {
+        match python_tools(&root) {
+            Err(why) => Outcome::Skipped { why },
+            Ok(venv) => Outcome::Passed {
+                tests: python_stage(&root, &venv)?,
+            },
+        }
+    };
+    results.push((Part::Python.name(), python));
 
     summarize(&results, &required)
+}
+
+/// The venv the Python stage builds the package into and runs pytest from: `$HYQ_VENV`, else
+/// `target/py-venv` in the workspace (inside the checkout but git-ignored, and kept between
+/// runs so a warm run only rebuilds what changed).
+fn python_venv(root: &Path) -> PathBuf {
+    std::env::var_os("HYQ_VENV")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| root.join("target").join("py-venv"))
+}
+
+/// The Python stage's venv, created if missing, or why the stage cannot run (with the install
+/// line). Needs a `python3` (or `$HYQ_PYTHON`) of at least [`PYTHON_MIN`] that can create a
+/// venv with pip.
+fn python_tools(root: &Path) -> Result<PathBuf, String> {
+    let venv = python_venv(root);
+    if venv_python(&venv).is_file() {
+        return Ok(venv);
+    }
+    let python = std::env::var("HYQ_PYTHON").unwrap_or_else(|_| "python3".to_string());
+    let check = format!(
+        "import sys, venv, ensurepip; sys.exit(0 if sys.version_info >= {PYTHON_MIN:?} else 3)"
+    );
+    let status = Command::new(&python).args(["-c", &check]).status();
+    match status {
+        Err(e) => {
+            return Err(format!(
+                "`{python}` cannot be run ({e}); to run these tests: {PYTHON_INSTALL}"
+            ));
+        }
+        Ok(s) if s.code() == Some(3) => {
+            return Err(format!(
+                "`{python}` is older than CPython {}.{}, which the pinned numpy needs; set \
+                 HYQ_PYTHON to a newer interpreter",
+                PYTHON_MIN.0, PYTHON_MIN.1
+            ));
+        }
+        Ok(s) if !s.success() => {
+            return Err(format!(
+                "`{python}` lacks the venv or ensurepip module; to run these tests: \
+                 {PYTHON_INSTALL}"
+            ));
+        }
+        Ok(_) => {}
+    }
+    println!("\n$ {python} -m venv {}", venv.display());
+    let created = Command::new(&python)
+        .args(["-m", "venv"])
+        .arg(&venv)
+        .status()
+        .map_err(|e| format!("cannot run `{python} -m venv`: {e}"))?;
+    if !created.success() {
+        return Err(format!(
+            "`{python} -m venv {}` failed; to run these tests: {PYTHON_INSTALL}",
+            venv.display()
+        ));
+    }
+    Ok(venv)
+}
+
+fn venv_python(venv: &Path) -> PathBuf {
+    venv.join("bin").join("python")
+}
+
+/// Runs `program args` in `dir` with the venv activated, failing on a non-zero exit.
+fn run_in_venv(venv: &Path, dir: &Path, program: &Path, args: &[&str]) -> Result<(), String> {
+    println!("\n$ {} {}", program.display(), args.join(" "));
+    let status = venv_command(venv, dir, program)
+        .args(args)
+        .status()
+        .map_err(|e| format!("cannot run {}: {e}", program.display()))?;
+    if status.success() {
+        Ok(())
+    } else {
+        Err(format!(
+            "`{} {}` failed ({status})",
+            program.display(),
+            args.join(" ")
+        ))
+    }
+}
+
+/// A command run in `dir` as if the venv were activated (maturin finds the venv through
+/// `VIRTUAL_ENV`).
+fn venv_command(venv: &Path, dir: &Path, program: &Path) -> Command {
+    let mut command = Command::new(program);
+    let path = std::env::var_os("PATH").unwrap_or_default();
+    let mut paths = vec![venv.join("bin")];
+    paths.extend(std::env::split_paths(&path));
+    command
+        .current_dir(dir)
+        .env("VIRTUAL_ENV", venv)
+        .env("PATH", std::env::join_paths(paths).unwrap_or(path))
+        .env("PIP_DISABLE_PIP_VERSION_CHECK", "1");
+    command
+}
+
+/// Stage 3: installs the pinned requirements into the venv, builds the extension with the dev
+/// profile and installs the package (`maturin develop`: fast to build; users get release
+/// builds from `maturin build --release` or `pip install`), builds the `hyq` command the CLI
+/// parity test runs, then runs pytest and returns how many tests passed.
+fn python_stage(root: &Path, venv: &Path) -> Result<u64, String> {
+    let crate_dir = root.join("crates").join("hyq-py");
+    let python = venv_python(venv);
+    run_in_venv(
+        venv,
+        &crate_dir,
+        &python,
+        &["-m", "pip", "install", "-q", "-r", "requirements-test.txt"],
+    )?;
+    run_in_venv(
+        venv,
+        &crate_dir,
+        &python,
+        &["-m", "maturin", "develop", "--locked"],
+    )?;
+    cargo_test(root, &["build", "--locked", "-p", "hyq-cli"])?;
+    let target = std::env::var_os("CARGO_TARGET_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| root.join("target"));
+    let cli = target.join("debug").join("hyq");
+
+    let args = ["-m", "pytest", "-p", "no:cacheprovider"];
+    println!("\n$ {} {}", python.display(), args.join(" "));
+    let mut child = venv_command(venv, &crate_dir, &python)
+        .args(args)
+        .env("HYQ_CLI", &cli)
+        .stdout(Stdio::piped())
+        .spawn()
+        .map_err(|e| format!("cannot start pytest: {e}"))?;
+    let mut passed = None;
+    if let Some(stdout) = child.stdout.take() {
+        for line in BufReader::new(stdout).lines() {
+            let line = line.map_err(|e| format!("reading pytest's output: {e}"))?;
+            println!("{line}");
+            if let Some(n) = pytest_passed_count(&line) {
+                passed = Some(n);
+            }
+        }
+    }
+    let status = child
+        .wait()
+        .map_err(|e| format!("waiting for pytest: {e}"))?;
+    if !status.success() {
+        return Err(format!("pytest failed ({status})"));
+    }
+    passed.ok_or_else(|| "pytest printed no summary line".to_string())
+}
+
+/// The number of passed tests on pytest's closing summary line, or `None` if `line` is not one.
+/// The line is `49 passed in 3.70s` with `-q`, `==== 1 failed, 48 passed, 2 warnings in 3.70s
+/// ====` otherwise, and `no tests ran in 0.01s` when nothing ran (0 passed).
+fn pytest_passed_count(line: &str) -> Option<u64> {
+    let body = line.trim().trim_matches('=').trim();
+    let (counts, time) = body.rsplit_once(" in ")?;
+    if !time.starts_with(|c: char| c.is_ascii_digit()) || !time.contains('s') {
+        return None;
+    }
+    if counts == "no tests ran" {
+        return Some(0);
+    }
+    let mut passed = 0;
+    for part in counts.split(", ") {
+        let (n, word) = part.split_once(' ')?;
+        let n: u64 = n.parse().ok()?;
+        if !word.chars().all(|c| c.is_ascii_lowercase()) {
+            return None;
+        }
+        if word == "passed" {
+            passed = n;
+        }
+    }
+    Some(passed)
 }
 
 /// The crates whose `dart` feature runs their tests on the DART backend too (the spec section by
@@ -264,6 +450,30 @@ mod tests {
         );
         assert_eq!(passed_count("running 3 tests"), 0);
         assert_eq!(passed_count("test foo ... ok"), 0);
+    }
+
+    #[test]
+    fn counts_passed_tests_on_pytest_summary_lines() {
+        assert_eq!(pytest_passed_count("49 passed in 3.73s"), Some(49));
+        assert_eq!(
+            pytest_passed_count("==== 1 failed, 48 passed, 2 warnings in 3.70s ===="),
+            Some(48)
+        );
+        assert_eq!(
+            pytest_passed_count("===== 3 passed, 1 skipped in 123.45s (0:02:03) ====="),
+            Some(3)
+        );
+        assert_eq!(pytest_passed_count("2 failed in 0.50s"), Some(0));
+        assert_eq!(pytest_passed_count("no tests ran in 0.01s"), Some(0));
+        assert_eq!(
+            pytest_passed_count("tests/test_x.py ....                [100%]"),
+            None
+        );
+        assert_eq!(pytest_passed_count("the robot walked 3 m in 5 s"), None);
+        assert_eq!(
+            pytest_passed_count("FAILED tests/test_x.py::test_y - in 3s"),
+            None
+        );
     }
 
     #[test]
