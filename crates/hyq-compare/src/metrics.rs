@@ -14,6 +14,7 @@
 //! orientation angle, and the trunk linear and angular velocity distances.
 
 use hyq_physics::RobotState;
+use hyq_physics::na::UnitQuaternion;
 use serde::Serialize;
 
 use crate::run::{OneStepResult, Trajectory};
@@ -22,6 +23,17 @@ use crate::run::{OneStepResult, Trajectory};
 /// non-finite difference is never hidden behind a finite one).
 fn exceeds(value: f64, max: f64) -> bool {
     value > max || value.is_nan()
+}
+
+/// The angle (rad, in [0, π]) of the rotation taking `a` to `b`: 2 atan2(‖v‖, |w|) of a⁻¹ b.
+/// Equal quaternions give exactly 0: the product a⁻¹ a leaves rounding noise of ~1e-17 rad,
+/// which would hide that two runs agree bit for bit.
+pub fn rotation_angle(a: &UnitQuaternion<f64>, b: &UnitQuaternion<f64>) -> f64 {
+    if a.coords == b.coords {
+        return 0.0;
+    }
+    let d = a.inverse() * b;
+    2.0 * d.imag().norm().atan2(d.w.abs())
 }
 
 /// A divergence summarised over time.
@@ -102,7 +114,7 @@ pub fn compare_trajectories(a: &Trajectory, b: &Trajectory) -> TrajectoryCompari
         e_p.push(
             ((pa[0] - pb[0]).powi(2) + (pa[1] - pb[1]).powi(2) + (pa[2] - pb[2]).powi(2)).sqrt(),
         );
-        e_r.push(a.orientations[t].angle_to(&b.orientations[t]));
+        e_r.push(rotation_angle(&a.orientations[t], &b.orientations[t]));
         let mut worst: f64 = 0.0;
         for (i, (qa, qb)) in a.q(t).iter().zip(b.q(t)).enumerate() {
             let d = (qa - qb).abs();
@@ -203,7 +215,7 @@ pub fn one_step_errors(a: &OneStepResult, b: &OneStepResult) -> OneStepErrors {
         q: inf_norm(&sa.q, &sb.q),
         qd: inf_norm(&sa.qd, &sb.qd),
         trunk_position: (ta.pose.translation.vector - tb.pose.translation.vector).norm(),
-        trunk_orientation: ta.pose.rotation.angle_to(&tb.pose.rotation),
+        trunk_orientation: rotation_angle(&ta.pose.rotation, &tb.pose.rotation),
         trunk_linvel: (ta.linvel - tb.linvel).norm(),
         trunk_angvel: (ta.angvel - tb.angvel).norm(),
     }
@@ -287,4 +299,31 @@ pub fn sample_indices(traj: &Trajectory, count: usize) -> Vec<usize> {
                 .all(|v| v.is_finite())
     });
     picked
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn divergence_is_rms_and_first_max_and_never_hides_a_nan() {
+        let d = Divergence::from_series(&[0.0, 3.0, 4.0, 4.0]);
+        assert_eq!(d.max, 4.0);
+        assert_eq!(d.max_at_step, 2);
+        assert!((d.rms - (41.0f64 / 4.0).sqrt()).abs() < 1e-15);
+        let d = Divergence::from_series(&[1.0, f64::NAN, 2.0]);
+        assert!(d.max.is_nan() && d.rms.is_nan());
+        assert_eq!(Divergence::from_series(&[]), Divergence::default());
+    }
+
+    #[test]
+    fn rotation_angle_is_the_angle_between_orientations() {
+        let a = UnitQuaternion::from_euler_angles(0.1, -0.2, 0.3);
+        assert_eq!(rotation_angle(&a, &a), 0.0);
+        let b = a * UnitQuaternion::from_euler_angles(0.0, 0.0, 0.25);
+        assert!((rotation_angle(&a, &b) - 0.25).abs() < 1e-12);
+        // q and −q are the same orientation.
+        let neg = UnitQuaternion::new_unchecked(-b.into_inner());
+        assert!((rotation_angle(&a, &neg) - 0.25).abs() < 1e-12);
+    }
 }
