@@ -77,7 +77,7 @@ class HyQVectorEnv(VectorEnv):
             autoreset_mode=_MODES[mode],
             config_file=env_options.get("config_file"),
             threads=threads,
-            clip_observations=bool(env_options.get("clip_observations", True)),
+            clip_observations=bool(env_options.get("clip_observations", False)),
             render_width=int(env_options.get("render_width", 480)),
             render_height=int(env_options.get("render_height", 360)),
         )
