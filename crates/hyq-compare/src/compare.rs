@@ -244,7 +244,8 @@ pub fn compare<A: Backend, B: Backend>(
 pub struct OneStepReport {
     /// Shared states compared.
     pub states: usize,
-    /// Of those, states where either backend touched the ground during the sub-step.
+    /// Of those, states where either backend had a foot or the trunk on the ground during the
+    /// sub-step.
     pub states_in_contact: usize,
     /// Physics sub-steps taken from each shared state (1).
     pub sub_steps: u32,

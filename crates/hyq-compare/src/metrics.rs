@@ -168,7 +168,8 @@ pub fn compare_trajectories(a: &Trajectory, b: &Trajectory) -> TrajectoryCompari
 pub struct OneStepErrors {
     /// The reference run's sample the state came from.
     pub step: u64,
-    /// Whether either backend had a tracked body on the ground during the sub-step.
+    /// Whether either backend had a tracked body (a foot or the trunk) on the ground during the
+    /// sub-step.
     pub in_contact: bool,
     /// ‖q_A − q_B‖∞ (rad).
     pub q: f64,
@@ -234,8 +235,9 @@ pub struct OneStepSummary {
     pub max_at_step: u64,
     /// The median difference.
     pub median: f64,
-    /// The largest difference over states where neither backend touched the ground (`None`
-    /// when every state was in contact).
+    /// The largest difference over states where neither backend had a tracked body (a foot or
+    /// the trunk) on the ground during the sub-step (`None` when there was none). Untracked
+    /// links (shins, thighs) are not seen by the contact flags and may still touch the ground.
     pub max_without_contact: Option<f64>,
 }
 

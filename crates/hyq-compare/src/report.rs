@@ -340,12 +340,12 @@ impl Report {
         let o = &self.one_step;
         let _ = writeln!(
             w,
-            "\n## One step from a shared state\n\n{} states sampled evenly from {}'s run ({} of them with a body on the ground); each backend is put into the state, given the same joint torques (the shared PD actuator on that state and the targets that followed it), and advanced {} physics sub-step.\n",
+            "\n## One step from a shared state\n\n{} states sampled evenly from {}'s run ({} of them with a foot or the trunk on the ground); each backend is put into the state, given the same joint torques (the shared PD actuator on that state and the targets that followed it), and advanced {} physics sub-step.\n",
             o.states, a.label, o.states_in_contact, o.sub_steps
         );
         let _ = writeln!(
             w,
-            "| quantity | max | at state (step) | median | max without contact |\n|---|---|---|---|---|"
+            "| quantity | max | at state (step) | median | max with no foot or trunk contact |\n|---|---|---|---|---|"
         );
         for s in &o.summary {
             let free = s
