@@ -166,8 +166,13 @@ pub fn execute(args: CompareArgs) -> Result<(), Failure> {
     let report: Report = with_backend!(a, A => {
         with_backend!(b, B => {
             hyq_compare::compare::<A, B>(robot(), &spec, labels, &ledger).map_err(|e| {
-                // Overrides are checked only when the configuration is built.
-                let status = if matches!(e, hyq_compare::CompareError::Override { .. }) { 2 } else { 1 };
+                // Overrides and the configuration they make are checked only when the
+                // comparison builds it: those are bad input too.
+                use hyq_compare::CompareError as E;
+                let status = match e {
+                    E::Override { .. } | E::Config(_) | E::StateDependentActions { .. } => 2,
+                    _ => 1,
+                };
                 Failure { status, message: e.to_string() }
             })
         })

@@ -110,6 +110,15 @@ fn bad_ledger_and_overrides_are_named() {
     );
     let e = usage_error_of(&["--set", "physics.no_such_key=1"]);
     assert!(e.contains("no_such_key"), "{e}");
+    // The same actions cannot be fed to both sides in delta mode, and the run length is
+    // --seconds, not t_max.
+    let e = usage_error_of(&["--set", "action.mode=delta"]);
+    assert!(e.contains("delta"), "{e}");
+    let e = usage_error_of(&["--set-b", "task.max_time_steps=7"]);
+    assert!(
+        e.contains("max_time_steps=7") && e.contains("seconds"),
+        "{e}"
+    );
 }
 
 #[cfg(not(feature = "dart"))]

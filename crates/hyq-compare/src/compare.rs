@@ -138,6 +138,17 @@ pub fn compare<A: Backend, B: Backend>(
     let config_a = side_config(spec, &base, &[])?;
     let config_b = side_config(spec, &base, &spec.overrides_b)?;
     let steps = base.task.max_time_steps;
+    // The episode length is the script's: an override of t_max would leave a side without
+    // actions (longer) or cut the comparison short on one side only (shorter).
+    for config in [&config_a, &config_b] {
+        if config.task.max_time_steps != steps {
+            return Err(CompareError::Override {
+                item: format!("task.max_time_steps={}", config.task.max_time_steps),
+                reason: "the episode length comes from the run length (seconds), not an override"
+                    .into(),
+            });
+        }
+    }
     // The script is built from the first side's action space; the second side must read
     // actions the same way or "the same actions" would mean different targets.
     if config_a.action != config_b.action {

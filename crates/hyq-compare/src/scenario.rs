@@ -144,7 +144,8 @@ impl Scenario {
     }
 
     /// The state the scenario starts from instead of the standing spawn state, if any: `fall`
-    /// starts standing with the push [`FALL_PUSH_ANGVEL`] already given to the trunk.
+    /// starts from the model's spawn state (at the origin, whatever `[reset]` says) with the
+    /// push [`FALL_PUSH_ANGVEL`], [`FALL_PUSH_LINVEL`] already given to the trunk.
     pub fn initial_state(self, model: &RobotModel) -> Option<RobotState> {
         match self {
             Scenario::Fall => {
