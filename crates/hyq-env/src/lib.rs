@@ -164,3 +164,9 @@ pub use info::{Reason, Reasons, StepInfo};
 pub use policy::{Policy, PolicyInput, RandomPolicy, Stand, Trot, TrotParams};
 pub use record::{RecordTerms, StepRecord};
 pub use vec_env::{AutoReset, VecEnv, VecEnvError, VecStepOut};
+
+/// The repository README, whose Rust quickstart runs as a doctest of this crate so that it stays
+/// true (only with `cargo test --doc`; nothing of it is compiled into the library).
+#[cfg(doctest)]
+#[doc = include_str!("../../../README.md")]
+pub struct ReadmeQuickstart;
