@@ -1,9 +1,9 @@
 //! `hyq`: the command-line front of the HyQ walk-to-goal environment.
 //!
-//! One module per subcommand (`run`, `bench`, `soak`), each with its clap arguments and an
-//! `execute` function; the environment options every subcommand shares (backend, configuration
-//! file, `--set` overrides) live in [`options`], and the choice of physics backend in
-//! [`backend`]. Later subcommands (`compare`, `render`, `plot`) slot in beside them.
+//! One module per subcommand (`run`, `bench`, `soak`, `render`, `plot`, `compare`), each with its
+//! clap arguments and an `execute` function; the environment options every subcommand shares
+//! (backend, configuration file, `--set` overrides, policy and seed) live in [`options`], and the
+//! choice of physics backend in [`backend`].
 //!
 //! Errors never panic and never print more than one line: `hyq: error: <what was wrong>` on
 //! stderr and exit status 2 for a usage error (bad option, bad value), 1 for anything else.
