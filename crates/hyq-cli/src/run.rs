@@ -13,7 +13,7 @@ use std::io::{BufWriter, Write};
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
-use hyq_env::{Env, Reason, ResetOptions, StepRecord};
+use hyq_env::{Env, Reason, ResetOptions, StepRecord, TermSums};
 use hyq_physics::Backend;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde::Serialize;
@@ -55,24 +55,6 @@ pub struct RunArgs {
     /// Print the per-episode summaries as JSON lines on stdout instead of a table.
     #[arg(long)]
     json: bool,
-}
-
-/// The sums of each additive reward term over an episode (the penalties as the positive amounts
-/// subtracted).
-#[derive(Clone, Copy, Debug, Default, Serialize)]
-pub struct TermSums {
-    /// Σ r_b.
-    pub r_b: f64,
-    /// Σ r_n.
-    pub r_n: f64,
-    /// Σ r_e.
-    pub r_e: f64,
-    /// Σ r_reach.
-    pub r_reach: f64,
-    /// Σ joint_penalty.
-    pub joint_penalty: f64,
-    /// Σ fall_penalty.
-    pub fall_penalty: f64,
 }
 
 /// One episode's summary (a table row, or one JSON line with `--json`).
@@ -199,13 +181,7 @@ fn run_episodes<B: Backend>(mut env: Env<B>, args: &RunArgs) -> Result<(), Failu
             let r = &info.reward;
             summary.steps = info.t;
             summary.ret += r.total;
-            let s = &mut summary.terms;
-            s.r_b += r.r_b;
-            s.r_n += r.r_n;
-            s.r_e += r.r_e;
-            s.r_reach += r.r_reach;
-            s.joint_penalty += r.joint_penalty;
-            s.fall_penalty += r.fall_penalty;
+            summary.terms.add(r);
             summary.mean_m_yaw += r.m_yaw;
             summary.mean_m_pitch += r.m_pitch;
             let done = step.terminated || step.truncated;

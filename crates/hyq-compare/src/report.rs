@@ -275,15 +275,15 @@ impl Report {
             format!("{} ({:.2} s)", s.end_step, s.end_time_s)
         });
         row("return Σr", &|s| format!("{:.4}", s.sums.ret));
-        row("Σ r_b", &|s| format!("{:.4}", s.sums.r_b));
-        row("Σ r_n", &|s| format!("{:.4}", s.sums.r_n));
-        row("Σ r_e", &|s| format!("{:.4}", s.sums.r_e));
-        row("Σ r_reach", &|s| format!("{:.4}", s.sums.r_reach));
+        row("Σ r_b", &|s| format!("{:.4}", s.sums.terms.r_b));
+        row("Σ r_n", &|s| format!("{:.4}", s.sums.terms.r_n));
+        row("Σ r_e", &|s| format!("{:.4}", s.sums.terms.r_e));
+        row("Σ r_reach", &|s| format!("{:.4}", s.sums.terms.r_reach));
         row("Σ joint_penalty", &|s| {
-            format!("{:.4}", s.sums.joint_penalty)
+            format!("{:.4}", s.sums.terms.joint_penalty)
         });
         row("Σ fall_penalty", &|s| {
-            format!("{:.4}", s.sums.fall_penalty)
+            format!("{:.4}", s.sums.terms.fall_penalty)
         });
         row("standing height (2 s stand)", &|s| {
             format!("{:.4} m", s.standing_height_m)

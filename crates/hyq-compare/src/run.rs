@@ -11,22 +11,13 @@ use serde::Serialize;
 
 use crate::error::CompareError;
 
-/// The sums of each additive reward term over a run (the penalties as the positive amounts
-/// subtracted), and the return.
+/// The sums of each additive reward term over a run (hyq-env's [`hyq_env::TermSums`], written
+/// flat beside it in the report) and the return.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
 pub struct TermSums {
-    /// Σ r_b.
-    pub r_b: f64,
-    /// Σ r_n.
-    pub r_n: f64,
-    /// Σ r_e.
-    pub r_e: f64,
-    /// Σ r_reach.
-    pub r_reach: f64,
-    /// Σ joint_penalty.
-    pub joint_penalty: f64,
-    /// Σ fall_penalty.
-    pub fall_penalty: f64,
+    /// Σ of each term.
+    #[serde(flatten)]
+    pub terms: hyq_env::TermSums,
     /// Σ reward (the return).
     #[serde(rename = "return")]
     pub ret: f64,
@@ -166,14 +157,8 @@ pub fn run_script<B: Backend>(
         let step = env.step(action).map_err(|e| env_error(label, e))?;
         let info = step.info;
         let r = &info.reward;
-        let s = &mut traj.sums;
-        s.r_b += r.r_b;
-        s.r_n += r.r_n;
-        s.r_e += r.r_e;
-        s.r_reach += r.r_reach;
-        s.joint_penalty += r.joint_penalty;
-        s.fall_penalty += r.fall_penalty;
-        s.ret += r.total;
+        traj.sums.terms.add(r);
+        traj.sums.ret += r.total;
         traj.targets.extend_from_slice(&info.joint_targets);
         let done = info.reasons.done();
         if done {

@@ -210,3 +210,65 @@ pub(crate) const ZERO_REWARD: RewardBreakdown = RewardBreakdown {
     fall_penalty: 0.0,
     total: 0.0,
 };
+
+/// The sums of each additive reward term over an episode or a run (the fixed penalties as the
+/// positive amounts subtracted), for summaries and reports. Serialised with the spec's term
+/// names.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct TermSums {
+    /// Σ r_b.
+    pub r_b: f64,
+    /// Σ r_n.
+    pub r_n: f64,
+    /// Σ r_e.
+    pub r_e: f64,
+    /// Σ r_reach.
+    pub r_reach: f64,
+    /// Σ joint_penalty.
+    pub joint_penalty: f64,
+    /// Σ fall_penalty.
+    pub fall_penalty: f64,
+}
+
+impl TermSums {
+    /// Adds one step's terms.
+    pub fn add(&mut self, r: &RewardBreakdown) {
+        self.r_b += r.r_b;
+        self.r_n += r.r_n;
+        self.r_e += r.r_e;
+        self.r_reach += r.r_reach;
+        self.joint_penalty += r.joint_penalty;
+        self.fall_penalty += r.fall_penalty;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn term_sums_add_each_term_to_its_own_sum() {
+        let mut step = ZERO_REWARD;
+        step.r_b = 1.0;
+        step.r_n = 2.0;
+        step.r_e = 3.0;
+        step.r_reach = 4.0;
+        step.joint_penalty = 5.0;
+        step.fall_penalty = 6.0;
+        step.m_yaw = 0.5;
+        let mut sums = TermSums::default();
+        sums.add(&step);
+        sums.add(&step);
+        assert_eq!(
+            sums,
+            TermSums {
+                r_b: 2.0,
+                r_n: 4.0,
+                r_e: 6.0,
+                r_reach: 8.0,
+                joint_penalty: 10.0,
+                fall_penalty: 12.0,
+            }
+        );
+    }
+}

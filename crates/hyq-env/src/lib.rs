@@ -160,7 +160,7 @@ pub use config::{
     OutOfRange, PhysicsConfig, ResetConfig,
 };
 pub use env::{DEFAULT_SEED, Env, EnvError, Reset, ResetOptions, Step, StepTiming};
-pub use info::{Reason, Reasons, StepInfo};
+pub use info::{Reason, Reasons, StepInfo, TermSums};
 pub use policy::{Policy, PolicyInput, RandomPolicy, Stand, Trot, TrotParams};
 pub use record::{RecordTerms, StepRecord};
 pub use vec_env::{AutoReset, VecEnv, VecEnvError, VecStepOut};
