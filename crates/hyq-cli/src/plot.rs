@@ -94,9 +94,6 @@ pub fn execute(args: PlotArgs) -> Result<(), Failure> {
 pub struct LivePlots {
     dir: PathBuf,
     options: PlotOptions,
-    /// Whether the run's terms carry m_height (the opt-in height penalty is configured); as in
-    /// the JSONL record, m_height is 1 otherwise.
-    height_penalty: bool,
     series: EpisodeSeries,
     written: usize,
 }
@@ -113,30 +110,19 @@ impl LivePlots {
         Ok(Self {
             dir: dir.to_owned(),
             options: plot_options(config, title),
-            height_penalty: config.task.height_penalty.is_some(),
             series: EpisodeSeries::new(),
             written: 0,
         })
     }
 
-    /// Adds one env step of the current episode.
+    /// Adds one env step of the current episode. Its terms are the record's: with the height
+    /// penalty off, the env's m_height is 1, as an absent `m_height` reads in a record.
     pub fn push(&mut self, info: &StepInfo) {
-        let r = &info.reward;
         self.series.push(&StepRecord {
             t: info.t,
             episode: Some(info.episode),
-            reward: r.total,
-            terms: RewardTerms {
-                r_b: r.r_b,
-                r_n: r.r_n,
-                r_e: r.r_e,
-                r_reach: r.r_reach,
-                m_yaw: r.m_yaw,
-                m_pitch: r.m_pitch,
-                m_height: if self.height_penalty { r.m_height } else { 1.0 },
-                joint_penalty: r.joint_penalty,
-                fall_penalty: r.fall_penalty,
-            },
+            reward: info.reward.total,
+            terms: RewardTerms::from(info.reward),
             d_n: info.d_n,
             distance_to_goal: info.distance_to_goal,
         });

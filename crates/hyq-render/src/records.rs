@@ -14,10 +14,18 @@
 //! A file may hold several episodes: a record starts a new episode when its `episode` differs
 //! from the previous record's, or, when neither has one, when its `t` is not after the previous
 //! record's (the environment was reset).
+//!
+//! [`StepRecord`] is a read view of `hyq_env::StepRecord`, not a copy of it: the environment's
+//! type refuses unknown keys and requires every key (`obs`, `action`, `episode`, …), which is
+//! right for its round-trip contract but would make the plots break whenever the log gains a
+//! key, and refuse logs written by other tools with only the plotted keys. Reading that type
+//! would also make this crate depend on the environment (and its random-number and thread-pool
+//! dependencies) for six keys.
 
 use std::io::BufRead;
 use std::path::Path;
 
+use hyq_spec::RewardBreakdown;
 use serde::{Deserialize, Serialize};
 
 use crate::error::PlotError;
@@ -50,6 +58,24 @@ pub struct RewardTerms {
     pub joint_penalty: f64,
     /// Fall penalty subtracted (§5.4), ≥ 0.
     pub fall_penalty: f64,
+}
+
+impl From<RewardBreakdown> for RewardTerms {
+    /// The terms of a step the spec's rules scored (`total` is the record's `reward`). An off
+    /// height penalty is already m_height = 1 there, as an absent `m_height` reads here.
+    fn from(b: RewardBreakdown) -> Self {
+        Self {
+            r_b: b.r_b,
+            r_n: b.r_n,
+            r_e: b.r_e,
+            r_reach: b.r_reach,
+            m_yaw: b.m_yaw,
+            m_pitch: b.m_pitch,
+            m_height: b.m_height,
+            joint_penalty: b.joint_penalty,
+            fall_penalty: b.fall_penalty,
+        }
+    }
 }
 
 /// One line of the environment's JSONL log.

@@ -59,17 +59,7 @@ fn spec_episode() -> Vec<StepRecord> {
             t: step,
             episode: None,
             reward: b.total,
-            terms: RewardTerms {
-                r_b: b.r_b,
-                r_n: b.r_n,
-                r_e: b.r_e,
-                r_reach: b.r_reach,
-                m_yaw: b.m_yaw,
-                m_pitch: b.m_pitch,
-                m_height: b.m_height,
-                joint_penalty: b.joint_penalty,
-                fall_penalty: b.fall_penalty,
-            },
+            terms: RewardTerms::from(b),
             d_n: outcome.normalised_distance,
             distance_to_goal: outcome.distance,
         });
