@@ -18,6 +18,7 @@ use std::sync::OnceLock;
 
 use hyq_spec::reward::exponential::cumulative_exponential_reward;
 use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::FontStyle;
 
@@ -186,23 +187,24 @@ fn caption_font() -> TextStyle<'static> {
     (FAMILY, 19, FontStyle::Bold).into_font().color(&INK)
 }
 
-/// A panel of lines over time, with a legend.
-fn line_panel(
-    area: &DrawingArea<BitMapBackend<'_>, Shift>,
-    caption: &str,
-    (t, x_desc): (&[f64], &str),
-    lines: &[Line<'_>],
-    y_desc: &str,
-    y_range: (f64, f64),
-    markers: &[Markers<'_>],
-) -> Result<(), String> {
-    let (t0, t1) = t_range(t);
+/// Every panel's chart: f64 axes, drawn into the plot's RGB buffer.
+type Chart<'a, 'b> =
+    ChartContext<'a, BitMapBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// A panel's chart: `caption` above, the axes over `x` and `y` with their labels and light grid.
+fn styled_chart<'a, 'b>(
+    area: &'a DrawingArea<BitMapBackend<'b>, Shift>,
+    caption: impl AsRef<str>,
+    x: std::ops::Range<f64>,
+    y: std::ops::Range<f64>,
+    (x_desc, y_desc): (&str, &str),
+) -> Result<Chart<'a, 'b>, String> {
     let mut chart = ChartBuilder::on(area)
         .caption(caption, caption_font())
         .margin(14)
         .x_label_area_size(44)
         .y_label_area_size(64)
-        .build_cartesian_2d(t0..t1, y_range.0..y_range.1)
+        .build_cartesian_2d(x, y)
         .map_err(|e| e.to_string())?;
     chart
         .configure_mesh()
@@ -215,6 +217,42 @@ fn line_panel(
         .bold_line_style(RGBColor(0xdc, 0xde, 0xe2))
         .draw()
         .map_err(|e| e.to_string())?;
+    Ok(chart)
+}
+
+/// Draws the legend of the series labelled so far at `position`.
+fn draw_legend<'a, 'b: 'a>(
+    chart: &mut Chart<'a, 'b>,
+    position: SeriesLabelPosition,
+) -> Result<(), String> {
+    chart
+        .configure_series_labels()
+        .position(position)
+        .label_font((FAMILY, 14).into_font().color(&INK))
+        .background_style(WHITE.mix(0.88))
+        .border_style(RGBColor(0xc8, 0xcc, 0xd2))
+        .draw()
+        .map_err(|e| e.to_string())
+}
+
+/// A panel of lines over time, with a legend.
+fn line_panel(
+    area: &DrawingArea<BitMapBackend<'_>, Shift>,
+    caption: &str,
+    (t, x_desc): (&[f64], &str),
+    lines: &[Line<'_>],
+    y_desc: &str,
+    y_range: (f64, f64),
+    markers: &[Markers<'_>],
+) -> Result<(), String> {
+    let (t0, t1) = t_range(t);
+    let mut chart = styled_chart(
+        area,
+        caption,
+        t0..t1,
+        y_range.0..y_range.1,
+        (x_desc, y_desc),
+    )?;
     if y_range.0 < 0.0 && y_range.1 > 0.0 {
         chart
             .draw_series(LineSeries::new(
@@ -246,14 +284,7 @@ fn line_panel(
             .label(*label)
             .legend(move |(x, y)| Circle::new((x + 11, y), 5, colour.filled()));
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::UpperLeft)
-        .label_font((FAMILY, 14).into_font().color(&INK))
-        .background_style(WHITE.mix(0.88))
-        .border_style(RGBColor(0xc8, 0xcc, 0xd2))
-        .draw()
-        .map_err(|e| e.to_string())
+    draw_legend(&mut chart, SeriesLabelPosition::UpperLeft)
 }
 
 /// Writes the reward-terms plot of one episode ([`REWARD_PLOT_SIZE`]) to `path`.
@@ -478,24 +509,13 @@ pub fn plot_distance(
         // D_n over time, with the start (1) and the goal (0).
         let (t0, t1) = t_range(t);
         let y_hi = d_n.iter().map(|p| p.1).fold(1.0, f64::max) * 1.08;
-        let mut chart = ChartBuilder::on(&left)
-            .caption("Normalised distance D_n = D / K (§4.2)", caption_font())
-            .margin(14)
-            .x_label_area_size(44)
-            .y_label_area_size(64)
-            .build_cartesian_2d(t0..t1, -0.04..y_hi)
-            .map_err(|e| e.to_string())?;
-        chart
-            .configure_mesh()
-            .x_desc(x_desc)
-            .y_desc("D_n")
-            .label_style((FAMILY, 14).into_font().color(&INK))
-            .axis_desc_style((FAMILY, 15).into_font().color(&INK))
-            .light_line_style(RGBColor(0xf1, 0xf2, 0xf4))
-            .max_light_lines(2)
-            .bold_line_style(RGBColor(0xdc, 0xde, 0xe2))
-            .draw()
-            .map_err(|e| e.to_string())?;
+        let mut chart = styled_chart(
+            &left,
+            "Normalised distance D_n = D / K (§4.2)",
+            t0..t1,
+            -0.04..y_hi,
+            (x_desc, "D_n"),
+        )?;
         for (y, label, colour) in [
             (1.0, "start (D_n = 1)", GREY),
             (0.0, "goal (D_n = 0)", GREEN),
@@ -518,14 +538,7 @@ pub fn plot_distance(
             .map_err(|e| e.to_string())?
             .label("D_n")
             .legend(|(x, y)| PathElement::new([(x, y), (x + 22, y)], BLUE.stroke_width(3)));
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .label_font((FAMILY, 14).into_font().color(&INK))
-            .background_style(WHITE.mix(0.88))
-            .border_style(RGBColor(0xc8, 0xcc, 0xd2))
-            .draw()
-            .map_err(|e| e.to_string())?;
+        draw_legend(&mut chart, SeriesLabelPosition::UpperRight)?;
 
         // R_e(D_n) and the episode's points on it.
         let x_hi = points.iter().map(|p| p.0).fold(1.2, f64::max) * 1.06;
@@ -543,24 +556,7 @@ pub fn plot_distance(
             Some(k) => format!("R_e(D_n), k_exp = {k} (§4.3), and this episode"),
             None => "Σ r_e against D_n (r_e off: no curve)".to_owned(),
         };
-        let mut chart = ChartBuilder::on(&right)
-            .caption(caption, caption_font())
-            .margin(14)
-            .x_label_area_size(44)
-            .y_label_area_size(64)
-            .build_cartesian_2d(0.0..x_hi, y_lo..y_hi)
-            .map_err(|e| e.to_string())?;
-        chart
-            .configure_mesh()
-            .x_desc("D_n")
-            .y_desc("R_e")
-            .label_style((FAMILY, 14).into_font().color(&INK))
-            .axis_desc_style((FAMILY, 15).into_font().color(&INK))
-            .light_line_style(RGBColor(0xf1, 0xf2, 0xf4))
-            .max_light_lines(2)
-            .bold_line_style(RGBColor(0xdc, 0xde, 0xe2))
-            .draw()
-            .map_err(|e| e.to_string())?;
+        let mut chart = styled_chart(&right, caption, 0.0..x_hi, y_lo..y_hi, ("D_n", "R_e"))?;
         if !curve.is_empty() {
             chart
                 .draw_series(LineSeries::new(
@@ -592,14 +588,7 @@ pub fn plot_distance(
             .map_err(|e| e.to_string())?
             .label("start: D_n = 1, R_e = 0")
             .legend(|(x, y)| Circle::new((x + 11, y), 6, INK.stroke_width(2)));
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .label_font((FAMILY, 14).into_font().color(&INK))
-            .background_style(WHITE.mix(0.88))
-            .border_style(RGBColor(0xc8, 0xcc, 0xd2))
-            .draw()
-            .map_err(|e| e.to_string())
+        draw_legend(&mut chart, SeriesLabelPosition::UpperRight)
     })
 }
 
