@@ -444,13 +444,7 @@ impl Renderer {
             Point3::new(tx - g, ty + g, 0.0),
         ];
         if let Some(path) = self.world_polygon_path(cam, &square) {
-            self.pixmap.fill_path(
-                &path,
-                &paint(Shader::SolidColor(GROUND.opaque())),
-                FillRule::Winding,
-                Transform::identity(),
-                None,
-            );
+            fill_solid(&mut self.pixmap, &path, GROUND.opaque());
         }
 
         // The grid around the ground point at the image centre (the camera looks down, so
@@ -493,13 +487,7 @@ impl Renderer {
                     width,
                     ..Stroke::default()
                 };
-                self.pixmap.stroke_path(
-                    &path,
-                    &paint(Shader::SolidColor(colour.alpha(0.8))),
-                    &stroke,
-                    Transform::identity(),
-                    None,
-                );
+                stroke_solid(&mut self.pixmap, &path, colour.alpha(0.8), &stroke);
             }
         }
 
@@ -573,13 +561,7 @@ impl Renderer {
             self.push_ground_polygon(cam, &mut pb);
         }
         if let Some(path) = pb.finish() {
-            self.pixmap.fill_path(
-                &path,
-                &paint(Shader::SolidColor(SHADOW.alpha(0.22))),
-                FillRule::Winding,
-                Transform::identity(),
-                None,
-            );
+            fill_solid(&mut self.pixmap, &path, SHADOW.alpha(0.22));
         }
     }
 
@@ -602,13 +584,7 @@ impl Renderer {
             }
         }
         if let Some(path) = pb.finish() {
-            self.pixmap.fill_path(
-                &path,
-                &paint(Shader::SolidColor(FOOT_CONTACT.alpha(0.55))),
-                FillRule::Winding,
-                Transform::identity(),
-                None,
-            );
+            fill_solid(&mut self.pixmap, &path, FOOT_CONTACT.alpha(0.55));
         }
     }
 
@@ -629,13 +605,7 @@ impl Renderer {
                 dash: Some(dash),
                 ..Stroke::default()
             };
-            self.pixmap.stroke_path(
-                &path,
-                &paint(Shader::SolidColor(GOAL.alpha(0.75))),
-                &stroke,
-                Transform::identity(),
-                None,
-            );
+            stroke_solid(&mut self.pixmap, &path, GOAL.alpha(0.75), &stroke);
         }
 
         let mut ring = PathBuilder::new();
@@ -643,24 +613,12 @@ impl Renderer {
         push_circle_points([goal.x, goal.y], GOAL_RING_M, 48, &mut self.hull);
         self.push_ground_polygon(cam, &mut ring);
         if let Some(path) = ring.finish() {
-            self.pixmap.fill_path(
-                &path,
-                &paint(Shader::SolidColor(GOAL.alpha(0.22))),
-                FillRule::Winding,
-                Transform::identity(),
-                None,
-            );
+            fill_solid(&mut self.pixmap, &path, GOAL.alpha(0.22));
             let stroke = Stroke {
                 width: 2.0,
                 ..Stroke::default()
             };
-            self.pixmap.stroke_path(
-                &path,
-                &paint(Shader::SolidColor(GOAL.scale(0.8).alpha(0.9))),
-                &stroke,
-                Transform::identity(),
-                None,
-            );
+            stroke_solid(&mut self.pixmap, &path, GOAL.scale(0.8).alpha(0.9), &stroke);
         }
     }
 
@@ -822,13 +780,7 @@ impl Renderer {
             return;
         }
         if let Some(path) = rounded_rect(margin, margin, panel_w, panel_h, 6.0) {
-            self.pixmap.fill_path(
-                &path,
-                &paint(Shader::SolidColor(PANEL.alpha(0.62))),
-                FillRule::Winding,
-                Transform::identity(),
-                None,
-            );
+            fill_solid(&mut self.pixmap, &path, PANEL.alpha(0.62));
         }
         let label_paint = paint(Shader::SolidColor(TEXT_LABEL.opaque()));
         let value_paint = paint(Shader::SolidColor(TEXT_VALUE.opaque()));
@@ -865,23 +817,16 @@ impl Renderer {
             let (cx, cy, r) = (x + 5.0, baseline - 4.5, 4.5);
             if let Some(dot) = PathBuilder::from_circle(cx, cy, r) {
                 if contacts[f] {
-                    self.pixmap.fill_path(
-                        &dot,
-                        &paint(Shader::SolidColor(FOOT_CONTACT.opaque())),
-                        FillRule::Winding,
-                        Transform::identity(),
-                        None,
-                    );
+                    fill_solid(&mut self.pixmap, &dot, FOOT_CONTACT.opaque());
                 } else {
-                    self.pixmap.stroke_path(
+                    stroke_solid(
+                        &mut self.pixmap,
                         &dot,
-                        &paint(Shader::SolidColor(TEXT_LABEL.opaque())),
+                        TEXT_LABEL.opaque(),
                         &Stroke {
                             width: 1.2,
                             ..Stroke::default()
                         },
-                        Transform::identity(),
-                        None,
                     );
                 }
             }
@@ -963,6 +908,28 @@ fn paint(shader: Shader<'static>) -> Paint<'static> {
     }
 }
 
+/// Fills `path` with one colour.
+fn fill_solid(pixmap: &mut Pixmap, path: &Path, colour: Color) {
+    pixmap.fill_path(
+        path,
+        &paint(Shader::SolidColor(colour)),
+        FillRule::Winding,
+        Transform::identity(),
+        None,
+    );
+}
+
+/// Strokes `path` with one colour.
+fn stroke_solid(pixmap: &mut Pixmap, path: &Path, colour: Color, stroke: &Stroke) {
+    pixmap.stroke_path(
+        path,
+        &paint(Shader::SolidColor(colour)),
+        stroke,
+        Transform::identity(),
+        None,
+    );
+}
+
 /// Fills `path` with `shader` and outlines it in a darker shade of `colour`.
 fn fill_and_outline(
     pixmap: &mut Pixmap,
@@ -983,13 +950,7 @@ fn fill_and_outline(
         line_join: LineJoin::Round,
         ..Stroke::default()
     };
-    pixmap.stroke_path(
-        path,
-        &paint(Shader::SolidColor(colour.scale(0.45).alpha(0.9))),
-        &stroke,
-        Transform::identity(),
-        None,
-    );
+    stroke_solid(pixmap, path, colour.scale(0.45).alpha(0.9), &stroke);
 }
 
 /// The light, coming from above, from the left of the image and from the camera's side.
