@@ -43,6 +43,7 @@ use serde::Serialize;
 use crate::Failure;
 use crate::backend::with_backend;
 use crate::options::{EnvArgs, make_env, robot, usage};
+use crate::output::print_json_line;
 
 /// Actions drawn ahead of the timed region at a time.
 pub const BLOCK: usize = 1000;
@@ -332,11 +333,7 @@ pub fn bench_vec<B: Backend>(
 
 fn print_vec_report(r: &VecBenchReport, json: bool) {
     if json {
-        match serde_json::to_string(r) {
-            Ok(line) => println!("{line}"),
-            // Plain numbers and strings.
-            Err(e) => unreachable!("a bench report serialises to JSON: {e}"),
-        }
+        print_json_line(r, "a bench report");
         return;
     }
     println!(
@@ -482,11 +479,7 @@ fn pass<B: Backend>(
 
 fn print_report(r: &BenchReport, json: bool) {
     if json {
-        match serde_json::to_string(r) {
-            Ok(line) => println!("{line}"),
-            // Plain numbers, strings and objects of those.
-            Err(e) => unreachable!("a bench report serialises to JSON: {e}"),
-        }
+        print_json_line(r, "a bench report");
         return;
     }
     let s = &r.shares;

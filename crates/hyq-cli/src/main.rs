@@ -2,8 +2,9 @@
 //!
 //! One module per subcommand (`run`, `bench`, `soak`, `render`, `plot`, `compare`), each with its
 //! clap arguments and an `execute` function; the environment options every subcommand shares
-//! (backend, configuration file, `--set` overrides, policy and seed) live in [`options`], and the
-//! choice of physics backend in [`backend`].
+//! (backend, configuration file, `--set` overrides, policy and seed) live in [`options`], the
+//! choice of physics backend in [`backend`], and the JSON line and progress bar several of them
+//! print in [`output`].
 //!
 //! Errors never panic and never print more than one line: `hyq: error: <what was wrong>` on
 //! stderr and exit status 2 for a usage error (bad option, bad value), 1 for anything else.
@@ -12,6 +13,7 @@ mod backend;
 mod bench;
 mod compare;
 mod options;
+mod output;
 mod plot;
 mod render;
 mod run;

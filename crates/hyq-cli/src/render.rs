@@ -28,7 +28,7 @@ use hyq_render::{
 use crate::Failure;
 use crate::backend::with_backend;
 use crate::options::{EnvArgs, PolicyArgs, make_env, robot, usage};
-use crate::run::progress_bar;
+use crate::output::progress_bar;
 
 /// `hyq render` arguments.
 #[derive(Debug, Args)]

@@ -15,12 +15,12 @@ use std::path::PathBuf;
 use clap::{Args, ValueEnum};
 use hyq_env::{Env, Reason, ResetOptions, StepRecord, TermSums};
 use hyq_physics::Backend;
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde::Serialize;
 
 use crate::Failure;
 use crate::backend::with_backend;
 use crate::options::{EnvArgs, PolicyArgs, make_env, robot, usage};
+use crate::output::{print_json_line, progress_bar};
 use crate::plot::LivePlots;
 use crate::table::Table;
 
@@ -104,19 +104,6 @@ pub fn execute(args: RunArgs) -> Result<(), Failure> {
         let env = make_env::<B>(robot(), config)?;
         run_episodes(env, &args)
     })
-}
-
-/// A progress bar of `total` env steps (shared with `render`).
-pub fn progress_bar(total: u64) -> ProgressBar {
-    // Drawn on stderr only when it is a terminal (indicatif hides it otherwise), so piped and
-    // captured output stays clean.
-    let bar = ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::stderr());
-    if let Ok(style) = ProgressStyle::with_template(
-        "{spinner} [{elapsed_precise}] {bar:30} {pos}/{len} steps ({per_sec}) {msg}",
-    ) {
-        bar.set_style(style);
-    }
-    bar
 }
 
 fn run_episodes<B: Backend>(mut env: Env<B>, args: &RunArgs) -> Result<(), Failure> {
@@ -214,7 +201,7 @@ fn run_episodes<B: Backend>(mut env: Env<B>, args: &RunArgs) -> Result<(), Failu
         summary.simulated_s = summary.steps as f64 * env.env_dt();
         bar.set_position((episode + 1) * t_max);
         if args.json {
-            bar.suspend(|| print_json(&summary));
+            bar.suspend(|| print_json_line(&summary, "an episode summary"));
         }
         summaries.push(summary);
     }
@@ -240,15 +227,6 @@ fn record_error(args: &RunArgs, e: std::io::Error) -> Failure {
     Failure {
         status: 1,
         message: format!("--record {path}: cannot write: {e}"),
-    }
-}
-
-fn print_json(summary: &EpisodeSummary) {
-    match serde_json::to_string(summary) {
-        Ok(line) => println!("{line}"),
-        // Every field is a finite number (the environment never emits NaN), a string, a
-        // boolean or a list of those, all of which JSON holds.
-        Err(e) => unreachable!("an episode summary serialises to JSON: {e}"),
     }
 }
 

@@ -15,13 +15,14 @@
 use clap::Args;
 use hyq_env::{Env, Policy, RandomPolicy, ResetOptions, StepInfo};
 use hyq_physics::Backend;
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use indicatif::ProgressBar;
 use serde::Serialize;
 
 use crate::Failure;
 use crate::backend::with_backend;
 use crate::bench::Ended;
 use crate::options::{EnvArgs, make_env, robot};
+use crate::output::{print_json_line, progress_bar};
 use crate::table::Table;
 
 /// `hyq soak` arguments.
@@ -180,15 +181,10 @@ pub fn soak<B: Backend>(
     };
 
     let bar = if progress {
-        ProgressBar::with_draw_target(Some(steps), ProgressDrawTarget::stderr())
+        progress_bar(steps)
     } else {
         ProgressBar::hidden()
     };
-    if let Ok(style) = ProgressStyle::with_template(
-        "{spinner} [{elapsed_precise}] {bar:30} {pos}/{len} steps ({per_sec}) {msg}",
-    ) {
-        bar.set_style(style);
-    }
     let mut policy = RandomPolicy::new(seed);
     let mut action = vec![0.0; env.action_space().len()];
     let mut episodes = 0;
@@ -247,11 +243,7 @@ pub fn soak<B: Backend>(
 
 fn print_report(r: &SoakReport, json: bool) {
     if json {
-        match serde_json::to_string(r) {
-            Ok(line) => println!("{line}"),
-            // Finite numbers (checked), strings and booleans.
-            Err(e) => unreachable!("a soak report serialises to JSON: {e}"),
-        }
+        print_json_line(r, "a soak report");
         return;
     }
     let e = &r.episodes_ended;
