@@ -8,7 +8,7 @@
 use clap::ValueEnum;
 
 /// The install line for DART's C++ library (Debian's packages, as the hyq-dart crate says).
-pub const DART_INSTALL: &str = "apt-get install -y libdart-dev libdart-collision-bullet-dev";
+const DART_INSTALL: &str = "apt-get install -y libdart-dev libdart-collision-bullet-dev";
 
 /// A physics backend by name.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -19,13 +19,23 @@ pub enum BackendChoice {
     Dart,
 }
 
-/// The one-line error for `--backend dart` in a build without the `dart` feature.
-#[cfg_attr(feature = "dart", allow(dead_code))]
-pub fn dart_not_built() -> crate::Failure {
+impl BackendChoice {
+    /// The backend's name on the command line (`rapier`, `dart`).
+    pub fn name(self) -> &'static str {
+        match self {
+            BackendChoice::Rapier => "rapier",
+            BackendChoice::Dart => "dart",
+        }
+    }
+}
+
+/// The one-line usage error for DART asked for by `option` (e.g. `--backend dart`) in a build
+/// without the `dart` feature.
+pub fn dart_not_built(option: &str) -> crate::Failure {
     crate::Failure {
         status: 2,
         message: format!(
-            "--backend dart: this hyq was built without the DART backend; build it with \
+            "{option}: this hyq was built without the DART backend; build it with \
              `cargo build --release -p hyq-cli --features dart` (needs DART 6.12: \
              {DART_INSTALL})"
         ),
@@ -33,7 +43,7 @@ pub fn dart_not_built() -> crate::Failure {
 }
 
 /// Evaluates `$body` with the type alias `$b` bound to the chosen backend type; a choice that
-/// was not built evaluates to `Err(dart_not_built())`.
+/// was not built evaluates to `Err(dart_not_built("--backend dart"))`.
 macro_rules! with_backend {
     ($choice:expr, $b:ident => $body:expr) => {
         match $choice {
@@ -47,7 +57,9 @@ macro_rules! with_backend {
                 $body
             }
             #[cfg(not(feature = "dart"))]
-            $crate::backend::BackendChoice::Dart => Err($crate::backend::dart_not_built()),
+            $crate::backend::BackendChoice::Dart => {
+                Err($crate::backend::dart_not_built("--backend dart"))
+            }
         }
     };
 }

@@ -10,15 +10,15 @@
 use std::io::Write as _;
 use std::path::PathBuf;
 
-use clap::Args;
 use clap::builder::TypedValueParser as _;
+use clap::{Args, ValueEnum as _};
 use hyq_compare::{
     ComparisonSpec, DEFAULT_ONE_STEP_STATES, Ledger, MARKDOWN_FILE, Report, Scenario,
     check_seconds, parse_override, prepare_output_dir,
 };
 
 use crate::Failure;
-use crate::backend::{BackendChoice, with_backend};
+use crate::backend::{BackendChoice, dart_not_built, with_backend};
 use crate::options::{robot, usage};
 
 /// `hyq compare` arguments.
@@ -70,21 +70,6 @@ pub struct CompareArgs {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct BackendPair(BackendChoice, BackendChoice);
 
-fn backend_by_name(name: &str) -> Option<BackendChoice> {
-    match name {
-        "rapier" => Some(BackendChoice::Rapier),
-        "dart" => Some(BackendChoice::Dart),
-        _ => None,
-    }
-}
-
-fn backend_name(b: BackendChoice) -> &'static str {
-    match b {
-        BackendChoice::Rapier => "rapier",
-        BackendChoice::Dart => "dart",
-    }
-}
-
 fn parse_backends(s: &str) -> Result<BackendPair, String> {
     let names: Vec<&str> = s.split(',').map(str::trim).collect();
     if names.len() != 2 {
@@ -93,8 +78,8 @@ fn parse_backends(s: &str) -> Result<BackendPair, String> {
         ));
     }
     let pick = |name: &str| {
-        backend_by_name(name)
-            .ok_or_else(|| format!("unknown backend {name:?} (possible backends: rapier, dart)"))
+        BackendChoice::from_str(name, false)
+            .map_err(|_| format!("unknown backend {name:?} (possible backends: rapier, dart)"))
     };
     Ok(BackendPair(pick(names[0])?, pick(names[1])?))
 }
@@ -125,12 +110,10 @@ fn command_line() -> String {
 pub fn execute(args: CompareArgs) -> Result<(), Failure> {
     let BackendPair(a, b) = args.backends;
     if !cfg!(feature = "dart") && (a == BackendChoice::Dart || b == BackendChoice::Dart) {
-        return Err(usage(format!(
-            "--backends {},{}: this hyq was built without the DART backend; build it with \
-             `cargo build --release -p hyq-cli --features dart` (needs DART 6.12: {})",
-            backend_name(a),
-            backend_name(b),
-            crate::backend::DART_INSTALL
+        return Err(dart_not_built(&format!(
+            "--backends {},{}",
+            a.name(),
+            b.name()
         )));
     }
     let ledger = match &args.ledger {
@@ -154,7 +137,7 @@ pub fn execute(args: CompareArgs) -> Result<(), Failure> {
     };
     prepare_output_dir(&args.out).map_err(|e| usage(format!("--out: {e}")))?;
 
-    let (name_a, name_b) = (backend_name(a), backend_name(b));
+    let (name_a, name_b) = (a.name(), b.name());
     // The second side of a self-comparison is labelled apart, so the report's columns and the
     // plot's legend can be told apart.
     let label_b = if name_a == name_b {
