@@ -27,7 +27,7 @@ use std::process::Command;
 
 use serde_json::Value;
 
-use crate::stages::workspace_root;
+use crate::stages::{DART_BULLET_HEADER, run_cargo, workspace_root};
 
 /// The anchor harness's pinned versions (`run_anchors.sh`).
 const PINS: [(&str, &str); 3] = [
@@ -38,9 +38,6 @@ const PINS: [(&str, &str); 3] = [
 
 /// Physics sub-steps per env step in the anchors (and in the project's default configuration).
 const SUBSTEPS: f64 = 10.0;
-
-/// The header DART's backend needs (the same check as `cargo xtask test` and `soak`).
-const DART_HEADER: &str = "/usr/include/dart/collision/bullet/BulletCollisionDetector.hpp";
 
 /// The command's settings.
 #[derive(Clone, Debug, PartialEq)]
@@ -704,24 +701,18 @@ pub fn bench_vs_anchors(args: &[String]) -> Result<(), String> {
             args.anchors.display()
         ));
     }
-    let dart = args.dart && Path::new(DART_HEADER).exists();
+    let dart = args.dart && Path::new(DART_BULLET_HEADER).exists();
     if args.dart && !dart {
         host.notes.push(format!(
-            "DART is not installed ({DART_HEADER} missing), so the DART backend was not measured"
+            "DART is not installed ({DART_BULLET_HEADER} missing), so the DART backend was not measured"
         ));
     }
 
-    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".to_string());
     let mut build = strings(&["build", "--release", "--locked", "-p", "hyq-cli"]);
     if dart {
         build.extend(strings(&["--features", "dart"]));
     }
-    println!("$ cargo {}", build.join(" "));
-    let status = Command::new(&cargo)
-        .args(&build)
-        .current_dir(&root)
-        .status()
-        .map_err(|e| format!("cannot start cargo: {e}"))?;
+    let status = run_cargo(&root, &build)?;
     if !status.success() {
         return Err(format!("the release build of hyq failed ({status})"));
     }

@@ -8,9 +8,8 @@
 //! The test suite runs a short soak (2·10⁴ steps, `crates/hyq-cli/tests`); this is the long one.
 
 use std::path::Path;
-use std::process::Command;
 
-use crate::stages::{DART_INSTALL, workspace_root};
+use crate::stages::{DART_BULLET_HEADER, DART_INSTALL, run_cargo, workspace_root};
 
 /// The soak's settings.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -92,21 +91,12 @@ pub fn cargo_args(args: &SoakArgs) -> Vec<String> {
 pub fn soak(args: &[String]) -> Result<(), String> {
     let args = parse(args)?;
     // The same check as the test stages' (DART's headers, with the Bullet detector).
-    if args.backend == "dart"
-        && !Path::new("/usr/include/dart/collision/bullet/BulletCollisionDetector.hpp").exists()
-    {
+    if args.backend == "dart" && !Path::new(DART_BULLET_HEADER).exists() {
         return Err(format!(
             "the DART backend needs DART installed: {DART_INSTALL}"
         ));
     }
-    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".to_string());
-    let cargo_args = cargo_args(&args);
-    println!("$ cargo {}", cargo_args.join(" "));
-    let status = Command::new(cargo)
-        .args(&cargo_args)
-        .current_dir(workspace_root())
-        .status()
-        .map_err(|e| format!("cannot start cargo: {e}"))?;
+    let status = run_cargo(&workspace_root(), &cargo_args(&args))?;
     if status.success() {
         Ok(())
     } else {

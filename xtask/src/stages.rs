@@ -4,7 +4,7 @@
 
 use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
+use std::process::{Command, ExitStatus, Stdio};
 
 /// A part of the test run that needs something a fresh machine may lack.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
@@ -105,21 +105,42 @@ pub fn workspace_members(root: &Path) -> Result<Vec<String>, String> {
     Ok(names)
 }
 
+/// The header of DART's Bullet collision detector, which the DART backend needs: every command
+/// that builds the backend checks for it.
+pub const DART_BULLET_HEADER: &str =
+    "/usr/include/dart/collision/bullet/BulletCollisionDetector.hpp";
+
 /// True when Debian's DART development files are installed, with the Bullet collision detector
 /// the backend uses.
 fn dart_installed() -> bool {
-    Path::new("/usr/include/dart/config.hpp").exists()
-        && Path::new("/usr/include/dart/collision/bullet/BulletCollisionDetector.hpp").exists()
+    Path::new("/usr/include/dart/config.hpp").exists() && Path::new(DART_BULLET_HEADER).exists()
+}
+
+/// A `cargo` command (the one running xtask, `$CARGO`, else `cargo` from `PATH`) to be run in
+/// the workspace root `root`.
+pub fn cargo(root: &Path) -> Command {
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".to_string());
+    let mut command = Command::new(cargo);
+    command.current_dir(root);
+    command
+}
+
+/// Prints `$ cargo args`, then runs it in the workspace root `root` with its output on the
+/// terminal, and returns its exit status.
+pub fn run_cargo(root: &Path, args: &[String]) -> Result<ExitStatus, String> {
+    println!("$ cargo {}", args.join(" "));
+    cargo(root)
+        .args(args)
+        .status()
+        .map_err(|e| format!("cannot start cargo: {e}"))
 }
 
 /// Runs `cargo` with `args` in the workspace root, streaming its output, and returns how many
 /// tests passed (summed over every `test result:` line). A failing command is an error.
 fn cargo_test(root: &Path, args: &[&str]) -> Result<u64, String> {
-    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".to_string());
     println!("\n$ cargo {}", args.join(" "));
-    let mut child = Command::new(&cargo)
+    let mut child = cargo(root)
         .args(args)
-        .current_dir(root)
         .stdout(Stdio::piped())
         .spawn()
         .map_err(|e| format!("cannot start cargo: {e}"))?;
