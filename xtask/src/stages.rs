@@ -139,26 +139,35 @@ pub fn run_cargo(root: &Path, args: &[String]) -> Result<ExitStatus, String> {
 /// tests passed (summed over every `test result:` line). A failing command is an error.
 fn cargo_test(root: &Path, args: &[&str]) -> Result<u64, String> {
     println!("\n$ cargo {}", args.join(" "));
-    let mut child = cargo(root)
-        .args(args)
-        .stdout(Stdio::piped())
-        .spawn()
-        .map_err(|e| format!("cannot start cargo: {e}"))?;
     let mut passed = 0u64;
-    if let Some(stdout) = child.stdout.take() {
-        for line in BufReader::new(stdout).lines() {
-            let line = line.map_err(|e| format!("reading cargo's output: {e}"))?;
-            println!("{line}");
-            passed += passed_count(&line);
-        }
-    }
-    let status = child
-        .wait()
-        .map_err(|e| format!("waiting for cargo: {e}"))?;
+    let status = stream_stdout(cargo(root).args(args), "cargo", |line| {
+        passed += passed_count(line);
+    })?;
     if !status.success() {
         return Err(format!("`cargo {}` failed ({status})", args.join(" ")));
     }
     Ok(passed)
+}
+
+/// Runs `command` (named `name` in errors), echoing each line of its stdout and handing it to
+/// `each`, and returns its exit status.
+fn stream_stdout(
+    command: &mut Command,
+    name: &str,
+    mut each: impl FnMut(&str),
+) -> Result<ExitStatus, String> {
+    let mut child = command
+        .stdout(Stdio::piped())
+        .spawn()
+        .map_err(|e| format!("cannot start {name}: {e}"))?;
+    if let Some(stdout) = child.stdout.take() {
+        for line in BufReader::new(stdout).lines() {
+            let line = line.map_err(|e| format!("reading {name}'s output: {e}"))?;
+            println!("{line}");
+            each(&line);
+        }
+    }
+    child.wait().map_err(|e| format!("waiting for {name}: {e}"))
 }
 
 /// The number of passed tests on a libtest summary line (`test result: ok. 12 passed; ...`).
@@ -356,25 +365,18 @@ fn python_stage(root: &Path, venv: &Path) -> Result<u64, String> {
 
     let args = ["-m", "pytest", "-p", "no:cacheprovider"];
     println!("\n$ {} {}", python.display(), args.join(" "));
-    let mut child = venv_command(venv, &crate_dir, &python)
-        .args(args)
-        .env("HYQ_CLI", &cli)
-        .stdout(Stdio::piped())
-        .spawn()
-        .map_err(|e| format!("cannot start pytest: {e}"))?;
     let mut passed = None;
-    if let Some(stdout) = child.stdout.take() {
-        for line in BufReader::new(stdout).lines() {
-            let line = line.map_err(|e| format!("reading pytest's output: {e}"))?;
-            println!("{line}");
-            if let Some(n) = pytest_passed_count(&line) {
+    let status = stream_stdout(
+        venv_command(venv, &crate_dir, &python)
+            .args(args)
+            .env("HYQ_CLI", &cli),
+        "pytest",
+        |line| {
+            if let Some(n) = pytest_passed_count(line) {
                 passed = Some(n);
             }
-        }
-    }
-    let status = child
-        .wait()
-        .map_err(|e| format!("waiting for pytest: {e}"))?;
+        },
+    )?;
     if !status.success() {
         return Err(format!("pytest failed ({status})"));
     }
@@ -471,6 +473,22 @@ mod tests {
         );
         assert_eq!(passed_count("running 3 tests"), 0);
         assert_eq!(passed_count("test foo ... ok"), 0);
+    }
+
+    #[test]
+    fn streamed_output_reaches_the_caller_line_by_line_with_the_exit_status() {
+        let mut lines = Vec::new();
+        let status = stream_stdout(
+            Command::new("sh").args(["-c", "echo 'test result: ok. 2 passed; 0 failed'; exit 3"]),
+            "sh",
+            |line| lines.push(line.to_string()),
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(lines, ["test result: ok. 2 passed; 0 failed"]);
+        assert_eq!(status.code(), Some(3));
+        let err = stream_stdout(&mut Command::new("/nonexistent/xtask-tool"), "tool", |_| {})
+            .expect_err("a missing program cannot start");
+        assert!(err.starts_with("cannot start tool:"), "{err}");
     }
 
     #[test]
