@@ -27,6 +27,7 @@ use std::process::Command;
 
 use serde_json::Value;
 
+use crate::cli::{positive, strings, value};
 use crate::stages::{DART_BULLET_HEADER, run_cargo, workspace_root};
 
 /// The anchor harness's pinned versions (`run_anchors.sh`).
@@ -61,6 +62,7 @@ pub struct BenchArgs {
 /// Parses the command's arguments; `root` is the workspace root (for the defaults and for
 /// refusing a virtual environment inside the repository).
 pub fn parse(args: &[String], root: &Path) -> Result<BenchArgs, String> {
+    const COMMAND: &str = "bench-vs-anchors";
     let mut out = BenchArgs {
         reps: 5,
         steps: 3000,
@@ -78,28 +80,13 @@ pub fn parse(args: &[String], root: &Path) -> Result<BenchArgs, String> {
     };
     let mut it = args.iter();
     while let Some(arg) = it.next() {
-        let mut value = |name: &str| {
-            it.next()
-                .ok_or_else(|| format!("`cargo xtask bench-vs-anchors {name}` needs a value"))
-        };
-        let count = |name: &str, v: &String| {
-            v.parse::<u64>()
-                .ok()
-                .filter(|n| *n > 0)
-                .ok_or_else(|| format!("`{name} {v}`: expected a whole number > 0"))
-        };
         match arg.as_str() {
-            "--reps" => {
-                let v = value("--reps")?;
-                out.reps = count("--reps", v)? as usize;
-            }
-            "--steps" => out.steps = count("--steps", value("--steps")?)?,
-            "--vec-steps" => out.vec_steps = count("--vec-steps", value("--vec-steps")?)?,
-            "--anchor-steps" => {
-                out.anchor_steps = count("--anchor-steps", value("--anchor-steps")?)?;
-            }
-            "--anchors" => out.anchors = PathBuf::from(value("--anchors")?),
-            "--venv" => out.venv = PathBuf::from(value("--venv")?),
+            "--reps" => out.reps = positive(&mut it, COMMAND, arg)? as usize,
+            "--steps" => out.steps = positive(&mut it, COMMAND, arg)?,
+            "--vec-steps" => out.vec_steps = positive(&mut it, COMMAND, arg)?,
+            "--anchor-steps" => out.anchor_steps = positive(&mut it, COMMAND, arg)?,
+            "--anchors" => out.anchors = PathBuf::from(value(&mut it, COMMAND, arg)?),
+            "--venv" => out.venv = PathBuf::from(value(&mut it, COMMAND, arg)?),
             "--no-dart" => out.dart = false,
             other => {
                 return Err(format!(
@@ -630,10 +617,6 @@ fn shell(line: &str) -> String {
         .unwrap_or_default()
 }
 
-fn strings(items: &[&str]) -> Vec<String> {
-    items.iter().map(|s| s.to_string()).collect()
-}
-
 /// Creates the anchors' virtual environment if needed and installs the pinned versions that
 /// are missing; returns its Python and the notes on what could not be installed.
 fn setup_venv(venv: &Path) -> Result<(PathBuf, Vec<String>), String> {
@@ -862,10 +845,6 @@ pub fn bench_vs_anchors(args: &[String]) -> Result<(), String> {
 mod tests {
     use super::*;
 
-    fn args(s: &[&str]) -> Vec<String> {
-        strings(s)
-    }
-
     #[test]
     fn defaults_and_arguments_parse_and_bad_ones_are_named() {
         let root = Path::new("/work/main");
@@ -874,7 +853,7 @@ mod tests {
         assert_eq!(d.anchors, PathBuf::from("/work/shared/bench/anchors"));
         assert!(d.dart);
         let p = parse(
-            &args(&[
+            &strings(&[
                 "--reps",
                 "3",
                 "--steps",
@@ -907,7 +886,7 @@ mod tests {
             (&["--fast"], "--fast"),
             (&["--venv", "/work/main/.venv"], "outside the repository"),
         ] {
-            let err = parse(&args(bad), root).err().unwrap_or_default();
+            let err = parse(&strings(bad), root).err().unwrap_or_default();
             assert!(err.contains(named), "{bad:?}: {err}");
         }
     }

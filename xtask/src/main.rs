@@ -6,6 +6,7 @@
 //! fails when a part that was required (`--require dart`, `--require python`) cannot run.
 
 mod bench;
+mod cli;
 mod docs;
 mod soak;
 mod stages;

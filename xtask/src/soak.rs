@@ -9,6 +9,7 @@
 
 use std::path::Path;
 
+use crate::cli::{positive, value};
 use crate::stages::{DART_BULLET_HEADER, DART_INSTALL, run_cargo, workspace_root};
 
 /// The soak's settings.
@@ -31,27 +32,16 @@ pub fn parse(args: &[String]) -> Result<SoakArgs, String> {
     };
     let mut it = args.iter();
     while let Some(arg) = it.next() {
-        let mut value = |name: &str| {
-            it.next()
-                .ok_or_else(|| format!("`cargo xtask soak {name}` needs a value"))
-        };
         match arg.as_str() {
-            "--steps" => {
-                let v = value("--steps")?;
-                out.steps = v
-                    .parse()
-                    .ok()
-                    .filter(|n| *n > 0)
-                    .ok_or_else(|| format!("`--steps {v}`: expected a whole number > 0"))?;
-            }
+            "--steps" => out.steps = positive(&mut it, "soak", arg)?,
             "--seed" => {
-                let v = value("--seed")?;
+                let v = value(&mut it, "soak", arg)?;
                 out.seed = v
                     .parse()
                     .map_err(|_| format!("`--seed {v}`: expected a whole number"))?;
             }
             "--backend" => {
-                let v = value("--backend")?;
+                let v = value(&mut it, "soak", arg)?;
                 if v != "rapier" && v != "dart" {
                     return Err(format!("`--backend {v}`: expected rapier or dart"));
                 }
@@ -107,10 +97,7 @@ pub fn soak(args: &[String]) -> Result<(), String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn args(s: &[&str]) -> Vec<String> {
-        s.iter().map(|a| a.to_string()).collect()
-    }
+    use crate::cli::strings;
 
     #[test]
     fn defaults_are_a_million_steps_on_rapier() {
@@ -131,7 +118,7 @@ mod tests {
 
     #[test]
     fn dart_builds_the_feature_and_bad_arguments_are_named() {
-        let parsed = parse(&args(&[
+        let parsed = parse(&strings(&[
             "--backend",
             "dart",
             "--steps",
@@ -151,7 +138,7 @@ mod tests {
             (&["--steps"], "--steps"),
             (&["--fast"], "--fast"),
         ] {
-            let err = parse(&args(bad)).err().unwrap_or_default();
+            let err = parse(&strings(bad)).err().unwrap_or_default();
             assert!(err.contains(named), "{bad:?}: {err}");
         }
     }

@@ -464,6 +464,7 @@ fn summarize(results: &[(&str, Outcome)], required: &[Part]) -> Result<(), Strin
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::cli::strings;
 
     #[test]
     fn counts_passed_tests_on_libtest_summary_lines() {
@@ -517,15 +518,14 @@ mod tests {
 
     #[test]
     fn require_flags_parse_and_reject_unknown_parts() {
-        let args = |s: &[&str]| s.iter().map(|a| a.to_string()).collect::<Vec<_>>();
         assert_eq!(
-            parse_required(&args(&["--require", "all"])),
+            parse_required(&strings(&["--require", "all"])),
             Ok(vec![Part::Dart, Part::Python])
         );
-        let err = parse_required(&args(&["--require", "matlab"]))
+        let err = parse_required(&strings(&["--require", "matlab"]))
             .expect_err("an unknown part must be refused");
         assert!(err.contains("matlab"), "{err}");
-        assert!(parse_required(&args(&["--require"])).is_err());
+        assert!(parse_required(&strings(&["--require"])).is_err());
     }
 
     #[test]
