@@ -181,8 +181,12 @@ fn run_episodes<B: Backend>(mut env: Env<B>, args: &RunArgs) -> Result<(), Failu
                 summary.final_position = [p.x, p.y, p.z];
             }
             if let Some(out) = record.as_mut() {
-                let line = StepRecord::from_env(&env, &action).to_json_line();
-                writeln!(out, "{line}").map_err(|e| record_error(args, e))?;
+                // Serialised straight into the buffered file: the bytes of `to_json_line`,
+                // without a String per step. A failed write comes back as its io::Error.
+                serde_json::to_writer(&mut *out, &StepRecord::from_env(&env, &action))
+                    .map_err(std::io::Error::from)
+                    .and_then(|()| out.write_all(b"\n"))
+                    .map_err(|e| record_error(args, e))?;
             }
             if let Some(plots) = plots.as_mut() {
                 plots.push(env.info());
