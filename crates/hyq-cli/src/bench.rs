@@ -34,8 +34,7 @@ use std::time::{Duration, Instant};
 use clap::Args;
 use cpu_time::ProcessTime;
 use hyq_env::{
-    AutoReset, Env, Policy, PolicyInput, RandomPolicy, Reason, ResetOptions, StepTiming, VecEnv,
-    VecStepOut,
+    AutoReset, Env, Policy, RandomPolicy, Reason, ResetOptions, StepTiming, VecEnv, VecStepOut,
 };
 use hyq_physics::Backend;
 use serde::Serialize;
@@ -441,14 +440,7 @@ fn pass<B: Backend>(
         let block = left.min(BLOCK as u64) as usize;
         // The random policy reads only the action space, so one input serves the whole block.
         {
-            let input = PolicyInput {
-                t: 0,
-                env_dt: env.env_dt(),
-                observation: env.observation(),
-                joint_angles: env.joint_angles(),
-                standing: env.model().standing_pose(),
-                space: env.action_space(),
-            };
+            let input = env.policy_input();
             for action in actions.chunks_exact_mut(n).take(block) {
                 policy.act(&input, action);
             }
