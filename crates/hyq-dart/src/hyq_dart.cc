@@ -452,11 +452,17 @@ bool Sim::step() {
   // Debian's libdart keeps its assertions: the first time a non-finite
   // configuration is turned into a transform, DART aborts the process. Read
   // the raw coordinates (no transform involved) and report a diverged state
-  // before anything computes a transform from it.
-  const auto& q = s.robot->getPositions();
-  const auto& qd = s.robot->getVelocities();
-  return q.allFinite() && qd.allFinite() && q.cwiseAbs().maxCoeff() < kSaneBound &&
-         qd.cwiseAbs().maxCoeff() < kSaneBound;
+  // before anything computes a transform from it. One coordinate at a time:
+  // getPositions() and getVelocities() return fresh vectors, two heap
+  // allocations every step. |v| < kSaneBound is false for NaN and infinity.
+  const dart::dynamics::Skeleton& robot = *s.robot;
+  for (std::size_t i = 0; i < robot.getNumDofs(); ++i) {
+    if (!(std::abs(robot.getPosition(i)) < kSaneBound &&
+          std::abs(robot.getVelocity(i)) < kSaneBound)) {
+      return false;
+    }
+  }
+  return true;
 }
 
 void Sim::joint_positions(rust::Slice<double> out) const {
