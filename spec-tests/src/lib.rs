@@ -24,11 +24,12 @@
 //! (rapier and DART).
 //!
 //! This library holds what the sections share: building environments from `key=value`
-//! overrides, the standing action, stepping a policy while collecting its records.
+//! overrides, the standing action, stepping a policy (or a fixed action) while collecting its
+//! records.
 
 use std::sync::Arc;
 
-use hyq_env::{Env, EnvConfig, Policy, ResetOptions, StepRecord};
+use hyq_env::{Env, EnvConfig, Policy, PolicyInput, ResetOptions, StepRecord};
 use hyq_physics::na::{Point3, Quaternion, UnitQuaternion};
 use hyq_physics::{Backend, RobotModel};
 use hyq_spec::ObservationLayout;
@@ -155,6 +156,32 @@ pub fn run_policy<B: Backend>(
         }
     }
     records
+}
+
+/// Steps the fixed `action` until the episode ends or `max_steps` steps were taken; returns the
+/// records.
+///
+/// # Panics
+/// If a step is refused.
+pub fn run_action<B: Backend>(
+    env: &mut Env<B>,
+    action: &[f64],
+    max_steps: u64,
+) -> Vec<StepRecord<'static>> {
+    run_policy(env, &mut Fixed(action), max_steps)
+}
+
+/// A policy that always takes the same action.
+struct Fixed<'a>(&'a [f64]);
+
+impl Policy for Fixed<'_> {
+    fn name(&self) -> &'static str {
+        "fixed"
+    }
+
+    fn act(&mut self, _input: &PolicyInput<'_>, action: &mut [f64]) {
+        action.copy_from_slice(self.0);
+    }
 }
 
 /// C^t, the trunk position rows of an observation (through the layout's named range).

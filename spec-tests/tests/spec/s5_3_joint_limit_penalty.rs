@@ -11,7 +11,7 @@
 
 use hyq_env::{EnvError, Reason};
 use hyq_spec::LimitSide;
-use spec_tests::{env, reset, stand_action, step};
+use spec_tests::{env, reset, run_action, stand_action};
 
 spec_tests::for_each_backend! {
     #[test]
@@ -25,15 +25,7 @@ spec_tests::for_each_backend! {
                 reset(&mut env, 0);
                 let mut action = stand_action(&env);
                 action[j] = normalized;
-                let mut records = Vec::new();
-                while records.len() < 100 {
-                    let r = step(&mut env, &action);
-                    let done = r.terminated || r.truncated;
-                    records.push(r);
-                    if done {
-                        break;
-                    }
-                }
+                let records = run_action(&mut env, &action, 100);
                 let what = format!("{} to its {side:?} limit", joint.name);
                 let last = records.last().unwrap_or_else(|| unreachable!("one step at least"));
                 assert_eq!(last.reasons, [Reason::JointLimit], "{what}: ended with {:?} at t = {}", last.reasons, last.t);

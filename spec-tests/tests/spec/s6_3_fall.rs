@@ -18,7 +18,7 @@ use hyq_env::testing::ScriptedBackend;
 use hyq_env::{EnvError, Reason, ResetOptions};
 use hyq_physics::na::{Isometry3, UnitQuaternion};
 use hyq_physics::{Backend, PhysicsParams};
-use spec_tests::{env, reset, step};
+use spec_tests::{env, reset, run_action, step};
 
 const LIMP: [(&str, &str); 3] = [
     ("control.kp", "0"),
@@ -47,15 +47,7 @@ spec_tests::for_each_backend! {
         env.reset(Some(0), &ResetOptions { state: Some(state), goal: None })
             .unwrap_or_else(|e| panic!("{e}"));
         let zero = [0.0; 12];
-        let mut records = Vec::new();
-        while records.len() < 100 {
-            let r = step(&mut env, &zero);
-            let done = r.terminated || r.truncated;
-            records.push(r);
-            if done {
-                break;
-            }
-        }
+        let records = run_action(&mut env, &zero, 100);
         let last = records.last().unwrap_or_else(|| unreachable!("one step at least"));
         assert_eq!(last.reasons, [Reason::Fell], "the trunk lands before any leg folds to a limit (t = {})", last.t);
         assert!(last.terminated && !last.truncated);
