@@ -199,15 +199,13 @@ impl StepOutcome {
     }
 }
 
-fn check_finite_point(what: &'static str, p: &Point3<f64>) -> Result<(), StepError> {
-    match p.iter().find(|v| !v.is_finite()) {
-        Some(&value) => Err(StepError::NonFinite {
-            what,
-            index: 0,
-            value,
-        }),
-        None => Ok(()),
-    }
+/// The index and value of the first NaN or infinite number in `values`.
+fn first_non_finite<'a>(values: impl IntoIterator<Item = &'a f64>) -> Option<(usize, f64)> {
+    values
+        .into_iter()
+        .copied()
+        .enumerate()
+        .find(|(_, v)| !v.is_finite())
 }
 
 impl EpisodeRules {
@@ -223,7 +221,7 @@ impl EpisodeRules {
     ) -> Result<Self, EpisodeError> {
         config.validate()?;
         for (what, p) in [("initial position", &initial), ("goal", &goal)] {
-            if p.iter().any(|v| !v.is_finite()) {
+            if first_non_finite(p.iter()).is_some() {
                 return Err(EpisodeError::NonFinitePosition {
                     what,
                     x: p.x,
@@ -286,21 +284,20 @@ impl EpisodeRules {
         if s.step == 0 {
             return Err(StepError::StepZero);
         }
-        check_finite_point("previous_position", &s.previous_position)?;
-        check_finite_point("position", &s.position)?;
-        if let Some(&value) = s.orientation.coords.iter().find(|v| !v.is_finite()) {
-            return Err(StepError::NonFinite {
-                what: "orientation",
-                index: 0,
-                value,
-            });
+        for (what, values) in [
+            ("previous_position", s.previous_position.coords.as_slice()),
+            ("position", s.position.coords.as_slice()),
+            ("orientation", s.orientation.coords.as_slice()),
+        ] {
+            if let Some((_, value)) = first_non_finite(values) {
+                return Err(StepError::NonFinite {
+                    what,
+                    index: 0,
+                    value,
+                });
+            }
         }
-        if let Some((index, &value)) = s
-            .joint_angles
-            .iter()
-            .enumerate()
-            .find(|(_, v)| !v.is_finite())
-        {
+        if let Some((index, value)) = first_non_finite(s.joint_angles) {
             return Err(StepError::NonFinite {
                 what: "joint angle",
                 index,
