@@ -336,9 +336,14 @@ impl<B: Backend> Env<B> {
             Some(s) => (stream(s, GOAL_STREAM), stream(s, NOISE_STREAM)),
             None => (self.goal_rng.clone(), self.noise_rng.clone()),
         };
+        // A given state is used where it is; only a drawn one needs a place to live.
+        let drawn;
         let state = match &options.state {
-            Some(s) => s.clone(),
-            None => sample_reset_state(&self.model, &self.config.reset, &mut noise_rng),
+            Some(s) => s,
+            None => {
+                drawn = sample_reset_state(&self.model, &self.config.reset, &mut noise_rng);
+                &drawn
+            }
         };
         state.validate(&self.model)?;
         let requested = Point3::from(state.trunk.pose.translation.vector);
@@ -349,7 +354,7 @@ impl<B: Backend> Env<B> {
         // Checked against the requested start before anything changes, so a refused goal leaves
         // the environment as it was.
         let requested_rules = EpisodeRules::new(&self.config.task, requested, goal)?;
-        self.backend.set_state(&state)?;
+        self.backend.set_state(state)?;
 
         self.seeded |= seed.is_some();
         self.goal_rng = goal_rng;
