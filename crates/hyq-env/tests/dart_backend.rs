@@ -6,9 +6,9 @@
 
 mod common;
 
-use common::{env, reset};
+use common::{env, reset, trot_until_truncated};
 use hyq_dart::DartBackend;
-use hyq_env::policy::{Policy, RandomPolicy, Stand, Trot, TrotParams};
+use hyq_env::policy::{Policy, RandomPolicy, Stand};
 use hyq_env::{Env, ResetOptions, StepRecord};
 
 fn dart(overrides: &[(&str, &str)]) -> Env<DartBackend> {
@@ -71,23 +71,7 @@ fn standing_on_dart_settles_near_the_profile_height() {
 fn trot_walks_forward_on_dart_too() {
     let mut env = dart(&[]);
     reset(&mut env, 0);
-    let model = env.model().clone();
-    let mut trot = Trot::new(&model, TrotParams::default()).unwrap_or_else(|e| panic!("{e}"));
-    let mut a = vec![0.0; 12];
-    let trunk_row = env.observation_layout().trunk_contact();
-    let t = loop {
-        trot.act(&env.policy_input(), &mut a);
-        let s = env.step(&a).unwrap_or_else(|e| panic!("{e}"));
-        let t = s.info.t;
-        assert_eq!(
-            s.observation[trunk_row], 0.0,
-            "trunk touched the ground at t = {t}"
-        );
-        assert!(!s.terminated, "terminated at t = {t}: {:?}", s.info.reasons);
-        if s.truncated {
-            break t;
-        }
-    };
+    let t = trot_until_truncated(&mut env);
     assert_eq!(t, 1000);
     // Measured on DART: x 4.28 m, y −0.46 m, yaw 0.18 rad (rapier: 4.32, −0.48, 0.21).
     let p = env.trunk().pose.translation.vector;

@@ -5,8 +5,8 @@
 
 mod common;
 
-use common::{rapier, reset};
-use hyq_env::policy::{Policy, RandomPolicy, Stand, Trot, TrotParams};
+use common::{rapier, reset, trot_until_truncated};
+use hyq_env::policy::{Policy, RandomPolicy, Stand};
 use hyq_env::{Reason, ResetOptions};
 
 #[test]
@@ -43,24 +43,8 @@ fn standing_settles_at_the_profile_height() {
 fn trot_walks_forward_for_ten_seconds_without_falling() {
     let mut env = rapier(&[("task.max_time_steps", "1000")]);
     reset(&mut env, 0);
-    let model = env.model().clone();
-    let mut trot = Trot::new(&model, TrotParams::default()).unwrap_or_else(|e| panic!("{e}"));
-    let mut a = vec![0.0; 12];
-    let trunk_row = env.observation_layout().trunk_contact();
-    let t = loop {
-        trot.act(&env.policy_input(), &mut a);
-        let s = env.step(&a).unwrap_or_else(|e| panic!("{e}"));
-        let t = s.info.t;
-        assert_eq!(
-            s.observation[trunk_row], 0.0,
-            "trunk touched the ground at t = {t}"
-        );
-        assert!(!s.terminated, "terminated at t = {t}: {:?}", s.info.reasons);
-        if s.truncated {
-            assert!(s.info.reasons.contains(Reason::Timeout));
-            break t;
-        }
-    };
+    let t = trot_until_truncated(&mut env);
+    assert!(env.info().reasons.contains(Reason::Timeout));
     assert_eq!(t, 1000);
     let p = env.trunk().pose.translation.vector;
     // Measured 4.32 m forward, 0.48 m sideways, yaw 0.2 rad (see the crate docs); the margins
