@@ -9,7 +9,7 @@
 
 mod common;
 
-use common::{direction, hyq_ranges, level_snapshot, mid_angles, start_and_goal};
+use common::{direction, hyq_ranges, level_snapshot, mid_angles, rules, start_and_goal, step};
 use hyq_spec::nalgebra::{Point3, UnitQuaternion, Vector3};
 use hyq_spec::penalty::orientation::orientation_multiplier;
 use hyq_spec::reward::exponential::cumulative_exponential_reward;
@@ -18,20 +18,6 @@ use hyq_spec::{
     StepSnapshot, TaskConfig, Termination,
 };
 use proptest::prelude::*;
-
-fn rules(config: &TaskConfig, start: Point3<f64>, goal: Point3<f64>) -> EpisodeRules {
-    match EpisodeRules::new(config, start, goal) {
-        Ok(r) => r,
-        Err(e) => panic!("valid episode rejected: {e}"),
-    }
-}
-
-fn step(rules: &EpisodeRules, s: &StepSnapshot<'_>) -> StepOutcome {
-    match rules.evaluate_step(s) {
-        Ok(o) => o,
-        Err(e) => panic!("valid snapshot rejected: {e}"),
-    }
-}
 
 /// The reported total is the composition of the reported terms, in the documented order, to the
 /// bit; written out here rather than calling `compose`.

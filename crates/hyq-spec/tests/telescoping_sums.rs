@@ -12,7 +12,8 @@
 mod common;
 
 use common::{
-    d_n_near_boundaries, direction, hyq_ranges, level_snapshot, mid_angles, start_and_goal,
+    d_n_near_boundaries, direction, hyq_ranges, level_snapshot, mid_angles, rules, start_and_goal,
+    step,
 };
 use hyq_spec::nalgebra::Point3;
 use hyq_spec::reward::exponential::cumulative_exponential_reward;
@@ -29,10 +30,7 @@ fn run_path(rules: &EpisodeRules, path: &[Point3<f64>]) -> ([f64; 3], f64, f64) 
     let (mut d, mut d_n) = (f64::NAN, f64::NAN);
     for (i, position) in path.iter().enumerate() {
         let snapshot = level_snapshot(i as u64 + 1, previous, *position, &angles, &ranges);
-        let outcome = match rules.evaluate_step(&snapshot) {
-            Ok(o) => o,
-            Err(e) => panic!("valid snapshot rejected: {e}"),
-        };
+        let outcome = step(rules, &snapshot);
         sums[0] += outcome.reward.r_b;
         sums[1] += outcome.reward.r_n;
         sums[2] += outcome.reward.r_e;
@@ -100,10 +98,7 @@ proptest! {
             exp_rew_scaling: Some(k_exp),
             ..TaskConfig::default()
         };
-        let rules = match EpisodeRules::new(&config, start, goal) {
-            Ok(r) => r,
-            Err(e) => panic!("valid episode rejected: {e}"),
-        };
+        let rules = rules(&config, start, goal);
         let (sums, d_t, d_n_t) = run_path(&rules, &path);
         let d_0 = (goal - start).norm();
         check_base_telescopes(sums[0], k_base, d_0, d_t, path.len());
@@ -122,10 +117,7 @@ fn walking_straight_to_the_goal_earns_exactly_the_scales() {
         norm_rew_scaling: Some(10.0),
         ..TaskConfig::default()
     };
-    let rules = match EpisodeRules::new(&config, start, goal) {
-        Ok(r) => r,
-        Err(e) => panic!("{e}"),
-    };
+    let rules = rules(&config, start, goal);
     let path: Vec<_> = (1..=100)
         .map(|i| Point3::new(0.05 * i as f64, 0.0, 0.62))
         .collect();

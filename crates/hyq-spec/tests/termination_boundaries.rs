@@ -9,7 +9,7 @@
 
 mod common;
 
-use common::{hyq_ranges, level_snapshot, mid_angles};
+use common::{hyq_ranges, level_snapshot, mid_angles, rules, step};
 use hyq_spec::nalgebra::{Point3, Vector3};
 use hyq_spec::termination::joint_limit::{first_joint_at_limit, joint_at_limit};
 use hyq_spec::termination::reach::goal_reached;
@@ -191,22 +191,13 @@ fn t_max_of_one_ends_the_episode_after_the_first_step() {
         max_time_steps: 1,
         ..TaskConfig::default()
     };
-    let rules = match EpisodeRules::new(&config, start, Point3::new(2.0, 0.0, 0.5)) {
-        Ok(r) => r,
-        Err(e) => panic!("{e}"),
-    };
+    let rules = rules(&config, start, Point3::new(2.0, 0.0, 0.5));
     let ranges = hyq_ranges();
     let angles = mid_angles(&ranges);
-    let o = match rules.evaluate_step(&level_snapshot(
-        1,
-        start,
-        Point3::new(0.1, 0.0, 0.5),
-        &angles,
-        &ranges,
-    )) {
-        Ok(o) => o,
-        Err(e) => panic!("{e}"),
-    };
+    let o = step(
+        &rules,
+        &level_snapshot(1, start, Point3::new(0.1, 0.0, 0.5), &angles, &ranges),
+    );
     assert!(o.truncated() && !o.terminated());
     assert_eq!(
         o.terminations.iter().collect::<Vec<_>>(),

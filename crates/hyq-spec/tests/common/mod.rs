@@ -2,7 +2,7 @@
 #![allow(dead_code)]
 
 use hyq_spec::nalgebra::{Point3, UnitQuaternion, Vector3};
-use hyq_spec::{JointRange, StepSnapshot};
+use hyq_spec::{EpisodeRules, JointRange, StepOutcome, StepSnapshot, TaskConfig};
 use proptest::prelude::*;
 
 /// A normalised distance aimed at the places where R_e changes shape: near 0, 1 and 9, plus
@@ -73,5 +73,27 @@ pub fn level_snapshot<'a>(
         joint_angles: angles,
         joint_ranges: ranges,
         trunk_contact: false,
+    }
+}
+
+/// The rules of an episode the test knows to be valid.
+///
+/// # Panics
+/// If they are rejected.
+pub fn rules(config: &TaskConfig, start: Point3<f64>, goal: Point3<f64>) -> EpisodeRules {
+    match EpisodeRules::new(config, start, goal) {
+        Ok(r) => r,
+        Err(e) => panic!("valid episode rejected: {e}"),
+    }
+}
+
+/// The outcome of a step the test knows to be valid.
+///
+/// # Panics
+/// If the snapshot is rejected.
+pub fn step(rules: &EpisodeRules, s: &StepSnapshot<'_>) -> StepOutcome {
+    match rules.evaluate_step(s) {
+        Ok(o) => o,
+        Err(e) => panic!("valid snapshot rejected: {e}"),
     }
 }
