@@ -128,10 +128,15 @@ impl Actuator {
                 });
             }
         }
+        self.fill_torques(targets, q, qd, out);
+        Ok(())
+    }
+
+    /// The law of every joint into `out`, for slices whose lengths the caller has checked.
+    fn fill_torques(&self, targets: &[f64], q: &[f64], qd: &[f64], out: &mut [f64]) {
         for (i, tau) in out.iter_mut().enumerate() {
             *tau = self.torque(i, targets[i], q[i], qd[i]);
         }
-        Ok(())
     }
 }
 
@@ -198,7 +203,9 @@ pub fn apply_pd<B: Backend>(
     }
     backend.joint_positions(&mut scratch.q);
     backend.joint_velocities(&mut scratch.qd);
-    actuator.torques(targets, &scratch.q, &scratch.qd, &mut scratch.tau)?;
+    // Every length was checked above (the scratch's three buffers are built alike), so the
+    // law runs without `Actuator::torques`' second round of checks.
+    actuator.fill_torques(targets, &scratch.q, &scratch.qd, &mut scratch.tau);
     // Validated rather than trusted: extreme gains could overflow the law to NaN.
     backend.set_joint_torques(&scratch.tau)
 }
