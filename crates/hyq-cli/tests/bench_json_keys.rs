@@ -8,8 +8,7 @@
 
 mod common;
 
-use common::hyq_ok;
-use serde_json::Value;
+use common::{assert_has_keys, hyq_ok, one_json_line};
 
 #[test]
 fn bench_json_has_the_documented_keys_and_consistent_numbers() {
@@ -21,31 +20,30 @@ fn bench_json_has_the_documented_keys_and_consistent_numbers() {
         "--set",
         "task.max_time_steps=100",
     ]);
-    let lines: Vec<&str> = out.lines().collect();
-    assert_eq!(lines.len(), 1, "one object: {out}");
-    let r: Value = serde_json::from_str(lines[0]).unwrap();
-    for key in [
-        "schema_version",
-        "workload",
-        "backend",
-        "profile",
-        "action_mode",
-        "substeps_per_env_step",
-        "dt",
-        "seed",
-        "steps",
-        "seconds",
-        "cpu_seconds",
-        "env_steps_per_s",
-        "env_steps_per_s_cpu",
-        "physics_steps_per_s",
-        "resets",
-        "episodes_ended",
-        "shares",
-        "timed_pass",
-    ] {
-        assert!(r.get(key).is_some(), "no `{key}` in {r}");
-    }
+    let r = one_json_line(&out);
+    assert_has_keys(
+        &r,
+        &[
+            "schema_version",
+            "workload",
+            "backend",
+            "profile",
+            "action_mode",
+            "substeps_per_env_step",
+            "dt",
+            "seed",
+            "steps",
+            "seconds",
+            "cpu_seconds",
+            "env_steps_per_s",
+            "env_steps_per_s_cpu",
+            "physics_steps_per_s",
+            "resets",
+            "episodes_ended",
+            "shares",
+            "timed_pass",
+        ],
+    );
     assert_eq!(r["schema_version"], 1);
     assert_eq!(r["workload"], "env_random");
     assert_eq!(r["backend"], "rapier");

@@ -8,8 +8,7 @@
 
 mod common;
 
-use common::hyq_ok;
-use serde_json::Value;
+use common::{assert_has_keys, hyq_ok, one_json_line};
 
 #[test]
 fn batched_bench_json_has_the_documented_keys_and_consistent_numbers() {
@@ -26,28 +25,27 @@ fn batched_bench_json_has_the_documented_keys_and_consistent_numbers() {
             "--set",
             "task.max_time_steps=50",
         ]);
-        let lines: Vec<&str> = out.lines().collect();
-        assert_eq!(lines.len(), 1, "one object: {out}");
-        let r: Value = serde_json::from_str(lines[0]).unwrap();
-        for key in [
-            "schema_version",
-            "workload",
-            "backend",
-            "profile",
-            "num_envs",
-            "threads",
-            "substeps_per_env_step",
-            "seed",
-            "steps",
-            "env_steps",
-            "seconds",
-            "cpu_seconds",
-            "env_steps_per_s",
-            "env_steps_per_s_cpu",
-            "resets",
-        ] {
-            assert!(r.get(key).is_some(), "no `{key}` in {r}");
-        }
+        let r = one_json_line(&out);
+        assert_has_keys(
+            &r,
+            &[
+                "schema_version",
+                "workload",
+                "backend",
+                "profile",
+                "num_envs",
+                "threads",
+                "substeps_per_env_step",
+                "seed",
+                "steps",
+                "env_steps",
+                "seconds",
+                "cpu_seconds",
+                "env_steps_per_s",
+                "env_steps_per_s_cpu",
+                "resets",
+            ],
+        );
         assert_eq!(r["schema_version"], 1);
         assert_eq!(r["workload"], "env_random_vec");
         assert_eq!(r["num_envs"], 2);

@@ -10,7 +10,7 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
-use common::{hyq, hyq_ok, scratch, stderr};
+use common::{hyq_ok, scratch, usage_error_naming};
 
 fn scratch_dir(name: &str) -> PathBuf {
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
@@ -109,18 +109,8 @@ fn run_plot_writes_per_episode_pngs_and_plot_redraws_them_from_the_record() {
 
 #[test]
 fn bad_plot_input_is_a_one_line_error_naming_it() {
-    let check = |args: &[&str], words: &[&str]| {
-        let out = hyq(args);
-        assert_eq!(out.status.code(), Some(2), "hyq {args:?}: {}", stderr(&out));
-        let err = stderr(&out);
-        assert_eq!(err.lines().count(), 1, "{err}");
-        assert!(err.starts_with("hyq: error: "), "{err}");
-        for w in words {
-            assert!(err.contains(w), "the error does not name `{w}`: {err}");
-        }
-    };
     let missing = scratch("plot_missing.jsonl");
-    check(
+    usage_error_naming(
         &["plot", missing.to_str().unwrap()],
         &["plot_missing.jsonl"],
     );
@@ -138,14 +128,14 @@ fn bad_plot_input_is_a_one_line_error_naming_it() {
     let first = first.lines().next().unwrap();
     let bad = scratch("plot_bad.jsonl");
     std::fs::write(&bad, format!("{first}\n{{\"t\": 2, \"terms\": {{}}}}\n")).unwrap();
-    check(
+    usage_error_naming(
         &["plot", bad.to_str().unwrap()],
         &["plot_bad.jsonl", "line 2"],
     );
 
     let empty = scratch("plot_empty.jsonl");
     std::fs::write(&empty, "\n").unwrap();
-    check(
+    usage_error_naming(
         &["plot", empty.to_str().unwrap()],
         &["plot_empty.jsonl", "no step"],
     );
@@ -154,7 +144,7 @@ fn bad_plot_input_is_a_one_line_error_naming_it() {
     let blocker = scratch("plot_blocker");
     std::fs::write(&blocker, "a file, not a directory").unwrap();
     let out = blocker.join("plots");
-    check(
+    usage_error_naming(
         &[
             "plot",
             good.to_str().unwrap(),
@@ -163,7 +153,7 @@ fn bad_plot_input_is_a_one_line_error_naming_it() {
         ],
         &["plot_blocker"],
     );
-    check(
+    usage_error_naming(
         &[
             "run",
             "--set",

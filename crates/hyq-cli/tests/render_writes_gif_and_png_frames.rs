@@ -11,7 +11,7 @@ mod common;
 
 use std::path::Path;
 
-use common::{hyq, hyq_ok, scratch, stderr};
+use common::{hyq_ok, scratch, usage_error_naming};
 
 /// A fresh scratch directory (removed first if it exists).
 fn scratch_dir(name: &str) -> std::path::PathBuf {
@@ -168,39 +168,29 @@ fn png_directory_gets_numbered_frames_and_the_same_seed_gives_the_same_bytes() {
 
 #[test]
 fn bad_render_options_are_one_line_errors_naming_them() {
-    let check = |args: &[&str], words: &[&str]| {
-        let out = hyq(args);
-        assert_eq!(out.status.code(), Some(2), "hyq {args:?}: {}", stderr(&out));
-        let err = stderr(&out);
-        assert_eq!(err.lines().count(), 1, "{err}");
-        assert!(err.starts_with("hyq: error: "), "{err}");
-        for w in words {
-            assert!(err.contains(w), "the error does not name `{w}`: {err}");
-        }
-    };
     let mp4 = scratch("render_out.mp4");
-    check(
+    usage_error_naming(
         &["render", "--seconds", "0.1", "--out", mp4.to_str().unwrap()],
         &["--out", "render_out.mp4", ".gif"],
     );
     assert!(!mp4.exists(), "nothing is written for a refused --out");
-    check(
+    usage_error_naming(
         &["render", "--width", "0", "--out", "x.gif"],
         &["--width", "0"],
     );
-    check(
+    usage_error_naming(
         &["render", "--fps", "60", "--out", "x.gif"],
         &["--fps", "60", "50"],
     );
-    check(
+    usage_error_naming(
         &["render", "--fps", "200", "--out", "frames/"],
         &["--fps", "200", "100"],
     );
-    check(
+    usage_error_naming(
         &["render", "--seconds=-1", "--out", "x.gif"],
         &["--seconds", "-1"],
     );
-    check(
+    usage_error_naming(
         &["render", "--out", "/nonexistent-dir/sub/x.gif"],
         &["--out", "/nonexistent-dir/sub/x.gif"],
     );

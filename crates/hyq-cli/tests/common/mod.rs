@@ -34,6 +34,33 @@ pub fn hyq_ok(args: &[&str]) -> String {
     stdout(&out)
 }
 
+/// `hyq args…` must fail as a usage error (status 2) with one line `hyq: error: …` on stderr
+/// that contains every one of `words`.
+pub fn usage_error_naming(args: &[&str], words: &[&str]) {
+    let out = hyq(args);
+    assert_eq!(out.status.code(), Some(2), "hyq {args:?}: {}", stderr(&out));
+    let err = stderr(&out);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.starts_with("hyq: error: "), "{err}");
+    for w in words {
+        assert!(err.contains(w), "the error does not name `{w}`: {err}");
+    }
+}
+
+/// `out` must be exactly one line, a JSON object, which is returned.
+pub fn one_json_line(out: &str) -> serde_json::Value {
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines.len(), 1, "one object: {out}");
+    serde_json::from_str(lines[0]).unwrap_or_else(|e| panic!("{e}: {}", lines[0]))
+}
+
+/// `r` must have every one of `keys`.
+pub fn assert_has_keys(r: &serde_json::Value, keys: &[&str]) {
+    for key in keys {
+        assert!(r.get(key).is_some(), "no `{key}` in {r}");
+    }
+}
+
 /// A fresh path in this test target's scratch directory (the file is removed if it exists).
 pub fn scratch(name: &str) -> PathBuf {
     let path = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
