@@ -22,6 +22,7 @@ mod errors;
 mod frames;
 mod info;
 mod single;
+mod spaces;
 mod vector;
 
 use pyo3::prelude::*;

@@ -11,48 +11,19 @@ use crate::config;
 use crate::errors::env_error;
 use crate::frames::FrameSource;
 use crate::info::info_dict;
+use crate::spaces::{Bounds, clip_in_place, observation_bounds};
 
 /// One HyQ environment (rapier backend). Built by `hyq.HyQEnv`, which adds the Gymnasium API.
 #[pyclass(module = "hyq._core")]
 pub struct Core {
     env: Env<RapierBackend>,
     /// The observation's declared bounds (f32) when observations are clipped to them.
-    clip: Option<(Vec<f32>, Vec<f32>)>,
+    clip: Option<Bounds>,
     /// The frame size for `render`; the renderer is built on the first frame.
     render_size: (u32, u32),
     frames: Option<FrameSource>,
     /// Σ reward since the last reset, for the frame overlay.
     episode_return: f64,
-}
-
-/// The observation's declared bounds as f32 (the §3 table's for HyQ).
-pub fn observation_bounds<B: hyq_physics::Backend>(env: &Env<B>) -> (Vec<f32>, Vec<f32>) {
-    let rows = env.observation_layout().rows();
-    (
-        rows.iter().map(|r| r.min as f32).collect(),
-        rows.iter().map(|r| r.max as f32).collect(),
-    )
-}
-
-/// A fresh copy of `obs`, clipped to `clip`'s bounds when given, and whether any value was
-/// outside them (and so clipped).
-pub fn observation_copy(obs: &[f32], clip: Option<&(Vec<f32>, Vec<f32>)>) -> (Vec<f32>, bool) {
-    match clip {
-        Some((low, high)) => {
-            let mut clipped = false;
-            let out = obs
-                .iter()
-                .zip(low.iter().zip(high))
-                .map(|(v, (lo, hi))| {
-                    let c = v.clamp(*lo, *hi);
-                    clipped |= c != *v;
-                    c
-                })
-                .collect();
-            (out, clipped)
-        }
-        None => (obs.to_vec(), false),
-    }
 }
 
 impl Core {
@@ -62,7 +33,9 @@ impl Core {
         &self,
         py: Python<'py>,
     ) -> PyResult<(Bound<'py, PyArray1<f32>>, Bound<'py, PyDict>)> {
-        let (obs, clipped) = observation_copy(self.env.observation_f32(), self.clip.as_ref());
+        // The one copy: the fresh array handed to Python, clipped where it lies.
+        let mut obs = self.env.observation_f32().to_vec();
+        let clipped = clip_in_place(&mut obs, self.clip.as_ref());
         let info = info_dict(py, self.env.info(), self.env.model())?;
         info.set_item("observation_clipped", clipped)?;
         Ok((obs.into_pyarray(py), info))

@@ -17,13 +17,13 @@ use crate::config;
 use crate::errors::{render_error, vec_env_error};
 use crate::frames::FrameSource;
 use crate::info::{info_dict, vector_info_dict};
-use crate::single::{observation_bounds, observation_copy};
+use crate::spaces::{Bounds, clip_in_place, observation_bounds, would_clip};
 
 /// N HyQ environments (rapier backend) stepped in parallel.
 #[pyclass(module = "hyq._core")]
 pub struct VecCore {
     vec: VecEnv<RapierBackend>,
-    clip: Option<(Vec<f32>, Vec<f32>)>,
+    clip: Option<Bounds>,
     /// Σ reward of each env's current episode, for the frame overlay.
     returns: Vec<f64>,
     render_size: (u32, u32),
@@ -69,17 +69,11 @@ impl VecCore {
         py: Python<'py>,
         mut flat: Vec<f32>,
     ) -> PyResult<(Bound<'py, PyArray2<f32>>, Bound<'py, PyDict>)> {
-        let mut clipped = vec![false; self.vec.num_envs()];
-        if self.clip.is_some() {
-            for (o, c) in flat
-                .chunks_mut(self.vec.observation_len())
-                .zip(clipped.iter_mut())
-            {
-                let (copy, was_clipped) = observation_copy(o, self.clip.as_ref());
-                o.copy_from_slice(&copy);
-                *c = was_clipped;
-            }
-        }
+        // Clipped where they lie: the buffer becomes the NumPy array without another copy.
+        let clipped: Vec<bool> = flat
+            .chunks_mut(self.vec.observation_len())
+            .map(|o| clip_in_place(o, self.clip.as_ref()))
+            .collect();
         let array = Array2::from_shape_vec((self.vec.num_envs(), self.vec.observation_len()), flat)
             .map_err(|e| PyValueError::new_err(format!("observations: {e}")))?;
         let infos: Vec<_> = (0..self.vec.num_envs()).map(|i| self.vec.info(i)).collect();
@@ -254,7 +248,7 @@ impl VecCore {
     fn env_info<'py>(&self, py: Python<'py>, i: usize) -> PyResult<Bound<'py, PyDict>> {
         self.check_index(i)?;
         let info = info_dict(py, self.vec.info(i), self.vec.env(i).model())?;
-        let (_, clipped) = observation_copy(self.vec.env(i).observation_f32(), self.clip.as_ref());
+        let clipped = would_clip(self.vec.env(i).observation_f32(), self.clip.as_ref());
         info.set_item("observation_clipped", clipped)?;
         Ok(info)
     }
@@ -267,10 +261,11 @@ impl VecCore {
         i: usize,
     ) -> PyResult<Option<Bound<'py, PyArray1<f32>>>> {
         self.check_index(i)?;
-        Ok(self
-            .vec
-            .final_observation(i)
-            .map(|o| observation_copy(o, self.clip.as_ref()).0.into_pyarray(py)))
+        Ok(self.vec.final_observation(i).map(|o| {
+            let mut o = o.to_vec();
+            clip_in_place(&mut o, self.clip.as_ref());
+            o.into_pyarray(py)
+        }))
     }
 
     /// With `same_step` autoreset: env `i`'s final step's info if its episode ended in the last
@@ -282,8 +277,7 @@ impl VecCore {
             return Ok(None);
         };
         let info = info_dict(py, info, self.vec.env(i).model())?;
-        let (_, clipped) = observation_copy(obs, self.clip.as_ref());
-        info.set_item("observation_clipped", clipped)?;
+        info.set_item("observation_clipped", would_clip(obs, self.clip.as_ref()))?;
         Ok(Some(info))
     }
 
