@@ -33,15 +33,7 @@ fn frame_has_the_configured_shape_and_one_byte_per_channel() {
     let mut r = Renderer::new(model(), config).unwrap();
     let (trunk, q) = standing_at(0.0, 0.0);
     let contacts = no_contacts();
-    let frame: Frame = r
-        .render(&Scene::new(
-            RobotPose::Joints {
-                trunk: &trunk,
-                q: &q,
-            },
-            &contacts,
-        ))
-        .unwrap();
+    let frame: Frame = r.render(&joints_scene(&trunk, &q, &contacts)).unwrap();
     assert_eq!((frame.width, frame.height), (320, 200));
     assert_eq!(frame.shape(), [200, 320, 3]);
     let bytes: &Vec<u8> = &frame.rgb;
@@ -78,15 +70,7 @@ fn fallen_robot_frame_differs_from_standing() {
     let mut r = renderer();
     let (trunk, q) = standing_at(0.0, 0.0);
     let mut contacts = no_contacts();
-    let standing = r
-        .render(&Scene::new(
-            RobotPose::Joints {
-                trunk: &trunk,
-                q: &q,
-            },
-            &contacts,
-        ))
-        .unwrap();
+    let standing = r.render(&joints_scene(&trunk, &q, &contacts)).unwrap();
     // On its side, low, with the trunk touching the ground.
     let fallen_pose = Isometry3::from_parts(
         Translation3::new(0.0, 0.0, 0.32),
@@ -95,13 +79,7 @@ fn fallen_robot_frame_differs_from_standing() {
     let trunk_index = model().trunk_tracked_index();
     contacts[trunk_index] = true;
     let fallen = r
-        .render(&Scene::new(
-            RobotPose::Joints {
-                trunk: &fallen_pose,
-                q: &q,
-            },
-            &contacts,
-        ))
+        .render(&joints_scene(&fallen_pose, &q, &contacts))
         .unwrap();
     let changed = differing_pixels(&standing, &fallen, 40).len();
     let total = (standing.width * standing.height) as usize;
@@ -167,13 +145,7 @@ fn overlay_prints_its_numbers_in_the_top_left_corner() {
     let mut r = renderer();
     let (trunk, q) = standing_at(0.0, 0.0);
     let contacts = no_contacts();
-    let scene = Scene::new(
-        RobotPose::Joints {
-            trunk: &trunk,
-            q: &q,
-        },
-        &contacts,
-    );
+    let scene = joints_scene(&trunk, &q, &contacts);
     let overlay = |time_s| Overlay {
         time_s,
         distance_to_goal_m: 4.0,
@@ -199,13 +171,7 @@ fn overlay_prints_its_numbers_in_the_top_left_corner() {
 fn small_frames_leave_the_overlay_out_so_that_the_robot_shows() {
     let contacts = no_contacts();
     let (trunk, q) = standing_at(0.0, 0.0);
-    let scene = Scene::new(
-        RobotPose::Joints {
-            trunk: &trunk,
-            q: &q,
-        },
-        &contacts,
-    );
+    let scene = joints_scene(&trunk, &q, &contacts);
     let overlay = Overlay {
         time_s: 1.0,
         distance_to_goal_m: 4.0,
@@ -234,13 +200,7 @@ fn overlay_shows_a_tiny_negative_return_as_zero_not_minus_zero() {
     let mut r = renderer();
     let (trunk, q) = standing_at(0.0, 0.0);
     let contacts = no_contacts();
-    let scene = Scene::new(
-        RobotPose::Joints {
-            trunk: &trunk,
-            q: &q,
-        },
-        &contacts,
-    );
+    let scene = joints_scene(&trunk, &q, &contacts);
     let overlay = |episode_return| Overlay {
         time_s: 0.2,
         distance_to_goal_m: 5.0,
@@ -268,15 +228,9 @@ fn same_scene_renders_identically_and_both_pose_forms_agree() {
         distance_to_goal_m: 2.5,
         episode_return: -0.25,
     };
-    let by_joints = Scene::new(
-        RobotPose::Joints {
-            trunk: &trunk,
-            q: &q,
-        },
-        &contacts,
-    )
-    .with_goal(goal)
-    .with_overlay(overlay);
+    let by_joints = joints_scene(&trunk, &q, &contacts)
+        .with_goal(goal)
+        .with_overlay(overlay);
     let a = r.render(&by_joints).unwrap();
     let b = r.render(&by_joints).unwrap();
     assert_eq!(a, b);
@@ -293,13 +247,7 @@ fn goal_marker_is_drawn_where_the_goal_projects() {
     let mut r = renderer();
     let (trunk, q) = standing_at(0.0, 0.0);
     let contacts = no_contacts();
-    let scene = Scene::new(
-        RobotPose::Joints {
-            trunk: &trunk,
-            q: &q,
-        },
-        &contacts,
-    );
+    let scene = joints_scene(&trunk, &q, &contacts);
     // A goal the default camera sees beside the robot.
     let goal = Point3::new(3.0, 0.0, 0.6);
     let without = r.render(&scene).unwrap();
@@ -321,15 +269,7 @@ fn bad_scenes_and_settings_are_refused_by_name() {
     let contacts = no_contacts();
 
     let short = [false; 4];
-    let err = r
-        .render(&Scene::new(
-            RobotPose::Joints {
-                trunk: &trunk,
-                q: &q,
-            },
-            &short,
-        ))
-        .unwrap_err();
+    let err = r.render(&joints_scene(&trunk, &q, &short)).unwrap_err();
     assert!(
         matches!(
             err,
@@ -346,24 +286,12 @@ fn bad_scenes_and_settings_are_refused_by_name() {
     let mut bad_q = q.clone();
     bad_q[4] = f64::NAN;
     let err = r
-        .render(&Scene::new(
-            RobotPose::Joints {
-                trunk: &trunk,
-                q: &bad_q,
-            },
-            &contacts,
-        ))
+        .render(&joints_scene(&trunk, &bad_q, &contacts))
         .unwrap_err();
     assert!(err.to_string().contains("lh_hfe"), "{err}");
 
     let err = r
-        .render(&Scene::new(
-            RobotPose::Joints {
-                trunk: &trunk,
-                q: &q[..11],
-            },
-            &contacts,
-        ))
+        .render(&joints_scene(&trunk, &q[..11], &contacts))
         .unwrap_err();
     assert!(err.to_string().contains("joint angles"), "{err}");
 
@@ -377,42 +305,18 @@ fn bad_scenes_and_settings_are_refused_by_name() {
 
     let nan_trunk = Translation3::new(f64::INFINITY, 0.0, 0.0) * trunk;
     let err = r
-        .render(&Scene::new(
-            RobotPose::Joints {
-                trunk: &nan_trunk,
-                q: &q,
-            },
-            &contacts,
-        ))
+        .render(&joints_scene(&nan_trunk, &q, &contacts))
         .unwrap_err();
     assert!(err.to_string().contains("body trunk"), "{err}");
 
     let err = r
-        .render(
-            &Scene::new(
-                RobotPose::Joints {
-                    trunk: &trunk,
-                    q: &q,
-                },
-                &contacts,
-            )
-            .with_goal(Point3::new(f64::NAN, 0.0, 0.0)),
-        )
+        .render(&joints_scene(&trunk, &q, &contacts).with_goal(Point3::new(f64::NAN, 0.0, 0.0)))
         .unwrap_err();
     assert!(err.to_string().starts_with("goal"), "{err}");
 
     let mut small = Frame::new(10, 10);
     let err = r
-        .render_into(
-            &Scene::new(
-                RobotPose::Joints {
-                    trunk: &trunk,
-                    q: &q,
-                },
-                &contacts,
-            ),
-            &mut small,
-        )
+        .render_into(&joints_scene(&trunk, &q, &contacts), &mut small)
         .unwrap_err();
     assert!(
         matches!(err, RenderError::FrameSize { got_width: 10, .. }),

@@ -31,6 +31,15 @@ pub fn no_contacts() -> Vec<bool> {
     vec![false; model().tracked().len()]
 }
 
+/// A scene of the robot posed by its trunk pose and joint angles.
+pub fn joints_scene<'a>(
+    trunk: &'a Isometry3<f64>,
+    q: &'a [f64],
+    contacts: &'a [bool],
+) -> Scene<'a> {
+    Scene::new(RobotPose::Joints { trunk, q }, contacts)
+}
+
 /// Renders the robot standing at (dx, dy), the camera on `target` (its trunk by default).
 pub fn render_standing(
     r: &mut Renderer,
@@ -40,13 +49,7 @@ pub fn render_standing(
 ) -> Frame {
     let (trunk, q) = standing_at(dx, dy);
     let contacts = no_contacts();
-    let mut scene = Scene::new(
-        RobotPose::Joints {
-            trunk: &trunk,
-            q: &q,
-        },
-        &contacts,
-    );
+    let mut scene = joints_scene(&trunk, &q, &contacts);
     scene.camera_target = target;
     r.render(&scene).expect("a valid scene renders")
 }
