@@ -28,7 +28,7 @@ use std::process::Command;
 use serde_json::Value;
 
 use crate::cli::{positive, strings, value};
-use crate::stages::{DART_BULLET_HEADER, run_cargo, workspace_root};
+use crate::stages::{DART_BULLET_HEADER, run_cargo, venv_python, workspace_root};
 
 /// The anchor harness's pinned versions (`run_anchors.sh`).
 const PINS: [(&str, &str); 3] = [
@@ -620,7 +620,7 @@ fn shell(line: &str) -> String {
 /// Creates the anchors' virtual environment if needed and installs the pinned versions that
 /// are missing; returns its Python and the notes on what could not be installed.
 fn setup_venv(venv: &Path) -> Result<(PathBuf, Vec<String>), String> {
-    let python = venv.join("bin").join("python");
+    let python = venv_python(venv);
     if !python.exists() {
         println!(
             "creating the anchors' virtual environment at {}",

@@ -301,7 +301,8 @@ fn python_tools(root: &Path) -> Result<PathBuf, String> {
     Ok(venv)
 }
 
-fn venv_python(venv: &Path) -> PathBuf {
+/// The Python interpreter of the virtual environment at `venv`.
+pub fn venv_python(venv: &Path) -> PathBuf {
     venv.join("bin").join("python")
 }
 
