@@ -11,7 +11,7 @@ use crate::config;
 use crate::errors::env_error;
 use crate::frames::FrameSource;
 use crate::info::info_dict;
-use crate::spaces::{Bounds, clip_in_place, observation_bounds};
+use crate::spaces::{Bounds, clip_in_place, observation_bounds, to_f32};
 
 /// One HyQ environment (rapier backend). Built by `hyq.HyQEnv`, which adds the Gymnasium API.
 #[pyclass(module = "hyq._core")]
@@ -153,26 +153,12 @@ impl Core {
     /// The action space's lower bounds (float32; −1 in the normalized and delta modes, the
     /// joints' lower limits in the absolute mode).
     fn action_low<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f32>> {
-        let low: Vec<f32> = self
-            .env
-            .action_space()
-            .low()
-            .iter()
-            .map(|v| *v as f32)
-            .collect();
-        low.into_pyarray(py)
+        to_f32(self.env.action_space().low()).into_pyarray(py)
     }
 
     /// The action space's upper bounds (float32).
     fn action_high<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f32>> {
-        let high: Vec<f32> = self
-            .env
-            .action_space()
-            .high()
-            .iter()
-            .map(|v| *v as f32)
-            .collect();
-        high.into_pyarray(py)
+        to_f32(self.env.action_space().high()).into_pyarray(py)
     }
 
     /// The observation rows' names, in order (`lf_haa_angle`, …, `trunk_position_z`).

@@ -17,6 +17,11 @@ pub fn observation_bounds<B: Backend>(env: &Env<B>) -> Bounds {
     )
 }
 
+/// `values` (action space bounds, f64) as the f32 a `gymnasium.spaces.Box` of float32 takes.
+pub fn to_f32(values: &[f64]) -> Vec<f32> {
+    values.iter().map(|v| *v as f32).collect()
+}
+
 /// Clips `obs` in place to `clip`'s bounds when given; returns whether any value was outside
 /// them (and so clipped). A NaN counts as outside (it stays NaN). Without bounds, nothing
 /// changes and the answer is false.

@@ -17,7 +17,7 @@ use crate::config;
 use crate::errors::{render_error, vec_env_error};
 use crate::frames::FrameSource;
 use crate::info::{info_dict, vector_info_dict};
-use crate::spaces::{Bounds, clip_in_place, observation_bounds, would_clip};
+use crate::spaces::{Bounds, clip_in_place, observation_bounds, to_f32, would_clip};
 
 /// N HyQ environments (rapier backend) stepped in parallel.
 #[pyclass(module = "hyq._core")]
@@ -313,28 +313,12 @@ impl VecCore {
 
     /// The action space's lower bounds (float32).
     fn action_low<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f32>> {
-        let low: Vec<f32> = self
-            .vec
-            .env(0)
-            .action_space()
-            .low()
-            .iter()
-            .map(|v| *v as f32)
-            .collect();
-        low.into_pyarray(py)
+        to_f32(self.vec.env(0).action_space().low()).into_pyarray(py)
     }
 
     /// The action space's upper bounds (float32).
     fn action_high<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f32>> {
-        let high: Vec<f32> = self
-            .vec
-            .env(0)
-            .action_space()
-            .high()
-            .iter()
-            .map(|v| *v as f32)
-            .collect();
-        high.into_pyarray(py)
+        to_f32(self.vec.env(0).action_space().high()).into_pyarray(py)
     }
 
     /// t_max (`task.max_time_steps`).
