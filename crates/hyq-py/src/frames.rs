@@ -16,25 +16,35 @@ use pyo3::prelude::*;
 
 use crate::errors::render_error;
 
-/// A renderer and the buffer of contact flags it is given.
+/// The frames of one env or of a vector env's envs (which share one robot model): the frame
+/// size, checked at construction, and the renderer, built on the first frame.
 pub struct FrameSource {
-    renderer: Renderer,
+    config: RenderConfig,
+    renderer: Option<Renderer>,
+    /// The contact flags handed to the renderer, one per tracked body.
     contacts: Vec<bool>,
 }
 
 impl FrameSource {
-    /// A renderer of `env`'s robot drawing `width` × `height` frames (checked by hyq-render).
-    pub fn new<B: Backend>(env: &Env<B>, width: u32, height: u32) -> PyResult<Self> {
+    /// Frames of `width` × `height` pixels. The size is checked now (by hyq-render), so a bad
+    /// one fails at construction, not at the first frame.
+    pub fn new(width: u32, height: u32) -> PyResult<Self> {
         let config = RenderConfig {
             width,
             height,
             ..RenderConfig::default()
         };
-        let renderer = Renderer::new(env.model().clone(), config).map_err(render_error)?;
+        config.validate().map_err(render_error)?;
         Ok(Self {
-            renderer,
-            contacts: Vec::with_capacity(env.model().tracked().len()),
+            config,
+            renderer: None,
+            contacts: Vec::new(),
         })
+    }
+
+    /// The frame size (width, height).
+    pub fn size(&self) -> (u32, u32) {
+        (self.config.width, self.config.height)
     }
 
     /// The frame of `env`'s current state; `episode_return` is printed in the overlay.
@@ -44,6 +54,12 @@ impl FrameSource {
         env: &Env<B>,
         episode_return: f64,
     ) -> PyResult<Bound<'py, PyArray3<u8>>> {
+        let renderer = match &mut self.renderer {
+            Some(r) => r,
+            None => self
+                .renderer
+                .insert(Renderer::new(env.model().clone(), self.config).map_err(render_error)?),
+        };
         let layout = env.observation_layout();
         let obs = env.observation();
         // The renderer takes one flag per tracked body in the model's order; the observation
@@ -71,7 +87,7 @@ impl FrameSource {
             distance_to_goal_m: info.distance_to_goal,
             episode_return,
         });
-        let frame = self.renderer.render(&scene).map_err(render_error)?;
+        let frame = renderer.render(&scene).map_err(render_error)?;
         let [h, w, c] = frame.shape();
         let array = Array3::from_shape_vec((h, w, c), frame.rgb)
             .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(format!("render: {e}")))?;

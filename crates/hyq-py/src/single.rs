@@ -19,9 +19,8 @@ pub struct Core {
     env: Env<RapierBackend>,
     /// The observation's declared bounds (f32) when observations are clipped to them.
     clip: Option<Bounds>,
-    /// The frame size for `render`; the renderer is built on the first frame.
-    render_size: (u32, u32),
-    frames: Option<FrameSource>,
+    /// The frames of `render` (the renderer is built on the first).
+    frames: FrameSource,
     /// Σ reward since the last reset, for the frame overlay.
     episode_return: f64,
 }
@@ -59,19 +58,11 @@ impl Core {
         let env =
             Env::<RapierBackend>::new(hyq_physics::bundled::hyq(), config).map_err(env_error)?;
         let clip = clip_observations.then(|| observation_bounds(&env));
-        // The size is checked now, so a bad one fails at construction, not at the first frame.
-        hyq_render::RenderConfig {
-            width: render_width,
-            height: render_height,
-            ..hyq_render::RenderConfig::default()
-        }
-        .validate()
-        .map_err(crate::errors::render_error)?;
+        let frames = FrameSource::new(render_width, render_height)?;
         Ok(Self {
             env,
             clip,
-            render_size: (render_width, render_height),
-            frames: None,
+            frames,
             episode_return: 0.0,
         })
     }
@@ -129,15 +120,7 @@ impl Core {
     /// A frame of the current state: uint8, (height, width, 3). Before the first reset it
     /// shows the robot at its spawn pose without goal or overlay.
     fn render<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyArray3<u8>>> {
-        let frames = match &mut self.frames {
-            Some(f) => f,
-            None => self.frames.insert(FrameSource::new(
-                &self.env,
-                self.render_size.0,
-                self.render_size.1,
-            )?),
-        };
-        frames.frame(py, &self.env, self.episode_return)
+        self.frames.frame(py, &self.env, self.episode_return)
     }
 
     /// The observation's declared lower bounds (float32; the §3 table's).
@@ -208,7 +191,7 @@ impl Core {
     /// The frame size (width, height) of `render`.
     #[getter]
     fn render_size(&self) -> (u32, u32) {
-        self.render_size
+        self.frames.size()
     }
 
     /// The whole validated configuration as TOML text.

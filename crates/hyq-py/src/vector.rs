@@ -14,7 +14,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::config;
-use crate::errors::{render_error, vec_env_error};
+use crate::errors::vec_env_error;
 use crate::frames::FrameSource;
 use crate::info::{info_dict, vector_info_dict};
 use crate::spaces::{Bounds, clip_in_place, observation_bounds, to_f32, would_clip};
@@ -26,8 +26,7 @@ pub struct VecCore {
     clip: Option<Bounds>,
     /// Σ reward of each env's current episode, for the frame overlay.
     returns: Vec<f64>,
-    render_size: (u32, u32),
-    frames: Option<FrameSource>,
+    frames: FrameSource,
 }
 
 /// The autoreset mode named as in Gymnasium's `AutoresetMode` values.
@@ -120,19 +119,12 @@ impl VecCore {
             vec = vec.with_threads(threads).map_err(vec_env_error)?;
         }
         let clip = clip_observations.then(|| observation_bounds(vec.env(0)));
-        hyq_render::RenderConfig {
-            width: render_width,
-            height: render_height,
-            ..hyq_render::RenderConfig::default()
-        }
-        .validate()
-        .map_err(render_error)?;
+        let frames = FrameSource::new(render_width, render_height)?;
         Ok(Self {
             returns: vec![0.0; vec.num_envs()],
             vec,
             clip,
-            render_size: (render_width, render_height),
-            frames: None,
+            frames,
         })
     }
 
@@ -284,15 +276,7 @@ impl VecCore {
     /// A frame of env `i`'s current state (uint8, (height, width, 3)).
     fn render<'py>(&mut self, py: Python<'py>, i: usize) -> PyResult<Bound<'py, PyArray3<u8>>> {
         self.check_index(i)?;
-        let frames = match &mut self.frames {
-            Some(f) => f,
-            None => self.frames.insert(FrameSource::new(
-                self.vec.env(0),
-                self.render_size.0,
-                self.render_size.1,
-            )?),
-        };
-        frames.frame(py, self.vec.env(i), self.returns[i])
+        self.frames.frame(py, self.vec.env(i), self.returns[i])
     }
 
     /// N.
