@@ -23,6 +23,8 @@ pub struct Core {
     frames: FrameSource,
     /// Σ reward since the last reset, for the frame overlay.
     episode_return: f64,
+    /// The last action, copied out of NumPy (reused: no allocation per step).
+    action: Vec<f64>,
 }
 
 impl Core {
@@ -64,6 +66,7 @@ impl Core {
             clip,
             frames,
             episode_return: 0.0,
+            action: Vec::new(),
         })
     }
 
@@ -101,14 +104,17 @@ impl Core {
         bool,
         Bound<'py, PyDict>,
     )> {
-        let action = action
+        // Copied while the GIL is held: another Python thread may write to the array while
+        // the env steps.
+        let given = action
             .as_slice()
-            .map_err(|e| PyValueError::new_err(format!("action: {e}")))?
-            .to_vec();
-        let env = &mut self.env;
+            .map_err(|e| PyValueError::new_err(format!("action: {e}")))?;
+        self.action.clear();
+        self.action.extend_from_slice(given);
+        let (env, action) = (&mut self.env, &self.action);
         let (reward, terminated, truncated) = py
             .detach(|| {
-                env.step(&action)
+                env.step(action)
                     .map(|s| (s.reward, s.terminated, s.truncated))
             })
             .map_err(env_error)?;

@@ -27,6 +27,8 @@ pub struct VecCore {
     /// Σ reward of each env's current episode, for the frame overlay.
     returns: Vec<f64>,
     frames: FrameSource,
+    /// The last step's actions, copied out of NumPy (reused: no allocation per step).
+    actions: Vec<f64>,
 }
 
 /// The autoreset mode named as in Gymnasium's `AutoresetMode` values.
@@ -125,6 +127,7 @@ impl VecCore {
             vec,
             clip,
             frames,
+            actions: Vec::new(),
         })
     }
 
@@ -200,15 +203,16 @@ impl VecCore {
         }
         // Copied while the GIL is held: another Python thread may write to the array while
         // the envs step.
-        let actions: Vec<f64> = actions.as_array().iter().copied().collect();
+        self.actions.clear();
+        self.actions.extend(actions.as_array().iter().copied());
         let mut observations = vec![0.0f32; n * self.vec.observation_len()];
         let mut rewards = vec![0.0f64; n];
         let mut terminated = vec![false; n];
         let mut truncated = vec![false; n];
-        let vec = &mut self.vec;
+        let (vec, actions) = (&mut self.vec, &self.actions);
         py.detach(|| {
             vec.step(
-                &actions,
+                actions,
                 VecStepOut {
                     observations: &mut observations,
                     rewards: &mut rewards,
