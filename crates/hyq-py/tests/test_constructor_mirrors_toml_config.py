@@ -64,3 +64,15 @@ def test_action_modes_set_the_action_space() -> None:
 def test_physics_engine_table_is_passed_through() -> None:
     env = hyq.HyQEnv(physics={"rapier": {"solver_iterations": 4}})
     assert "solver_iterations = 4" in env.config_toml()
+
+
+def test_numpy_scalars_and_arrays_are_accepted_as_values() -> None:
+    env = hyq.HyQEnv(
+        fall_penalty=np.float64(1.5),
+        max_time_steps=np.int64(300),
+        goal={"mode": "fixed", "position": np.array([4.0, 1.0, 0.6])},
+    )
+    text = env.config_toml()
+    assert "fall_penalty = 1.5" in text
+    assert "max_time_steps = 300" in text
+    assert "position = [4.0, 1.0, 0.6]" in text

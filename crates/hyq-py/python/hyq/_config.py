@@ -16,7 +16,6 @@ an unknown key or a bad value raises ``ValueError`` naming the key and the value
 from __future__ import annotations
 
 import json
-import math
 from collections.abc import Mapping
 from typing import Any
 
@@ -38,15 +37,16 @@ def toml_value(value: Any, key: str) -> str:
     reward scaling)."""
     if value is None:
         return "off"
+    # NumPy arrays and scalars first: numpy.float64 is a float whose repr
+    # ("np.float64(1.5)") is not a TOML number.
+    if hasattr(value, "tolist"):
+        return toml_value(value.tolist(), key)
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, int):
         return str(value)
     if isinstance(value, float):
-        if math.isnan(value):
-            return "nan"
-        if math.isinf(value):
-            return "inf" if value > 0 else "-inf"
+        # A float's repr is a TOML float, "nan", "inf" and "-inf" included.
         return repr(value)
     if isinstance(value, str):
         # A JSON string is a valid TOML basic string.
@@ -54,8 +54,6 @@ def toml_value(value: Any, key: str) -> str:
     if isinstance(value, Mapping):
         items = ", ".join(f"{k} = {toml_value(v, f'{key}.{k}')}" for k, v in value.items())
         return "{" + items + "}"
-    if hasattr(value, "tolist"):  # NumPy arrays and scalars
-        return toml_value(value.tolist(), key)
     if isinstance(value, (list, tuple)):
         return "[" + ", ".join(toml_value(v, key) for v in value) + "]"
     raise ValueError(f"{key} = {value!r}: not a number, boolean, string, list or dict")
