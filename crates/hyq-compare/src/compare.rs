@@ -3,7 +3,7 @@
 
 use std::sync::Arc;
 
-use hyq_env::{EnvConfig, Reason};
+use hyq_env::EnvConfig;
 use hyq_physics::{Backend, RobotModel};
 use serde::Serialize;
 
@@ -293,7 +293,7 @@ fn side_report(
     SideReport {
         label: traj.label.clone(),
         engine: traj.engine.to_owned(),
-        end_reasons: traj.reasons.clone(),
+        end_reasons: traj.reasons.iter().collect(),
         end_step: traj.end_step,
         end_time_s: traj.end_step as f64 * traj.env_dt,
         sums: traj.sums,
@@ -306,12 +306,6 @@ fn side_report(
             .map(|(k, v)| format!("{k}={v}"))
             .collect(),
     }
-}
-
-fn reasons_key(r: &[Reason]) -> Vec<Reason> {
-    let mut r = r.to_vec();
-    r.sort();
-    r
 }
 
 fn metric_values(
@@ -335,9 +329,7 @@ fn metric_values(
         .into_iter()
         .map(|m| {
             let v = match m {
-                Metric::TerminationReasonMismatch => {
-                    f64::from(u8::from(reasons_key(&a.reasons) != reasons_key(&b.reasons)))
-                }
+                Metric::TerminationReasonMismatch => f64::from(u8::from(a.reasons != b.reasons)),
                 Metric::TerminationStepDiff => a.end_step.abs_diff(b.end_step) as f64,
                 Metric::TrunkPositionRms => t.trunk_position.rms,
                 Metric::TrunkPositionMax => t.trunk_position.max,

@@ -4,7 +4,7 @@
 
 use std::sync::Arc;
 
-use hyq_env::{Env, EnvConfig, Reason, ResetOptions};
+use hyq_env::{Env, EnvConfig, Reasons, ResetOptions};
 use hyq_physics::na::UnitQuaternion;
 use hyq_physics::{Backend, RobotModel, RobotState, TrunkState};
 use serde::Serialize;
@@ -53,7 +53,7 @@ pub struct Trajectory {
     pub targets: Vec<f64>,
     /// Why the episode ended (empty if the script ran out first, which cannot happen: the
     /// episode's t_max is the script's length).
-    pub reasons: Vec<Reason>,
+    pub reasons: Reasons,
     /// The step on which it ended.
     pub end_step: u64,
     /// Reward-term sums.
@@ -136,7 +136,7 @@ pub fn run_script<B: Backend>(
         contacts: Vec::new(),
         states: Vec::with_capacity(steps + 1),
         targets: Vec::with_capacity((steps + 1) * n),
-        reasons: Vec::new(),
+        reasons: Reasons::NONE,
         end_step: 0,
         sums: TermSums::default(),
     };
@@ -160,10 +160,8 @@ pub fn run_script<B: Backend>(
         traj.sums.terms.add(r);
         traj.sums.ret += r.total;
         traj.targets.extend_from_slice(&info.joint_targets);
+        traj.reasons = info.reasons;
         let done = info.reasons.done();
-        if done {
-            traj.reasons = info.reasons.iter().collect();
-        }
         traj.end_step = info.t;
         record(&mut traj, env);
         if done {
