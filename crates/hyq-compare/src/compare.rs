@@ -72,6 +72,11 @@ pub fn parse_override(item: &str) -> Result<(String, String), CompareError> {
     Ok((key.trim().to_owned(), value.trim().to_owned()))
 }
 
+/// Override pairs as the command line writes them (`KEY=VALUE`).
+fn written(pairs: &[(String, String)]) -> impl Iterator<Item = String> + '_ {
+    pairs.iter().map(|(k, v)| format!("{k}={v}"))
+}
+
 fn apply(config: &mut EnvConfig, overrides: &[(String, String)]) -> Result<(), CompareError> {
     if overrides.is_empty() {
         return Ok(());
@@ -81,11 +86,7 @@ fn apply(config: &mut EnvConfig, overrides: &[(String, String)]) -> Result<(), C
         .map(|(k, v)| (k.as_str(), v.as_str()))
         .collect();
     config.set_all(&pairs).map_err(|e| CompareError::Override {
-        item: overrides
-            .iter()
-            .map(|(k, v)| format!("{k}={v}"))
-            .collect::<Vec<_>>()
-            .join(" "),
+        item: written(overrides).collect::<Vec<_>>().join(" "),
         reason: e.to_string(),
     })
 }
@@ -223,16 +224,8 @@ pub fn compare<A: Backend, B: Backend>(
         env_dt_s: config_a.env_dt(),
         script_steps: steps,
         script_fingerprint: fingerprint(&script),
-        overrides: spec
-            .overrides
-            .iter()
-            .map(|(k, v)| format!("{k}={v}"))
-            .collect(),
-        overrides_b: spec
-            .overrides_b
-            .iter()
-            .map(|(k, v)| format!("{k}={v}"))
-            .collect(),
+        overrides: written(&spec.overrides).collect(),
+        overrides_b: written(&spec.overrides_b).collect(),
         engines: [A::NAME.to_owned(), B::NAME.to_owned()],
         ledger: ledger.origin.clone(),
         sides,
@@ -300,11 +293,7 @@ fn side_report(
         standing_height_m,
         mean_trunk_z_m: mean_z,
         final_position: traj.positions.last().copied().unwrap_or([f64::NAN; 3]),
-        overrides: shared
-            .iter()
-            .chain(own)
-            .map(|(k, v)| format!("{k}={v}"))
-            .collect(),
+        overrides: written(shared).chain(written(own)).collect(),
     }
 }
 
