@@ -20,9 +20,8 @@ pub const PLOT_SIZE: (u32, u32) = (900, 780);
 /// font another crate registered with plotters).
 const FAMILY: &str = "hyq-compare-sans";
 
-/// DejaVu Sans, the subset bundled with hyq-render (its `assets/fonts/`, with the licence),
-/// read from there so the workspace holds one copy.
-const SANS: &[u8] = include_bytes!("../../hyq-render/assets/fonts/DejaVuSans-subset.ttf");
+/// DejaVu Sans, the subset hyq-render bundles (its `assets/fonts/`, with the licence).
+const SANS: &[u8] = hyq_render::SANS;
 
 const COLOURS: [RGBColor; 2] = [RGBColor(0x4e, 0x79, 0xa7), RGBColor(0xe1, 0x57, 0x59)];
 const GREEN: RGBColor = RGBColor(0x59, 0xa1, 0x4f);

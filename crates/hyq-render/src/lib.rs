@@ -111,6 +111,7 @@ pub use records::{
 };
 pub use renderer::{MAX_SIDE_PX, MIN_SIDE_PX, RenderConfig, Renderer};
 pub use scene::{Overlay, RobotPose, Scene};
+pub use text::{SANS, SANS_BOLD};
 pub use writer::{
     GIF_MAX_FPS, GIF_MAX_SIDE_PX, GifWriter, PngSequence, encode_png, gif_delay_cs, write_gif,
     write_png, write_png_sequence,
