@@ -144,17 +144,29 @@ fn render_png(
     Ok(())
 }
 
-/// The range of `values` (and of `also`), padded by 6 %, never empty.
+/// The largest magnitude an axis end may have: the span of two such ends and its padding stay
+/// finite (an axis reaching ±inf makes the plotting library loop forever). Values beyond it are
+/// drawn at the edge of the plot.
+const AXIS_LIMIT: f64 = f64::MAX / 4.0;
+
+/// The range of the finite `values` (and of `also`), padded by 6 %, never empty, each end
+/// within ±[`AXIS_LIMIT`].
 fn padded_range<'a>(values: impl IntoIterator<Item = &'a f64>, also: &'a [f64]) -> (f64, f64) {
     let (lo, hi) = values
         .into_iter()
         .chain(also)
+        .filter(|v| v.is_finite())
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
             (lo.min(v), hi.max(v))
         });
-    if !lo.is_finite() || !hi.is_finite() {
+    if lo > hi {
         return (-1.0, 1.0);
     }
+    let (lo, hi) = (
+        lo.clamp(-AXIS_LIMIT, AXIS_LIMIT),
+        hi.clamp(-AXIS_LIMIT, AXIS_LIMIT),
+    );
+    // At most 2 · AXIS_LIMIT, and so is each padded end: finite.
     let span = hi - lo;
     if span < 1e-9 {
         let d = lo.abs().max(1.0) * 0.1;
@@ -662,4 +674,27 @@ pub fn plot_jsonl(
             )
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::padded_range;
+
+    #[test]
+    fn padded_ranges_stay_finite_with_a_finite_span() {
+        for values in [
+            vec![1e308, -1e308],
+            vec![f64::MAX, -f64::MAX, 0.0],
+            vec![f64::MAX],
+            vec![f64::INFINITY, 2.0, f64::NAN],
+            vec![],
+        ] {
+            let (lo, hi) = padded_range(&values, &[0.0]);
+            assert!(
+                lo.is_finite() && hi.is_finite() && (hi - lo).is_finite() && lo < hi,
+                "{values:?} gave [{lo}, {hi}]"
+            );
+        }
+        assert_eq!(padded_range(&[1.0, 3.0], &[]), (0.88, 3.12));
+    }
 }
