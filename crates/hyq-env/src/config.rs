@@ -44,6 +44,44 @@ use serde::ser::Serializer;
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
+/// Half the side (m) of the cube, centred on the world origin, in which every position must lie
+/// on each axis: the spawn point, the goal, and the trunk during an episode (a trunk that leaves
+/// it ends the episode as `diverged`). The reason is rapier's f32 positions: at 100 m they step
+/// by 7.6 µm, under 1 % of the trunk's motion in a 1 ms sub-step at 1 m/s, and a 3 s trot from
+/// x = 100 m moves 1.0061 m against 1.0086 m from the origin (the spread seen between origins 0
+/// and 10 m too); from 1 km it moves 1.9 % less, from 10 km it cannot move at all. One bound
+/// for every engine keeps runs on different engines comparable. It also bounds every distance,
+/// which with the bounds below keeps every reward term and every sum over an episode finite.
+pub const WORLD_HALF_EXTENT_M: f64 = 100.0;
+
+/// The largest k_exp (`task.exp_rew_scaling`): R_e(0) = (e^k − 1)/k is then about 2.8e214, so a
+/// step's r_e and any sum of them over the longest episode (2^63 steps) stay finite. (e^k
+/// itself overflows f64 above k ≈ 709.78.)
+pub const EXP_REW_SCALING_MAX: f64 = 500.0;
+
+/// The largest `base_rew_scaling`, `norm_rew_scaling`, `reach_target_bonus_reward`,
+/// `reach_bounds_penalty` and `fall_penalty`. With every distance bounded by the world
+/// ([`WORLD_HALF_EXTENT_M`]) and K ≥ 10⁻⁶ m, r_b, r_n, the bonus and the penalties then stay
+/// below 4·10²⁰ per step, and every sum over an episode finite.
+pub const REWARD_SCALE_MAX: f64 = 1e12;
+
+/// The widest reset joint noise (rad, `reset.joint_noise_rad`): a full turn. Wider noise only
+/// piles the angles up at the joint limits, where they are clipped.
+pub const JOINT_NOISE_MAX_RAD: f64 = std::f64::consts::TAU;
+
+/// The reason given when a position is outside the world (see [`WORLD_HALF_EXTENT_M`]).
+pub(crate) fn outside_world_reason() -> String {
+    format!(
+        "must lie within ±{WORLD_HALF_EXTENT_M} m of the origin on each axis (m): beyond it \
+         rapier's f32 positions are too coarse for faithful physics"
+    )
+}
+
+/// Whether `v` is a coordinate inside the world (finite, |v| ≤ [`WORLD_HALF_EXTENT_M`]).
+pub(crate) fn in_world(v: f64) -> bool {
+    v.is_finite() && v.abs() <= WORLD_HALF_EXTENT_M
+}
+
 /// The names of the engine tables `[physics.<name>]` a configuration may hold, one per backend
 /// crate (`hyq-rapier`, `hyq-dart`). A table is read only by the backend of that name; the
 /// list exists so that a misspelt engine table is an error rather than silently ignored.
@@ -54,7 +92,9 @@ pub const ENGINE_TABLES: [&str; 2] = ["rapier", "dart"];
 #[serde(deny_unknown_fields, default)]
 pub struct EnvConfig {
     /// The spec's user variables (rewards, penalties, tolerances, t_max), hyq-spec's
-    /// [`TaskConfig`] with the spec's names. (default: the spec's §2 table)
+    /// [`TaskConfig`] with the spec's names and ranges, plus upper bounds that keep every reward
+    /// finite: k_exp at most [`EXP_REW_SCALING_MAX`], the other scalings, the bonus and the
+    /// penalties at most [`REWARD_SCALE_MAX`]. (default: the spec's §2 table)
     pub task: TaskConfig,
     /// Where the goal is. (default: 5 m ahead along +x at the nominal standing height)
     pub goal: GoalConfig,
@@ -78,22 +118,24 @@ pub struct GoalConfig {
     /// `"random"`: a seeded draw from `distance_range_m` and `heading_range_deg`.
     /// (default: `"ahead"`)
     pub mode: GoalMode,
-    /// Distance (m) of the goal along +x from the spawn point in `"ahead"` mode. Finite, > 0.
-    /// (default: 5.0)
+    /// Distance (m) of the goal along +x from the spawn point in `"ahead"` mode. > 0, and the
+    /// goal within the world ([`WORLD_HALF_EXTENT_M`]). (default: 5.0)
     pub distance_m: f64,
-    /// The goal's world coordinates [x, y, z] (m) in `"fixed"` mode, where it is required.
-    /// (default: unset)
+    /// The goal's world coordinates [x, y, z] (m) in `"fixed"` mode, where it is required; each
+    /// within ±[`WORLD_HALF_EXTENT_M`]. (default: unset)
     #[serde(skip_serializing_if = "Option::is_none")]
     pub position: Option<[f64; 3]>,
     /// [min, max] distance (m) from the spawn point, drawn uniformly, in `"random"` mode.
-    /// Finite, 0 < min ≤ max. (default: [3.0, 7.0])
+    /// 0 < min ≤ max, and a goal max away in any direction within the world
+    /// ([`WORLD_HALF_EXTENT_M`]). (default: [3.0, 7.0])
     pub distance_range_m: [f64; 2],
     /// [min, max] heading (degrees, about +z from +x, positive to the left), drawn uniformly,
     /// in `"random"` mode. Within [−180, 180], min ≤ max. (default: [0.0, 0.0], straight
     /// ahead: the spec's yaw multiplier (§5.1) penalises any heading away from +x, so goals off
     /// the x axis are opt-in)
     pub heading_range_deg: [f64; 2],
-    /// The goal's height z (m) in `"ahead"` and `"random"` modes. (default: unset, meaning the
+    /// The goal's height z (m) in `"ahead"` and `"random"` modes, within ±[`WORLD_HALF_EXTENT_M`].
+    /// (default: unset, meaning the
     /// robot's nominal standing height from its profile, `spawn.standing_height`: 0.5895 m for
     /// HyQ)
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -354,7 +396,8 @@ impl<'de> Deserialize<'de> for PhysicsConfig {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct ResetConfig {
-    /// The spawn point's [x, y] (m, world). Finite. (default: [0.0, 0.0])
+    /// The spawn point's [x, y] (m, world), each within ±[`WORLD_HALF_EXTENT_M`]. (default:
+    /// [0.0, 0.0])
     pub spawn_xy_m: [f64; 2],
     /// The trunk's yaw at spawn (degrees, about +z, positive to the left). In [−180, 180].
     /// (default: 0.0, facing +x)
@@ -363,7 +406,7 @@ pub struct ResetConfig {
     /// (default: 0.0, off)
     pub yaw_noise_deg: f64,
     /// Uniform noise added to each standing joint angle at each reset: ± this many radians,
-    /// then clipped to the joint's limits. Finite, ≥ 0. (default: 0.0, off)
+    /// then clipped to the joint's limits. In [0, [`JOINT_NOISE_MAX_RAD`]]. (default: 0.0, off)
     pub joint_noise_rad: f64,
 }
 
@@ -549,6 +592,52 @@ impl EnvConfig {
             expected: e.to_string(),
         })?;
 
+        let t = &self.task;
+        if let Some(k) = t.exp_rew_scaling
+            && k > EXP_REW_SCALING_MAX
+        {
+            return Err(invalid(
+                "task.exp_rew_scaling",
+                k,
+                &format!(
+                    "must be at most {EXP_REW_SCALING_MAX}, so that R_e(0) = (e^k - 1)/k and \
+                     every sum of rewards over an episode stay finite"
+                ),
+            ));
+        }
+        for (key, value) in [
+            ("task.base_rew_scaling", t.base_rew_scaling),
+            ("task.norm_rew_scaling", t.norm_rew_scaling),
+            (
+                "task.reach_target_bonus_reward",
+                Some(t.reach_target_bonus_reward),
+            ),
+            ("task.reach_bounds_penalty", Some(t.reach_bounds_penalty)),
+            ("task.fall_penalty", Some(t.fall_penalty)),
+        ] {
+            if let Some(v) = value
+                && v > REWARD_SCALE_MAX
+            {
+                return Err(invalid(
+                    key,
+                    v,
+                    &format!(
+                        "must be at most {REWARD_SCALE_MAX:e}, so that every reward term and \
+                         every sum of rewards over an episode stay finite"
+                    ),
+                ));
+            }
+        }
+
+        let r = &self.reset;
+        if !r.spawn_xy_m.iter().all(|v| in_world(*v)) {
+            return Err(invalid(
+                "reset.spawn_xy_m",
+                r.spawn_xy_m,
+                &outside_world_reason(),
+            ));
+        }
+
         let g = &self.goal;
         finite_positive("goal.distance_m", g.distance_m)?;
         match (g.mode, g.position) {
@@ -581,9 +670,35 @@ impl EnvConfig {
             ));
         }
         if let Some(h) = g.height_m
-            && !h.is_finite()
+            && !in_world(h)
         {
-            return Err(invalid("goal.height_m", h, "must be finite (m)"));
+            return Err(invalid("goal.height_m", h, &outside_world_reason()));
+        }
+        // Every goal the mode can give lies in the world.
+        let [x, y] = r.spawn_xy_m;
+        let outside = match g.mode {
+            GoalMode::Ahead => (!in_world(x + g.distance_m))
+                .then(|| invalid("goal.distance_m", g.distance_m, &outside_world_reason())),
+            GoalMode::Fixed => g
+                .position
+                .filter(|p| !p.iter().all(|v| in_world(*v)))
+                .map(|p| invalid("goal.position", p, &outside_world_reason())),
+            GoalMode::Random => {
+                (!(in_world(x.abs() + dmax) && in_world(y.abs() + dmax))).then(|| {
+                    invalid(
+                        "goal.distance_range_m",
+                        g.distance_range_m,
+                        &format!(
+                            "{} (from the spawn point [{x:?}, {y:?}], a goal {dmax:?} m away \
+                             can leave it)",
+                            outside_world_reason()
+                        ),
+                    )
+                })
+            }
+        };
+        if let Some(e) = outside {
+            return Err(e);
         }
 
         finite_positive("action.max_delta_rad", self.action.max_delta_rad)?;
@@ -616,14 +731,6 @@ impl EnvConfig {
             },
         })?;
 
-        let r = &self.reset;
-        if !r.spawn_xy_m.iter().all(|v| v.is_finite()) {
-            return Err(invalid(
-                "reset.spawn_xy_m",
-                r.spawn_xy_m,
-                "must be finite (m)",
-            ));
-        }
         if !(-180.0..=180.0).contains(&r.yaw_deg) {
             return Err(invalid(
                 "reset.yaw_deg",
@@ -638,11 +745,14 @@ impl EnvConfig {
                 "must be in [0, 180] degrees",
             ));
         }
-        if !(r.joint_noise_rad.is_finite() && r.joint_noise_rad >= 0.0) {
+        if !(0.0..=JOINT_NOISE_MAX_RAD).contains(&r.joint_noise_rad) {
             return Err(invalid(
                 "reset.joint_noise_rad",
                 r.joint_noise_rad,
-                "must be finite and >= 0 (rad)",
+                &format!(
+                    "must be in [0, {JOINT_NOISE_MAX_RAD}] rad (a full turn; wider noise only \
+                     piles the angles up at the joint limits)"
+                ),
             ));
         }
         Ok(())

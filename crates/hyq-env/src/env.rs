@@ -44,7 +44,7 @@ use rand_chacha::ChaCha8Rng;
 use thiserror::Error;
 
 use crate::action::{ActionError, ActionScalar, ActionSpace};
-use crate::config::{ConfigError, EnvConfig};
+use crate::config::{ConfigError, EnvConfig, in_world, outside_world_reason};
 use crate::goal::{GoalSampler, sample_reset_state};
 use crate::info::{Reason, Reasons, StepInfo, ZERO_REWARD};
 
@@ -188,6 +188,15 @@ pub struct Env<B: Backend> {
 
     timing_on: bool,
     timing: StepTiming,
+}
+
+/// The error for a reset option (`what`) at `point`, outside the world.
+fn outside_world(what: &str, point: Point3<f64>) -> ConfigError {
+    ConfigError::Invalid {
+        key: what.to_owned(),
+        value: format!("{:?}", [point.x, point.y, point.z]),
+        expected: outside_world_reason(),
+    }
 }
 
 /// The goal stream's ChaCha stream number (the reset noise uses [`NOISE_STREAM`]).
@@ -347,10 +356,16 @@ impl<B: Backend> Env<B> {
         };
         state.validate(&self.model)?;
         let requested = Point3::from(state.trunk.pose.translation.vector);
+        if !requested.iter().all(|v| in_world(*v)) {
+            return Err(outside_world("reset option state's trunk position", requested).into());
+        }
         let goal = match options.goal {
             Some(g) => Point3::from(g),
             None => self.goals.sample(&mut goal_rng),
         };
+        if !goal.iter().all(|v| in_world(*v)) {
+            return Err(outside_world("reset option goal", goal).into());
+        }
         // Checked against the requested start before anything changes, so a refused goal leaves
         // the environment as it was.
         let requested_rules = EpisodeRules::new(&self.config.task, requested, goal)?;
@@ -544,6 +559,16 @@ impl<B: Backend> Env<B> {
         if let Some(what) = self.first_non_finite_reading() {
             return Err(format!("{what} is not finite after the step"));
         }
+        let position = self.trunk.pose.translation.vector;
+        if let Some(axis) = position.iter().position(|v| !in_world(*v)) {
+            let row = &self.layout.rows()[self.layout.trunk_position().start + axis];
+            return Err(format!(
+                "{} = {:?} m: the trunk left the world, which {}",
+                row.name,
+                position[axis],
+                outside_world_reason()
+            ));
+        }
         let t0 = self.timing_on.then(Instant::now);
         let outcome = rules
             .evaluate_step(&StepSnapshot {
@@ -560,6 +585,19 @@ impl<B: Backend> Env<B> {
         let accel = trunk_acceleration(&previous_velocity, &self.trunk.linvel, self.env_dt)
             .map_err(|e| e.to_string())?;
         self.write_observation(accel)?;
+        // The float32 observation must be finite too.
+        if let Some(i) = self
+            .obs_next
+            .iter()
+            .position(|v| v.abs() > f64::from(f32::MAX))
+        {
+            return Err(format!(
+                "observation row {i} ({}) = {:?} is beyond float32's range (±{:e})",
+                self.layout.rows()[i].name,
+                self.obs_next[i],
+                f32::MAX
+            ));
+        }
         std::mem::swap(&mut self.obs, &mut self.obs_next);
         self.fill_f32();
         if let (Some(t0), Some(t1)) = (t0, t1) {

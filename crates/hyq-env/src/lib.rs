@@ -156,8 +156,9 @@ pub mod vec_env;
 
 pub use action::{ActionError, ActionScalar, ActionSpace};
 pub use config::{
-    ActionConfig, ActionMode, ConfigError, ControlConfig, EnvConfig, Gains, GoalConfig, GoalMode,
-    OutOfRange, PhysicsConfig, ResetConfig,
+    ActionConfig, ActionMode, ConfigError, ControlConfig, EXP_REW_SCALING_MAX, EnvConfig, Gains,
+    GoalConfig, GoalMode, JOINT_NOISE_MAX_RAD, OutOfRange, PhysicsConfig, REWARD_SCALE_MAX,
+    ResetConfig, WORLD_HALF_EXTENT_M,
 };
 pub use env::{DEFAULT_SEED, Env, EnvError, Reset, ResetOptions, Step, StepTiming};
 pub use info::{Reason, Reasons, StepInfo, TermSums};
