@@ -123,7 +123,7 @@ impl LivePlots {
             episode: Some(info.episode),
             reward: info.reward.total,
             terms: RewardTerms::from(info.reward),
-            d_n: info.d_n,
+            d_n: Some(info.d_n),
             distance_to_goal: info.distance_to_goal,
         });
     }

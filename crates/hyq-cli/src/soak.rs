@@ -113,7 +113,7 @@ fn first_non_finite(obs: &[f64], obs_f32: &[f32], info: &StepInfo) -> Option<(St
         ("reward.joint_penalty", r.joint_penalty),
         ("reward.fall_penalty", r.fall_penalty),
         ("distance_to_goal", info.distance_to_goal),
-        ("d_n", info.d_n.unwrap_or(0.0)),
+        ("d_n", info.d_n),
         ("roll", info.roll),
         ("pitch", info.pitch),
         ("yaw", info.yaw),

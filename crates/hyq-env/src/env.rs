@@ -34,10 +34,12 @@ use hyq_physics::{
     Actuator, Backend, PdScratch, PhysicsError, RobotModel, RobotState, TrunkState, apply_pd,
     pd_substep,
 };
+use hyq_spec::distance::{MIN_START_GOAL_DISTANCE, StartGoalDistance};
 use hyq_spec::observation::trunk_acceleration;
 use hyq_spec::{
     Clipping, EpisodeError, EpisodeRules, JointDescription, JointRange, Observation,
-    ObservationLayout, RobotDescription, StepSnapshot, TrunkDescription, roll_pitch_yaw,
+    ObservationLayout, RobotDescription, StepSnapshot, TaskConfig, TrunkDescription,
+    roll_pitch_yaw,
 };
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -151,6 +153,8 @@ impl StepTiming {
 #[derive(Clone, Debug)]
 struct Episode {
     rules: EpisodeRules,
+    /// K, which [`episode_rules`] guarantees.
+    k: StartGoalDistance,
     done: bool,
 }
 
@@ -188,6 +192,32 @@ pub struct Env<B: Backend> {
 
     timing_on: bool,
     timing: StepTiming,
+}
+
+/// The rules of an episode from `initial` to `goal`, which must be at least
+/// [`MIN_START_GOAL_DISTANCE`] apart even when r_n and r_e, which divide by K, are off: the
+/// environment reports D_n = D / K on every step (in the info and the record), so K must be a
+/// usable divisor. Returns the rules and K.
+pub(crate) fn episode_rules(
+    task: &TaskConfig,
+    initial: Point3<f64>,
+    goal: Point3<f64>,
+) -> Result<(EpisodeRules, StartGoalDistance), EnvError> {
+    let rules = EpisodeRules::new(task, initial, goal)?;
+    match rules.start_goal_distance() {
+        Some(k) => Ok((rules, k)),
+        None => Err(ConfigError::Invalid {
+            key: "goal".into(),
+            value: format!("{:?}", [goal.x, goal.y, goal.z]),
+            expected: format!(
+                "is {:?} m from the initial position {:?}: D_n = D / K is reported every step, \
+                 so K must be at least {MIN_START_GOAL_DISTANCE:e} m (move the goal)",
+                (goal - initial).norm(),
+                [initial.x, initial.y, initial.z]
+            ),
+        }
+        .into()),
+    }
 }
 
 /// The error for a reset option (`what`) at `point`, outside the world.
@@ -300,7 +330,7 @@ impl<B: Backend> Env<B> {
                 joint_at_limit: None,
                 divergence: None,
                 distance_to_goal: 0.0,
-                d_n: None,
+                d_n: 1.0,
                 roll: 0.0,
                 pitch: 0.0,
                 yaw: 0.0,
@@ -368,7 +398,7 @@ impl<B: Backend> Env<B> {
         }
         // Checked against the requested start before anything changes, so a refused goal leaves
         // the environment as it was.
-        let requested_rules = EpisodeRules::new(&self.config.task, requested, goal)?;
+        let requested_rules = episode_rules(&self.config.task, requested, goal)?;
         self.backend.set_state(state)?;
 
         self.seeded |= seed.is_some();
@@ -384,7 +414,7 @@ impl<B: Backend> Env<B> {
         // requested start stand in only if this point is unusable (non-finite, which the
         // observation below reports as divergence).
         let initial = Point3::from(self.trunk.pose.translation.vector);
-        let rules = EpisodeRules::new(&self.config.task, initial, goal).unwrap_or(requested_rules);
+        let (rules, k) = episode_rules(&self.config.task, initial, goal).unwrap_or(requested_rules);
         let initial = rules.initial();
         self.latched.fill(false);
         let accel = Vector3::zeros();
@@ -403,7 +433,7 @@ impl<B: Backend> Env<B> {
         info.joint_at_limit = None;
         info.divergence = None;
         info.distance_to_goal = d0;
-        info.d_n = rules.start_goal_distance().map(|k| k.normalise(d0));
+        info.d_n = k.normalise(d0);
         info.roll = attitude.roll;
         info.pitch = attitude.pitch;
         info.yaw = attitude.yaw;
@@ -411,7 +441,11 @@ impl<B: Backend> Env<B> {
         info.initial_position = initial.coords.into();
         info.joint_targets.copy_from_slice(&self.q);
         info.action_clipped = false;
-        self.episode = Some(Episode { rules, done: false });
+        self.episode = Some(Episode {
+            rules,
+            k,
+            done: false,
+        });
         Ok(Reset {
             observation: &self.obs,
             observation_f32: &self.obs_f32,
@@ -435,7 +469,7 @@ impl<B: Backend> Env<B> {
                 reasons: self.info.reasons,
             });
         }
-        let rules = episode.rules;
+        let (rules, k) = (episode.rules, episode.k);
         self.space.check(action)?;
 
         // From here on the step happens.
@@ -461,7 +495,9 @@ impl<B: Backend> Env<B> {
                 info.reasons = Reasons::from_spec(outcome.terminations);
                 info.joint_at_limit = outcome.joint_at_limit;
                 info.distance_to_goal = outcome.distance;
-                info.d_n = outcome.normalised_distance;
+                info.d_n = outcome
+                    .normalised_distance
+                    .unwrap_or_else(|| k.normalise(outcome.distance));
                 info.roll = outcome.attitude.roll;
                 info.pitch = outcome.attitude.pitch;
                 info.yaw = outcome.attitude.yaw;

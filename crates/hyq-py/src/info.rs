@@ -12,7 +12,7 @@
 //! | `reasons` | tuple of str | every reason the episode ended, in the order `reached`, `joint_limit`, `fell`, `timeout`, `diverged` |
 //! | `reached`, `joint_limit`, `fell`, `timeout`, `diverged` | bool | the same reasons as flags |
 //! | `distance_to_goal` | float | D^t (m) |
-//! | `d_n` | float or None | D_n^t = D^t / K (None only when K is too small and r_n, r_e are off) |
+//! | `d_n` | float | D_n^t = D^t / K |
 //! | `roll`, `pitch`, `yaw` | float | the trunk's attitude (rad, intrinsic Z-Y-X) |
 //! | `goal`, `initial_position` | float64 array (3,) | G and C^0 (m, world; C^t is the observation's rows 36–38) |
 //! | `joint_targets` | float64 array (12,) | the joint targets the actuator tracked (rad) |
@@ -21,8 +21,7 @@
 //! | `divergence` | None or str | what diverged, on a `diverged` step |
 //! | `observation_clipped` | bool | whether an observation value was outside the declared bounds and clipped to them (added by the caller, which does the clipping) |
 //!
-//! The vector info holds the numeric and flag keys as arrays over the envs (`d_n` NaN where
-//! unset), each with Gymnasium's `_key` mask (all true: every env reports every key every step).
+//! The vector info holds the numeric and flag keys as arrays over the envs, each with Gymnasium's `_key` mask (all true: every env reports every key every step).
 
 use hyq_env::{Reason, StepInfo};
 use hyq_physics::RobotModel;
@@ -48,7 +47,7 @@ const FLOAT_KEYS: [Key<f64>; 15] = [
     ("fall_penalty", |i| i.reward.fall_penalty),
     ("reward", |i| i.reward.total),
     ("distance_to_goal", |i| i.distance_to_goal),
-    ("d_n", |i| i.d_n.unwrap_or(f64::NAN)),
+    ("d_n", |i| i.d_n),
     ("roll", |i| i.roll),
     ("pitch", |i| i.pitch),
     ("yaw", |i| i.yaw),
@@ -72,11 +71,7 @@ pub fn info_dict<'py>(
     // that count is not.
     d.set_item("t", info.t)?;
     for (key, read) in FLOAT_KEYS {
-        if key == "d_n" {
-            d.set_item(key, info.d_n)?;
-        } else {
-            d.set_item(key, read(info))?;
-        }
+        d.set_item(key, read(info))?;
     }
     let reasons: Vec<&str> = info.reasons.iter().map(Reason::as_str).collect();
     d.set_item("reasons", PyTuple::new(py, reasons)?)?;

@@ -91,7 +91,7 @@ spec_tests::for_each_backend! {
             assert_eq!(t.m_height, None, "the height penalty is off by default");
             assert_eq!(r.reward, (t.r_b + t.r_n + t.r_e + t.r_reach) * t.m_yaw * t.m_pitch - t.joint_penalty - t.fall_penalty);
             assert_eq!(r.distance_to_goal, outcome.distance);
-            assert_eq!(r.d_n, outcome.normalised_distance);
+            assert_eq!(Some(r.d_n), outcome.normalised_distance);
             assert_eq!((r.yaw, r.pitch), (outcome.attitude.yaw, outcome.attitude.pitch));
             let spec_reasons: Vec<Reason> = outcome.terminations.iter().map(Reason::from).collect();
             assert_eq!(r.reasons, spec_reasons);
