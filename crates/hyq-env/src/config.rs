@@ -167,6 +167,17 @@ pub enum GoalMode {
     Random,
 }
 
+impl GoalMode {
+    /// The mode as written in TOML (`"ahead"`, `"fixed"`, `"random"`).
+    pub const fn as_str(self) -> &'static str {
+        match self {
+            GoalMode::Ahead => "ahead",
+            GoalMode::Fixed => "fixed",
+            GoalMode::Random => "random",
+        }
+    }
+}
+
 /// How an action becomes the 12 joint targets of the PD actuator (`[action]`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -639,6 +650,55 @@ impl EnvConfig {
         }
 
         let g = &self.goal;
+        // A key of another mode would be silently ignored: it is an error, unless it holds its
+        // default (as a written-out configuration holds it).
+        let d = GoalConfig::default();
+        let (ahead, fixed, random) = (
+            g.mode == GoalMode::Ahead,
+            g.mode == GoalMode::Fixed,
+            g.mode == GoalMode::Random,
+        );
+        let misplaced = [
+            ("goal.position", !fixed && g.position.is_some(), "\"fixed\""),
+            (
+                "goal.distance_m",
+                !ahead && g.distance_m != d.distance_m,
+                "\"ahead\"",
+            ),
+            (
+                "goal.distance_range_m",
+                !random && g.distance_range_m != d.distance_range_m,
+                "\"random\"",
+            ),
+            (
+                "goal.heading_range_deg",
+                !random && g.heading_range_deg != d.heading_range_deg,
+                "\"random\"",
+            ),
+            (
+                "goal.height_m",
+                fixed && g.height_m.is_some(),
+                "\"ahead\" or \"random\"",
+            ),
+        ];
+        if let Some((key, _, modes)) = misplaced.iter().find(|(_, wrong, _)| *wrong) {
+            let value = match *key {
+                "goal.position" => format!("{:?}", g.position.unwrap_or_default()),
+                "goal.distance_m" => format!("{:?}", g.distance_m),
+                "goal.distance_range_m" => format!("{:?}", g.distance_range_m),
+                "goal.heading_range_deg" => format!("{:?}", g.heading_range_deg),
+                _ => format!("{:?}", g.height_m.unwrap_or_default()),
+            };
+            return Err(ConfigError::Invalid {
+                key: (*key).to_owned(),
+                value,
+                expected: format!(
+                    "is only read when goal.mode = {modes}, and the mode is \"{}\": set \
+                     goal.mode, or remove the key",
+                    g.mode.as_str()
+                ),
+            });
+        }
         finite_positive("goal.distance_m", g.distance_m)?;
         match (g.mode, g.position) {
             (GoalMode::Fixed, None) => {

@@ -281,3 +281,70 @@ fn a_config_file_is_read_from_disk_and_a_missing_one_names_the_path() {
     assert!(msg.contains("missing.toml"), "{msg}");
     std::fs::remove_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
 }
+
+#[test]
+fn goal_keys_of_another_mode_are_refused_by_name() {
+    // Each key is read in some modes only; given in another, it used to be silently ignored.
+    let cases: &[(&[(&str, &str)], &[&str])] = &[
+        (
+            &[("goal.position", "[9, 9, 0.6]")],
+            &["goal.position", "\"fixed\"", "\"ahead\""],
+        ),
+        (
+            &[
+                ("goal.mode", "fixed"),
+                ("goal.position", "[1, 2, 0.6]"),
+                ("goal.distance_m", "9"),
+            ],
+            &["goal.distance_m", "\"ahead\"", "\"fixed\""],
+        ),
+        (
+            &[("goal.distance_range_m", "[1, 2]")],
+            &["goal.distance_range_m", "\"random\""],
+        ),
+        (
+            &[("goal.mode", "random"), ("goal.distance_m", "4")],
+            &["goal.distance_m", "\"random\""],
+        ),
+        (
+            &[("goal.heading_range_deg", "[-10, 10]")],
+            &["goal.heading_range_deg", "\"random\""],
+        ),
+        (
+            &[
+                ("goal.mode", "fixed"),
+                ("goal.position", "[1, 2, 0.6]"),
+                ("goal.height_m", "0.5"),
+            ],
+            &["goal.height_m", "\"fixed\""],
+        ),
+    ];
+    for (pairs, words) in cases {
+        let mut c = EnvConfig::default();
+        let e = c.set_all(pairs).expect_err("refused").to_string();
+        for w in *words {
+            assert!(e.contains(w), "{pairs:?}: {e} lacks {w}");
+        }
+        assert_eq!(c, EnvConfig::default());
+    }
+    // The same in a file.
+    let e = parse_err("[goal]\nmode = \"random\"\nposition = [1, 2, 0.6]\n");
+    assert!(e.contains("goal.position"), "{e}");
+    // A mode's own keys, and the other modes' keys at their defaults (as a written-out
+    // configuration holds them), are accepted; so is switching modes on top of the defaults.
+    for pairs in [
+        &[
+            ("goal.mode", "random"),
+            ("goal.distance_range_m", "[1, 2]"),
+            ("goal.height_m", "0.5"),
+        ][..],
+        &[("goal.mode", "fixed"), ("goal.position", "[1, 2, 0.6]")][..],
+        &[("goal.distance_m", "4"), ("goal.height_m", "0.5")][..],
+    ] {
+        let mut c = EnvConfig::default();
+        c.set_all(pairs)
+            .unwrap_or_else(|e| panic!("{pairs:?}: {e}"));
+        let text = c.to_toml_string();
+        assert_eq!(EnvConfig::from_toml_str(&text, "written").ok(), Some(c));
+    }
+}
