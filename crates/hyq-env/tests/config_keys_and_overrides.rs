@@ -282,10 +282,13 @@ fn a_config_file_is_read_from_disk_and_a_missing_one_names_the_path() {
     std::fs::remove_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
 }
 
+/// Overrides, and the words their error must contain.
+type Case<'a> = (&'a [(&'a str, &'a str)], &'a [&'a str]);
+
 #[test]
 fn goal_keys_of_another_mode_are_refused_by_name() {
     // Each key is read in some modes only; given in another, it used to be silently ignored.
-    let cases: &[(&[(&str, &str)], &[&str])] = &[
+    let cases: &[Case<'_>] = &[
         (
             &[("goal.position", "[9, 9, 0.6]")],
             &["goal.position", "\"fixed\"", "\"ahead\""],
