@@ -282,6 +282,17 @@ impl Gains {
     }
 }
 
+/// As written in TOML: `"profile"`, a number, or an array of numbers.
+impl fmt::Display for Gains {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Gains::Profile => f.write_str("\"profile\""),
+            Gains::All(g) => write!(f, "{g:?}"),
+            Gains::PerJoint(v) => write!(f, "{v:?}"),
+        }
+    }
+}
+
 impl Serialize for Gains {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         match self {
@@ -496,19 +507,42 @@ fn gains_ok(key: &str, g: &Gains) -> Result<(), ConfigError> {
         Gains::Profile => Ok(()),
         Gains::All(v) if ok(v) => Ok(()),
         Gains::PerJoint(v) if v.iter().all(ok) => Ok(()),
-        other => Err(invalid(key, other, "gains must be finite and >= 0")),
+        other => Err(ConfigError::Invalid {
+            key: key.to_owned(),
+            value: other.to_string(),
+            expected: "gains must be finite and >= 0".to_owned(),
+        }),
     }
 }
 
 impl EnvConfig {
     /// Parses and validates a configuration from TOML text; `origin` (a path, or "text")
     /// appears in errors.
+    ///
+    /// Errors give the line of the offending key where the text has it: the parser's position for
+    /// syntax, unknown keys and wrong types; for a value out of its range, the line of that key
+    /// (the checks of `[task]` run when the whole table is read, where the parser would point at
+    /// the table instead).
     pub fn from_toml_str(text: &str, origin: &str) -> Result<Self, ConfigError> {
-        let config: EnvConfig = toml::from_str(text).map_err(|e| ConfigError::Parse {
+        let at = |key: &str, message: String| ConfigError::Parse {
             origin: origin.to_owned(),
-            message: one_line(&e.to_string()),
+            message: match line_of(text, key) {
+                Some(line) => format!("line {line}: {message}"),
+                None => message,
+            },
+        };
+        let config: EnvConfig =
+            toml::from_str(text).map_err(|e| match task_check(e.message()) {
+                Some((key, message)) => at(&key, message),
+                None => ConfigError::Parse {
+                    origin: origin.to_owned(),
+                    message: one_line(&e.to_string()),
+                },
+            })?;
+        config.validate().map_err(|e| match &e {
+            ConfigError::Invalid { key, .. } => at(key, e.to_string()),
+            _ => e,
         })?;
-        config.validate()?;
         Ok(config)
     }
 
@@ -568,10 +602,19 @@ impl EnvConfig {
                         .into(),
                 ));
             }
-            let parsed = toml::from_str::<toml::Table>(&format!("v = {value}"))
-                .ok()
-                .and_then(|mut t| t.remove("v"))
-                .unwrap_or_else(|| toml::Value::String((*value).to_owned()));
+            let parsed = match toml::from_str::<toml::Table>(&format!("v = {value}")) {
+                Ok(mut t) => t.remove("v"),
+                // An integer TOML cannot hold: say so, rather than read it as a bare string.
+                Err(_) if is_integer_literal(value) => {
+                    return Err(fail(
+                        "not an integer a configuration can hold: TOML's integers are 64-bit \
+                         signed, from -9223372036854775808 to 9223372036854775807"
+                            .into(),
+                    ));
+                }
+                Err(_) => None,
+            }
+            .unwrap_or_else(|| toml::Value::String((*value).to_owned()));
             let mut table = &mut doc;
             for part in &path[..path.len() - 1] {
                 let entry = table
@@ -585,8 +628,10 @@ impl EnvConfig {
             table.insert(path[path.len() - 1].to_owned(), parsed);
             // Deserialised after every pair, so an unknown key or a wrong type is blamed on the
             // pair that brought it.
-            config = EnvConfig::deserialize(toml::Value::Table(doc.clone()))
-                .map_err(|e| fail(e.to_string()))?;
+            config = EnvConfig::deserialize(toml::Value::Table(doc.clone())).map_err(|e| {
+                let message = e.to_string();
+                fail(task_check(&message).map_or(message, |(_, checked)| checked))
+            })?;
         }
         config.validate()?;
         *self = config;
@@ -597,10 +642,25 @@ impl EnvConfig {
     /// named by its dotted key. (The engine tables are checked when an environment on that
     /// engine is built, by the backend.)
     pub fn validate(&self) -> Result<(), ConfigError> {
-        self.task.validate().map_err(|e| ConfigError::Invalid {
-            key: format!("task.{}", task_field(&e)),
-            value: task_value(&e),
-            expected: e.to_string(),
+        self.task.validate().map_err(|e| match e {
+            hyq_spec::ConfigError::Real {
+                field,
+                value,
+                expected,
+            } => invalid(
+                &format!("task.{field}"),
+                value,
+                &format!("must be {expected}"),
+            ),
+            hyq_spec::ConfigError::Integer {
+                field,
+                value,
+                expected,
+            } => invalid(
+                &format!("task.{field}"),
+                value,
+                &format!("must be {expected}"),
+            ),
         })?;
 
         let t = &self.task;
@@ -824,18 +884,59 @@ impl EnvConfig {
     }
 }
 
-fn task_field(e: &hyq_spec::ConfigError) -> &'static str {
-    match e {
-        hyq_spec::ConfigError::Real { field, .. }
-        | hyq_spec::ConfigError::Integer { field, .. } => field,
+/// A `[task]` range check's message as the parser reports it (`invalid <field> = <value>: must
+/// be …`, with the key path the parser may append, `: in `task``), rewritten as the other
+/// checks word theirs: the field's whole dotted key, and the value in its shortest form
+/// (`-1e308`, not 309 digits). Returns the key and the message; `None` for other messages.
+fn task_check(message: &str) -> Option<(String, String)> {
+    let rest = message.trim().strip_prefix("invalid ")?;
+    let (field, rest) = rest.split_once(" = ")?;
+    let known = field
+        .split('.')
+        .all(|part| !part.is_empty() && part.chars().all(|c| c.is_ascii_lowercase() || c == '_'));
+    let (value, rest) = rest.split_once(": ")?;
+    if !known {
+        return None;
     }
+    // Integers as written; reals in their shortest form.
+    let value = match (value.parse::<i128>(), value.parse::<f64>()) {
+        (Err(_), Ok(v)) => format!("{v:?}"),
+        _ => value.to_owned(),
+    };
+    let rest = rest
+        .lines()
+        .next()
+        .and_then(|l| l.split(": in `").next())
+        .unwrap_or(rest)
+        .trim_end();
+    let key = format!("task.{field}");
+    let message = format!("invalid {key} = {value}: {rest}");
+    Some((key, message))
 }
 
-fn task_value(e: &hyq_spec::ConfigError) -> String {
-    match e {
-        hyq_spec::ConfigError::Real { value, .. } => value.to_string(),
-        hyq_spec::ConfigError::Integer { value, .. } => value.to_string(),
+/// The line (1 first) of the dotted `key` in the TOML `text`, if the text holds it.
+fn line_of(text: &str, key: &str) -> Option<usize> {
+    let doc = toml::de::DeTable::parse(text).ok()?;
+    let mut table = doc.get_ref();
+    let mut span = None;
+    let mut parts = key.split('.').peekable();
+    while let Some(part) = parts.next() {
+        let (k, v) = table.get_key_value(part)?;
+        span = Some(k.span());
+        if parts.peek().is_some() {
+            match v.get_ref() {
+                toml::de::DeValue::Table(t) => table = t,
+                _ => return None,
+            }
+        }
     }
+    span.map(|s| text.get(..s.start).map_or(0, |t| t.matches('\n').count()) + 1)
+}
+
+/// Whether `value` is written as a TOML integer (sign, digits, underscores).
+fn is_integer_literal(value: &str) -> bool {
+    let digits = value.trim().trim_start_matches(['+', '-']);
+    !digits.is_empty() && digits.chars().all(|c| c.is_ascii_digit() || c == '_')
 }
 
 /// A parser message on one line (the CLI prints errors on one line): TOML's "at line L, column

@@ -286,7 +286,7 @@ impl<B: Backend> Env<B> {
         let gains = |key: &str, g: &crate::config::Gains, profile: &[f64]| {
             g.resolve(profile).ok_or_else(|| ConfigError::Invalid {
                 key: key.to_owned(),
-                value: format!("{g:?}"),
+                value: g.to_string(),
                 expected: format!("one gain per joint: {n} values"),
             })
         };

@@ -351,3 +351,79 @@ fn goal_keys_of_another_mode_are_refused_by_name() {
         assert_eq!(EnvConfig::from_toml_str(&text, "written").ok(), Some(c));
     }
 }
+
+#[test]
+fn messages_name_the_key_at_its_line_in_plain_words_and_short_numbers() {
+    let file = |text: &str| parse_err(text);
+    let set = |key: &str, value: &str| {
+        let mut c = EnvConfig::default();
+        c.set(key, value).expect_err("refused").to_string()
+    };
+    let checks: Vec<(String, &[&str], &[&str])> = vec![
+        // A NaN was reported at the line of the [task] header (line 1 of a one-table file).
+        (
+            file(
+                "# c\n[goal]\nmode = \"ahead\"\n\n[task]\nmax_time_steps = 10\nfall_penalty = nan\n",
+            ),
+            &["line 7", "task.fall_penalty", "NaN"],
+            &["line 5"],
+        ),
+        (
+            file("task.fall_penalty = nan\n"),
+            &["line 1", "task.fall_penalty"],
+            &[],
+        ),
+        (
+            file(
+                "[task]\nheight_penalty = {nominal_height_m = 0.6, tolerance_m = -1, rate_per_m = 1}\n",
+            ),
+            &["line 2", "task.height_penalty.tolerance_m"],
+            &[],
+        ),
+        (
+            file("[goal]\n\ndistance_m = -1e300\n"),
+            &["line 3", "goal.distance_m", "-1e300"],
+            &[],
+        ),
+        // Hundreds of digits.
+        (
+            set("task.fall_penalty", "-1e308"),
+            &["-1e308"],
+            &["00000000"],
+        ),
+        // "invalid type: string" for a number too large for TOML's integers.
+        (
+            set("task.max_time_steps", "18446744073709551615"),
+            &[
+                "task.max_time_steps",
+                "18446744073709551615",
+                "9223372036854775807",
+            ],
+            &["string"],
+        ),
+        // Rust's debug text.
+        (set("control.kp", "-1"), &["control.kp = -1"], &["All("]),
+        (
+            set("control.kd", "[1, -2]"),
+            &["control.kd = [1.0, -2.0]"],
+            &["PerJoint"],
+        ),
+        (
+            file("[control]\nkp = -1\n"),
+            &["line 2", "control.kp = -1"],
+            &["All("],
+        ),
+    ];
+    for (message, present, absent) in checks {
+        for p in present {
+            assert!(message.contains(p), "{message:?} lacks {p:?}");
+        }
+        for a in absent {
+            assert!(!message.contains(a), "{message:?} holds {a:?}");
+        }
+        assert!(
+            message.len() < 300 && !message.contains('\n'),
+            "{message:?}"
+        );
+    }
+}
