@@ -82,6 +82,11 @@ pub(crate) fn in_world(v: f64) -> bool {
     v.is_finite() && v.abs() <= WORLD_HALF_EXTENT_M
 }
 
+/// The largest configuration file read (bytes): 1 MiB, hundreds of times any real
+/// configuration, so that a wrong path (`/dev/zero`, a log file) is refused at once rather than
+/// read until memory runs out.
+pub const CONFIG_FILE_MAX_BYTES: usize = 1 << 20;
+
 /// The names of the engine tables `[physics.<name>]` a configuration may hold, one per backend
 /// crate (`hyq-rapier`, `hyq-dart`). A table is read only by the backend of that name; the
 /// list exists so that a misspelt engine table is an error rather than silently ignored.
@@ -546,13 +551,29 @@ impl EnvConfig {
         Ok(config)
     }
 
-    /// Reads, parses and validates a configuration file.
+    /// Reads, parses and validates a configuration file of at most
+    /// [`CONFIG_FILE_MAX_BYTES`].
     pub fn from_file(path: impl AsRef<Path>) -> Result<Self, ConfigError> {
+        use std::io::Read;
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|e| ConfigError::Io {
+        let io = |message: String| ConfigError::Io {
             path: path.display().to_string(),
-            message: e.to_string(),
-        })?;
+            message,
+        };
+        let mut bytes = Vec::new();
+        std::fs::File::open(path)
+            .and_then(|f| {
+                f.take(CONFIG_FILE_MAX_BYTES as u64 + 1)
+                    .read_to_end(&mut bytes)
+            })
+            .map_err(|e| io(e.to_string()))?;
+        if bytes.len() > CONFIG_FILE_MAX_BYTES {
+            return Err(io(format!(
+                "larger than {} MiB, which no configuration is (is it the right file?)",
+                CONFIG_FILE_MAX_BYTES >> 20
+            )));
+        }
+        let text = String::from_utf8(bytes).map_err(|e| io(format!("not UTF-8 text: {e}")))?;
         Self::from_toml_str(&text, &path.display().to_string())
     }
 

@@ -427,3 +427,30 @@ fn messages_name_the_key_at_its_line_in_plain_words_and_short_numbers() {
         );
     }
 }
+
+#[test]
+fn a_config_file_is_read_up_to_its_size_limit_so_endless_input_is_refused() {
+    // /dev/zero used to be read until memory ran out.
+    let msg = EnvConfig::from_file("/dev/zero")
+        .err()
+        .map(|e| e.to_string())
+        .unwrap_or_default();
+    assert!(msg.contains("/dev/zero") && msg.contains("1 MiB"), "{msg}");
+    let dir = std::env::temp_dir().join(format!("hyq-env-config-big-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+    let path = dir.join("big.toml");
+    let mut text = "[task]\nfall_penalty = 4.0\n#".to_owned();
+    text.push_str(&"x".repeat(hyq_env::config::CONFIG_FILE_MAX_BYTES - text.len()));
+    std::fs::write(&path, &text).unwrap_or_else(|e| panic!("{e}"));
+    assert!(
+        EnvConfig::from_file(&path).is_ok(),
+        "exactly the limit is read"
+    );
+    text.push('x');
+    std::fs::write(&path, &text).unwrap_or_else(|e| panic!("{e}"));
+    assert!(
+        EnvConfig::from_file(&path).is_err(),
+        "one byte more is refused"
+    );
+    std::fs::remove_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+}
