@@ -63,11 +63,11 @@ pub struct BenchArgs {
     json: bool,
     /// Envs stepped together in a vector env (batched mode when ≥ 2); `--steps` then counts
     /// vector steps, each of N env steps.
-    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..=4096))]
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..=hyq_env::MAX_ENVS as u64))]
     num_envs: u64,
     /// Threads of the vector env's pool (batched mode only; default: N, at most the number of
     /// cores).
-    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=4096))]
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=hyq_env::MAX_THREADS as u64))]
     threads: Option<u64>,
 }
 

@@ -164,7 +164,7 @@ pub use env::{DEFAULT_SEED, Env, EnvError, Reset, ResetOptions, Step, StepTiming
 pub use info::{Reason, Reasons, StepInfo, TermSums};
 pub use policy::{Policy, PolicyInput, RandomPolicy, Stand, Trot, TrotParams};
 pub use record::{RecordTerms, StepRecord};
-pub use vec_env::{AutoReset, VecEnv, VecEnvError, VecStepOut};
+pub use vec_env::{AutoReset, MAX_ENVS, MAX_THREADS, VecEnv, VecEnvError, VecStepOut};
 
 /// The repository README, whose Rust quickstart runs as a doctest of this crate so that it stays
 /// true (only with `cargo test --doc`; nothing of it is compiled into the library).
