@@ -88,7 +88,8 @@ pub struct RapierOptions {
     pub ground_contact_damping_ratio: f64,
     /// Distance (m) within which rapier creates speculative contacts
     /// (`normalized_prediction_distance`) (default: 0.02, rapier's). They keep fast feet from
-    /// tunnelling; they never count as contact flags.
+    /// tunnelling; they never count as contact flags. Raised to `physics.contact_distance` when
+    /// that is larger, since rapier reports no contact beyond it.
     pub prediction_distance: f64,
 }
 
@@ -547,7 +548,10 @@ impl Backend for RapierBackend {
                 options.ground_contact_frequency as Real,
                 options.ground_contact_damping_ratio as Real,
             ),
-            normalized_prediction_distance: options.prediction_distance as Real,
+            // rapier creates no contact beyond its prediction distance, so it is at least the
+            // contact distance: a contact within that distance must be seen to count.
+            normalized_prediction_distance: options.prediction_distance.max(params.contact_distance)
+                as Real,
             contact_recycling: false,
             max_ccd_substeps: 0,
             ..IntegrationParameters::default()
