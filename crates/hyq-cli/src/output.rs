@@ -15,6 +15,13 @@ pub fn print_json_line(value: &impl Serialize, what: &str) {
     }
 }
 
+/// Prints `message` as one warning line on stderr, `hyq: warning: …` (nothing if stderr is
+/// closed: a warning must not stop a command).
+pub fn warn(message: &str) {
+    use std::io::Write;
+    let _ = writeln!(std::io::stderr().lock(), "hyq: warning: {message}");
+}
+
 /// A progress bar of `total` env steps.
 pub fn progress_bar(total: u64) -> ProgressBar {
     // Drawn on stderr only when it is a terminal (indicatif hides it otherwise), so piped and

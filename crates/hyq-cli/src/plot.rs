@@ -21,6 +21,7 @@ use hyq_render::{EpisodeSeries, PlotError, PlotOptions, RewardTerms, StepRecord}
 
 use crate::Failure;
 use crate::options::{ConfigArgs, usage};
+use crate::output::warn;
 
 /// `hyq plot` arguments.
 #[derive(Debug, Args)]
@@ -80,7 +81,15 @@ pub fn execute(args: PlotArgs) -> Result<(), Failure> {
             .map_or_else(String::new, |n| n.to_string_lossy().into_owned())
     });
     let options = plot_options(&config, title);
-    let plots = hyq_render::plot_jsonl(&args.file, &options, &out).map_err(plot_failure)?;
+    let plotted = hyq_render::plot_jsonl(&args.file, &options, &out).map_err(plot_failure)?;
+    if let Some(line) = plotted.torn_last_line {
+        warn(&format!(
+            "{}: line {line} is incomplete (the run that wrote it was cut short?); plotted the \
+             whole lines before it",
+            args.file.display()
+        ));
+    }
+    let plots = plotted.plots;
     for p in &plots {
         println!("{}", p.rewards.display());
         println!("{}", p.distance.display());

@@ -142,7 +142,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         k_exp: config.exp_rew_scaling,
         env_dt_s: Some(DT),
     };
-    let plots = plot_jsonl(out.join("records.jsonl"), &options, out.join("plots"))?;
+    let plots = plot_jsonl(out.join("records.jsonl"), &options, out.join("plots"))?.plots;
     println!(
         "wrote {} and {} plot pairs",
         out.join("trot.gif").display(),

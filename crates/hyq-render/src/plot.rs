@@ -638,15 +638,16 @@ pub fn plot_episode(
 /// Reads a JSONL file of step records and writes both plots of every episode in it into
 /// `dir`, as `episode_001_rewards.png`, `episode_001_distance.png`, … (numbered by their
 /// order in the file). `options.title` prefixes each plot's title (`"<title>, episode 1"`);
-/// `options.k_exp` is the run's `exp_rew_scaling` and `options.env_dt_s` its env step.
+/// `options.k_exp` is the run's `exp_rew_scaling` and `options.env_dt_s` its env step. A torn
+/// last line is left out and reported (see [`crate::parse_jsonl`]).
 pub fn plot_jsonl(
     path: impl AsRef<Path>,
     options: &PlotOptions,
     dir: impl AsRef<Path>,
-) -> Result<Vec<EpisodePlots>, PlotError> {
+) -> Result<JsonlPlots, PlotError> {
     let path = path.as_ref();
-    let records = read_jsonl(path)?;
-    let episodes = split_episodes(&records);
+    let read = read_jsonl(path)?;
+    let episodes = split_episodes(&read.records);
     if episodes.is_empty() {
         return Err(PlotError::Empty {
             what: path.display().to_string(),
@@ -673,7 +674,20 @@ pub fn plot_jsonl(
                 &format!("episode_{:03}", i + 1),
             )
         })
-        .collect()
+        .collect::<Result<Vec<_>, _>>()
+        .map(|plots| JsonlPlots {
+            plots,
+            torn_last_line: read.torn_last_line,
+        })
+}
+
+/// What [`plot_jsonl`] wrote, and the torn last line it left out, if any.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct JsonlPlots {
+    /// Both plots of every episode, in the file's order.
+    pub plots: Vec<EpisodePlots>,
+    /// The 1-based number of a torn last line that was left out.
+    pub torn_last_line: Option<usize>,
 }
 
 #[cfg(test)]

@@ -96,29 +96,81 @@ pub struct StepRecord {
     pub distance_to_goal: f64,
 }
 
-/// Parses JSONL step records, skipping blank lines; `origin` names the input in errors.
-pub fn parse_jsonl(reader: impl BufRead, origin: &str) -> Result<Vec<StepRecord>, PlotError> {
-    let mut records = Vec::new();
-    for (i, line) in reader.lines().enumerate() {
-        let line = line.map_err(|source| PlotError::Read {
-            path: origin.into(),
-            source,
-        })?;
-        if line.trim().is_empty() {
-            continue;
-        }
-        let record = serde_json::from_str(&line).map_err(|source| PlotError::Json {
-            origin: origin.to_owned(),
-            line: i + 1,
-            source,
-        })?;
-        records.push(record);
-    }
-    Ok(records)
+/// The longest line of a JSONL record file read (bytes): 1 MiB, several hundred times a step
+/// record, so that a wrong file (`/dev/zero`, a binary) is refused at once.
+pub const MAX_RECORD_LINE_BYTES: usize = 1 << 20;
+
+/// The records of a JSONL file, and the number of its last line if that line was left out
+/// because it is torn (see [`parse_jsonl`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct JsonlRecords {
+    /// Every whole record, in order.
+    pub records: Vec<StepRecord>,
+    /// The 1-based number of a torn last line that was left out, if there was one.
+    pub torn_last_line: Option<usize>,
 }
 
-/// Reads a JSONL file of step records.
-pub fn read_jsonl(path: impl AsRef<Path>) -> Result<Vec<StepRecord>, PlotError> {
+/// Parses JSONL step records, skipping blank lines; `origin` names the input in errors.
+///
+/// A last line that ends without a newline and stops in the middle of a record (what a run cut
+/// short by a full disk or a kill leaves) is left out and reported in
+/// [`JsonlRecords::torn_last_line`], so the whole lines before it can still be read. Any other
+/// bad line is an error naming it, and so is a line longer than [`MAX_RECORD_LINE_BYTES`]
+/// (which is not read further).
+pub fn parse_jsonl(mut reader: impl BufRead, origin: &str) -> Result<JsonlRecords, PlotError> {
+    use std::io::Read;
+    let mut records = Vec::new();
+    let mut line = Vec::new();
+    for number in 1.. {
+        line.clear();
+        let read = (&mut reader)
+            .take(MAX_RECORD_LINE_BYTES as u64 + 1)
+            .read_until(b'\n', &mut line)
+            .map_err(|source| PlotError::Read {
+                path: origin.into(),
+                source,
+            })?;
+        if read == 0 {
+            break;
+        }
+        let ended = line.last() == Some(&b'\n');
+        if !ended && line.len() > MAX_RECORD_LINE_BYTES {
+            return Err(PlotError::LineTooLong {
+                origin: origin.to_owned(),
+                line: number,
+                limit: MAX_RECORD_LINE_BYTES,
+            });
+        }
+        let text = String::from_utf8_lossy(&line);
+        if text.trim().is_empty() {
+            continue;
+        }
+        match serde_json::from_str(&text) {
+            Ok(record) => records.push(record),
+            // The input ends inside this record: a torn last line.
+            Err(e) if !ended && e.is_eof() => {
+                return Ok(JsonlRecords {
+                    records,
+                    torn_last_line: Some(number),
+                });
+            }
+            Err(source) => {
+                return Err(PlotError::Json {
+                    origin: origin.to_owned(),
+                    line: number,
+                    source,
+                });
+            }
+        }
+    }
+    Ok(JsonlRecords {
+        records,
+        torn_last_line: None,
+    })
+}
+
+/// Reads a JSONL file of step records (see [`parse_jsonl`]).
+pub fn read_jsonl(path: impl AsRef<Path>) -> Result<JsonlRecords, PlotError> {
     let path = path.as_ref();
     let file = std::fs::File::open(path).map_err(|source| PlotError::Read {
         path: path.to_owned(),
