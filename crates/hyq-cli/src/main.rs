@@ -7,7 +7,9 @@
 //! print in [`output`].
 //!
 //! Errors never panic and never print more than one line: `hyq: error: <what was wrong>` on
-//! stderr and exit status 2 for a usage error (bad option, bad value), 1 for anything else.
+//! stderr and exit status 2 for a usage error (bad option, bad value), 1 for anything else. A
+//! closed stdout (`hyq run | head -1`) ends a command quietly with status 0; output files are
+//! replaced only by a command that finished (see [`output`]).
 
 mod backend;
 mod bench;
@@ -20,6 +22,7 @@ mod run;
 mod soak;
 mod table;
 
+use std::io::Write;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
@@ -69,6 +72,17 @@ pub struct Failure {
     pub message: String,
 }
 
+impl Failure {
+    /// stdout was closed by its reader (`hyq run | head -1`): the command stops, quietly and
+    /// successfully, as if the reader had read everything; nothing is printed.
+    pub fn closed_stdout() -> Self {
+        Failure {
+            status: 0,
+            message: String::new(),
+        }
+    }
+}
+
 impl From<anyhow::Error> for Failure {
     fn from(e: anyhow::Error) -> Self {
         Failure {
@@ -86,7 +100,8 @@ fn print_error(message: &str) {
         .filter(|l| !l.is_empty())
         .collect::<Vec<_>>()
         .join(" ");
-    eprintln!("hyq: error: {one_line}");
+    // Nothing is left to do if stderr is closed too.
+    let _ = writeln!(std::io::stderr().lock(), "hyq: error: {one_line}");
 }
 
 fn main() -> ExitCode {
@@ -105,7 +120,9 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(failure) => {
-            print_error(&failure.message);
+            if !failure.message.is_empty() {
+                print_error(&failure.message);
+            }
             ExitCode::from(failure.status)
         }
     }

@@ -104,7 +104,7 @@ pub use error::{PlotError, RenderError, WriteError};
 pub use frame::Frame;
 pub use plot::{
     DISTANCE_PLOT_SIZE, EpisodePlots, JsonlPlots, PlotOptions, REWARD_PLOT_SIZE, plot_distance,
-    plot_episode, plot_jsonl, plot_reward_terms,
+    plot_episode, plot_jsonl, plot_records, plot_reward_terms,
 };
 pub use records::{
     EpisodeSeries, JsonlRecords, MAX_RECORD_LINE_BYTES, RewardTerms, StepRecord, cumulative,

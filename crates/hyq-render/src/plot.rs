@@ -24,7 +24,7 @@ use plotters::style::FontStyle;
 
 use crate::error::PlotError;
 use crate::frame::Frame;
-use crate::records::{EpisodeSeries, cumulative, read_jsonl, split_episodes};
+use crate::records::{EpisodeSeries, StepRecord, cumulative, read_jsonl, split_episodes};
 use crate::text::{SANS, SANS_BOLD};
 use crate::writer::write_png;
 
@@ -647,10 +647,24 @@ pub fn plot_jsonl(
 ) -> Result<JsonlPlots, PlotError> {
     let path = path.as_ref();
     let read = read_jsonl(path)?;
-    let episodes = split_episodes(&read.records);
+    plot_records(&read.records, &path.display().to_string(), options, dir).map(|plots| JsonlPlots {
+        plots,
+        torn_last_line: read.torn_last_line,
+    })
+}
+
+/// Writes both plots of every episode in `records` into `dir`, as [`plot_jsonl`] does for a
+/// file; `origin` names the records in errors.
+pub fn plot_records(
+    records: &[StepRecord],
+    origin: &str,
+    options: &PlotOptions,
+    dir: impl AsRef<Path>,
+) -> Result<Vec<EpisodePlots>, PlotError> {
+    let episodes = split_episodes(records);
     if episodes.is_empty() {
         return Err(PlotError::Empty {
-            what: path.display().to_string(),
+            what: origin.to_owned(),
         });
     }
     episodes
@@ -674,11 +688,7 @@ pub fn plot_jsonl(
                 &format!("episode_{:03}", i + 1),
             )
         })
-        .collect::<Result<Vec<_>, _>>()
-        .map(|plots| JsonlPlots {
-            plots,
-            torn_last_line: read.torn_last_line,
-        })
+        .collect()
 }
 
 /// What [`plot_jsonl`] wrote, and the torn last line it left out, if any.
