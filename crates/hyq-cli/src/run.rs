@@ -238,6 +238,16 @@ fn record_error(args: &RunArgs, e: std::io::Error) -> Failure {
     }
 }
 
+/// A number for a table cell: three decimals, or in scientific form (`1.234e11`) from a
+/// million up, where the decimals would say nothing and the digits would be many.
+pub fn compact(v: f64) -> String {
+    if v.abs() >= 1e6 {
+        format!("{v:.3e}")
+    } else {
+        format!("{v:.3}")
+    }
+}
+
 /// The per-episode table of `hyq run`.
 pub fn summary_table(summaries: &[EpisodeSummary]) -> String {
     let mut table = Table::new(&[
@@ -255,7 +265,7 @@ pub fn summary_table(summaries: &[EpisodeSummary]) -> String {
         "distance_m",
         "dx_m",
     ]);
-    let num = |v: f64| format!("{v:.3}");
+    let num = compact;
     for s in summaries {
         let end: Vec<&str> = s.reasons.iter().map(|r| r.as_str()).collect();
         table.row(vec![
