@@ -339,7 +339,8 @@ fn venv_command(venv: &Path, dir: &Path, program: &Path) -> Command {
     command
 }
 
-/// Stage 3: installs the pinned requirements into the venv, builds the extension with the dev
+/// Stage 3: installs the pinned requirements into the venv (and Stable-Baselines3 without its
+/// dependencies), builds the extension with the dev
 /// profile and installs the package (`maturin develop`: fast to build; users get release
 /// builds from `maturin build --release` or `pip install`), builds the `hyq` command the CLI
 /// parity test runs, then runs pytest and returns how many tests passed.
@@ -351,6 +352,21 @@ fn python_stage(root: &Path, venv: &Path) -> Result<u64, String> {
         &crate_dir,
         &python,
         &["-m", "pip", "install", "-q", "-r", "requirements-test.txt"],
+    )?;
+    // Stable-Baselines3 alone, without PyTorch (see the file's header).
+    run_in_venv(
+        venv,
+        &crate_dir,
+        &python,
+        &[
+            "-m",
+            "pip",
+            "install",
+            "-q",
+            "--no-deps",
+            "-r",
+            "requirements-test-nodeps.txt",
+        ],
     )?;
     run_in_venv(
         venv,

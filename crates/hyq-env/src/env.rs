@@ -273,6 +273,12 @@ fn robot_description(model: &RobotModel) -> Result<RobotDescription, ConfigError
     RobotDescription::new(joints, feet, trunk).map_err(|e| bad(e.to_string()))
 }
 
+/// The observation layout of `model` (the §3 rows, named and bounded for this robot), as an
+/// environment on any backend has it, without building one.
+pub fn observation_layout_of(model: &RobotModel) -> Result<ObservationLayout, ConfigError> {
+    robot_description(model).map(|robot| ObservationLayout::new(&robot))
+}
+
 impl<B: Backend> Env<B> {
     /// Builds an environment for `model` on backend `B` with `config`: validates the whole
     /// configuration for this robot (gains per joint, the fixed goal against the spawn point,

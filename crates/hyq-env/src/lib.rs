@@ -160,7 +160,9 @@ pub use config::{
     GoalConfig, GoalMode, JOINT_NOISE_MAX_RAD, OutOfRange, PhysicsConfig, REWARD_SCALE_MAX,
     ResetConfig, WORLD_HALF_EXTENT_M,
 };
-pub use env::{DEFAULT_SEED, Env, EnvError, Reset, ResetOptions, Step, StepTiming};
+pub use env::{
+    DEFAULT_SEED, Env, EnvError, Reset, ResetOptions, Step, StepTiming, observation_layout_of,
+};
 pub use info::{Reason, Reasons, StepInfo, TermSums};
 pub use policy::{Policy, PolicyInput, RandomPolicy, Stand, Trot, TrotParams};
 pub use record::{RecordTerms, StepRecord};

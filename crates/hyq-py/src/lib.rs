@@ -47,6 +47,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<vector::VecCore>()?;
     m.add_function(wrap_pyfunction!(default_max_time_steps, m)?)?;
     m.add_function(wrap_pyfunction!(default_config_toml, m)?)?;
+    m.add_function(wrap_pyfunction!(spaces::observation_table, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

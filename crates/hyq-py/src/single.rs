@@ -11,7 +11,7 @@ use crate::config;
 use crate::errors::env_error;
 use crate::frames::FrameSource;
 use crate::info::info_dict;
-use crate::spaces::{Bounds, clip_in_place, observation_bounds, to_f32};
+use crate::spaces::{Bounds, clip_in_place, declared_bounds, table_bounds, to_f32};
 
 /// One HyQ environment (rapier backend). Built by `hyq.HyQEnv`, which adds the Gymnasium API.
 #[pyclass(module = "hyq._core")]
@@ -59,7 +59,7 @@ impl Core {
         let config = config::build(config_file.as_deref(), &pairs)?;
         let env =
             Env::<RapierBackend>::new(hyq_physics::bundled::hyq(), config).map_err(env_error)?;
-        let clip = clip_observations.then(|| observation_bounds(&env));
+        let clip = clip_observations.then(|| table_bounds(&env));
         let frames = FrameSource::new(render_width, render_height)?;
         Ok(Self {
             env,
@@ -129,14 +129,18 @@ impl Core {
         self.frames.frame(py, &self.env, self.episode_return)
     }
 
-    /// The observation's declared lower bounds (float32; the §3 table's).
+    /// The observation space's lower bounds (float32; see `spaces`).
     fn observation_low<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f32>> {
-        observation_bounds(&self.env).0.into_pyarray(py)
+        declared_bounds(&self.env, self.clip.is_some())
+            .0
+            .into_pyarray(py)
     }
 
-    /// The observation's declared upper bounds (float32).
+    /// The observation space's upper bounds (float32).
     fn observation_high<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f32>> {
-        observation_bounds(&self.env).1.into_pyarray(py)
+        declared_bounds(&self.env, self.clip.is_some())
+            .1
+            .into_pyarray(py)
     }
 
     /// The action space's lower bounds (float32; −1 in the normalized and delta modes, the

@@ -17,7 +17,7 @@ use crate::config;
 use crate::errors::vec_env_error;
 use crate::frames::FrameSource;
 use crate::info::{info_dict, vector_info_dict};
-use crate::spaces::{Bounds, clip_in_place, observation_bounds, to_f32, would_clip};
+use crate::spaces::{Bounds, clip_in_place, declared_bounds, table_bounds, to_f32, would_clip};
 
 /// N HyQ environments (rapier backend) stepped in parallel.
 #[pyclass(module = "hyq._core")]
@@ -120,7 +120,7 @@ impl VecCore {
         if let Some(threads) = threads {
             vec = vec.with_threads(threads).map_err(vec_env_error)?;
         }
-        let clip = clip_observations.then(|| observation_bounds(vec.env(0)));
+        let clip = clip_observations.then(|| table_bounds(vec.env(0)));
         let frames = FrameSource::new(render_width, render_height)?;
         Ok(Self {
             returns: vec![0.0; vec.num_envs()],
@@ -289,14 +289,18 @@ impl VecCore {
         self.vec.num_envs()
     }
 
-    /// The observation's declared lower bounds (float32).
+    /// The observation space's lower bounds (float32; see `spaces`).
     fn observation_low<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f32>> {
-        observation_bounds(self.vec.env(0)).0.into_pyarray(py)
+        declared_bounds(self.vec.env(0), self.clip.is_some())
+            .0
+            .into_pyarray(py)
     }
 
-    /// The observation's declared upper bounds (float32).
+    /// The observation space's upper bounds (float32).
     fn observation_high<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f32>> {
-        observation_bounds(self.vec.env(0)).1.into_pyarray(py)
+        declared_bounds(self.vec.env(0), self.clip.is_some())
+            .1
+            .into_pyarray(py)
     }
 
     /// The action space's lower bounds (float32).

@@ -11,6 +11,7 @@ from gymnasium import spaces
 
 from hyq import _core
 from hyq._config import config_pairs, split_options
+from hyq.observation import OBSERVATION_TABLE, ObservationRow
 
 #: The render modes this environment implements.
 RENDER_MODES = ["rgb_array"]
@@ -58,14 +59,15 @@ class HyQEnv(gymnasium.Env):
 
     **Observation**: ``Box(39,)`` float32, the spec's §3 table in order and units (joint angles,
     joint speeds, four foot contact flags, trunk contact flag, trunk quaternion w x y z, trunk
-    acceleration, trunk position); the bounds are the table's. As the project's rulings require
-    (§3), values are **not** clipped by default: the physics does leave the declared bounds (joint
-    speeds past ±12 rad/s in about a quarter of first steps under random actions, accelerations
-    past ±50 m/s² on impacts), and the observation then lies outside the Box, exactly as
-    ``hyq run --record`` writes it. ``clip_observations=True`` clips each value to its row's
-    bounds and ``info["observation_clipped"]`` says when that happened; use it where a tool
-    insists that every observation lie in the space (Gymnasium's and Stable-Baselines3's
-    checkers do).
+    acceleration, trunk position). As the project's rulings require (§3), values are **not**
+    clipped by default, and the physics does leave the table (joint speeds past ±12 rad/s in
+    about a quarter of first steps under random actions, accelerations past ±50 m/s² on
+    impacts), so the space declares the table's bounds only where they always hold (the contact
+    flags and the quaternion) and leaves every other row unbounded (the finite float32 range), as
+    Gymnasium's MuJoCo locomotion envs do: every observation lies in it.
+    ``clip_observations=True`` declares the table as the space and clips each value to its row's
+    bounds (``info["observation_clipped"]`` says when). The table itself is
+    ``hyq.OBSERVATION_TABLE`` (also ``env.observation_table``).
 
     **Action**: ``Box(-1, 1, (12,), float32)`` joint position targets in the default
     ``normalized`` mode (−1 a joint's lower limit, +1 its upper); ``action={"mode":
@@ -131,6 +133,11 @@ class HyQEnv(gymnasium.Env):
     def observation_names(self) -> list[str]:
         """The 39 observation rows' names, in order."""
         return self._core.observation_names()
+
+    @property
+    def observation_table(self) -> tuple[ObservationRow, ...]:
+        """The spec's section 3 table: each row's name, bounds, unit and kind."""
+        return OBSERVATION_TABLE
 
     @property
     def joint_names(self) -> list[str]:
