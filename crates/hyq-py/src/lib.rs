@@ -15,11 +15,15 @@
 //! - errors keep the core's messages: a refused action, a bad configuration or an unusable goal
 //!   is a `ValueError`; a step before reset or after the episode ended, or a physics failure
 //!   while building or resetting, is a `RuntimeError`;
-//! - the physics runs with the GIL released (`Python::detach`), the vector env on rayon.
+//! - the physics runs with the GIL released (`Python::detach`), the vector env on rayon;
+//! - every call goes through [`guard`]: a second thread inside the same env gets a message
+//!   saying so, and a Rust panic becomes a `RuntimeError` (never PyO3's `PanicException`) and
+//!   retires the env.
 
 mod config;
 mod errors;
 mod frames;
+mod guard;
 mod info;
 mod single;
 mod spaces;
