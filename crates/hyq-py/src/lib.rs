@@ -53,5 +53,10 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(default_config_toml, m)?)?;
     m.add_function(wrap_pyfunction!(spaces::observation_table, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    // The ranges the Python side checks arguments against, from the crates that enforce them.
+    m.add("MAX_ENVS", hyq_env::MAX_ENVS)?;
+    m.add("MAX_THREADS", hyq_env::MAX_THREADS)?;
+    m.add("RENDER_SIDE_MIN", hyq_render::MIN_SIDE_PX)?;
+    m.add("RENDER_SIDE_MAX", hyq_render::MAX_SIDE_PX)?;
     Ok(())
 }

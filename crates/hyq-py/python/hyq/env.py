@@ -10,6 +10,7 @@ import numpy as np
 from gymnasium import spaces
 
 from hyq import _core
+from hyq._checks import RENDER_SIDES, as_actions, check_count, check_flag
 from hyq._config import config_pairs, split_options
 from hyq.observation import OBSERVATION_TABLE, ObservationRow
 
@@ -41,6 +42,21 @@ def reset_goal(options: Mapping[str, Any] | None) -> list[float] | None:
     if goal.shape != (3,):
         raise ValueError(f"reset option goal has shape {goal.shape}, expected (3,): [x, y, z] in m")
     return [float(v) for v in goal]
+
+
+def core_options(env_options: Mapping[str, Any]) -> dict[str, Any]:
+    """The core's keyword arguments for clipping and frame size, checked by name."""
+    return {
+        "clip_observations": check_flag(
+            "clip_observations", env_options.get("clip_observations", False)
+        ),
+        "render_width": check_count(
+            "render_width", env_options.get("render_width", 480), *RENDER_SIDES
+        ),
+        "render_height": check_count(
+            "render_height", env_options.get("render_height", 360), *RENDER_SIDES
+        ),
+    }
 
 
 def check_seed(seed: int | None) -> int | None:
@@ -106,9 +122,7 @@ class HyQEnv(gymnasium.Env):
         self._core = _core.Core(
             config_pairs(config),
             config_file=env_options.get("config_file"),
-            clip_observations=bool(env_options.get("clip_observations", False)),
-            render_width=int(env_options.get("render_width", 480)),
-            render_height=int(env_options.get("render_height", 360)),
+            **core_options(env_options),
         )
         self.observation_space = spaces.Box(
             low=self._core.observation_low(),
@@ -163,13 +177,8 @@ class HyQEnv(gymnasium.Env):
         self, action: Any
     ) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
         """One env step (10 physics sub-steps of 1 ms by default)."""
-        action = np.asarray(action, dtype=np.float64)
-        if action.ndim != 1:
-            # A 1-D action of the wrong length is refused by the core, with its message.
-            raise ValueError(
-                f"action has shape {action.shape}, expected {self.action_space.shape}"
-            )
-        return self._core.step(np.ascontiguousarray(action))
+        # A 1-D action of the wrong length is refused by the core, with its message.
+        return self._core.step(as_actions(action, 1, self.action_space.shape))
 
     def render(self) -> np.ndarray | None:
         """With ``render_mode="rgb_array"``: the current state as a uint8 (H, W, 3) frame."""
