@@ -91,7 +91,7 @@ impl VecCore {
         let array = Array2::from_shape_vec((self.vec.num_envs(), self.vec.observation_len()), flat)
             .map_err(|e| PyValueError::new_err(format!("observations: {e}")))?;
         let infos: Vec<_> = (0..self.vec.num_envs()).map(|i| self.vec.info(i)).collect();
-        let info = vector_info_dict(py, &infos)?;
+        let info = vector_info_dict(py, &infos, self.vec.env(0).model())?;
         info.set_item("observation_clipped", clipped.into_pyarray(py))?;
         info.set_item(
             "_observation_clipped",

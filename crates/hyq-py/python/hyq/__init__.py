@@ -17,6 +17,7 @@ import gymnasium
 
 from hyq import _core
 from hyq.env import HyQEnv
+from hyq.info import INFO_SCHEMA
 from hyq.observation import OBSERVATION_TABLE, ObservationRow
 from hyq.vector import HyQVectorEnv
 
@@ -39,6 +40,7 @@ if ENV_ID not in gymnasium.registry:
 
 __all__ = [
     "ENV_ID",
+    "INFO_SCHEMA",
     "MAX_EPISODE_STEPS",
     "OBSERVATION_TABLE",
     "HyQEnv",

@@ -93,7 +93,8 @@ class HyQEnv(gymnasium.Env):
     **Reward and info**: the spec's reward; ``info`` holds every term (``r_b``, ``r_n``,
     ``r_e``, ``r_reach``, ``m_yaw``, ``m_pitch``, ``m_height``, ``joint_penalty``,
     ``fall_penalty``), every reason the episode ended (``reasons`` and one flag each), the
-    distance to the goal, the attitude, the goal and the joint targets.
+    distance to the goal, the attitude, the goal and the joint targets: every key of
+    ``hyq.INFO_SCHEMA`` on every step, each with one type.
 
     **Episode end**: ``terminated`` when the goal is reached, a joint reaches a limit, the
     trunk touches the ground, or the physics diverges; ``truncated`` at ``max_time_steps``

@@ -39,8 +39,8 @@ class HyQVectorEnv(VectorEnv):
     unless ``max_time_steps`` is given); ``threads`` (a dedicated rayon pool; results do not
     depend on it); and every argument of ``HyQEnv``.
 
-    ``infos`` holds every numeric and flag key of ``HyQEnv``'s info as an array over the envs,
-    each with Gymnasium's ``_key`` mask.
+    ``infos`` holds every key of ``HyQEnv``'s info (``hyq.INFO_SCHEMA``) as an array over the
+    envs, each with Gymnasium's ``_key`` mask, as ``SyncVectorEnv`` would give them.
     """
 
     metadata = {
