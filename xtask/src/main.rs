@@ -8,6 +8,7 @@
 mod bench;
 mod cli;
 mod docs;
+mod rllib;
 mod soak;
 mod stages;
 
@@ -17,10 +18,13 @@ const HELP: &str = "\
 cargo xtask <command>
 
 commands:
-  test [--require dart|python|all]...   run every test of the workspace: the Rust crates (rapier
+  test [--require dart|python|all]... [--with rllib]
+                                        run every test of the workspace: the Rust crates (rapier
                                         backend), the DART backend when DART is installed, the
                                         Python package when its tools are installed; --require
-                                        makes a part that cannot run a failure (CI uses it)
+                                        makes a part that cannot run a failure (CI uses it);
+                                        --with rllib adds a two-iteration RLlib run of
+                                        examples/rllib_scale_out.py (a 6.1 GB venv of its own)
   soak [--steps N] [--backend rapier|dart] [--seed S]
                                         random actions for N env steps (default 10^6) in a
                                         release build of `hyq`: no panic, no NaN in any output;

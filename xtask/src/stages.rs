@@ -188,7 +188,8 @@ fn passed_count(line: &str) -> u64 {
 
 /// `cargo xtask test`.
 pub fn test(args: &[String]) -> Result<(), String> {
-    let required = parse_required(args)?;
+    let (with, args) = crate::rllib::split_with(args)?;
+    let required = parse_required(&args)?;
     let root = workspace_root();
     let members = workspace_members(&root)?;
     let has = |name: &str| members.iter().any(|m| m == name);
@@ -239,6 +240,12 @@ pub fn test(args: &[String]) -> Result<(), String> {
         }
     };
     results.push((Part::Python.name(), python));
+
+    // Optional stages, run only when asked for (`--with rllib`).
+    if with.iter().any(|w| w == "rllib") {
+        let tests = crate::rllib::stage(&root)?;
+        results.push(("rllib (--with rllib)", Outcome::Passed { tests }));
+    }
 
     summarize(&results, &required)
 }
@@ -326,7 +333,7 @@ fn run_in_venv(venv: &Path, dir: &Path, program: &Path, args: &[&str]) -> Result
 
 /// A command run in `dir` as if the venv were activated (maturin finds the venv through
 /// `VIRTUAL_ENV`).
-fn venv_command(venv: &Path, dir: &Path, program: &Path) -> Command {
+pub(crate) fn venv_command(venv: &Path, dir: &Path, program: &Path) -> Command {
     let mut command = Command::new(program);
     let path = std::env::var_os("PATH").unwrap_or_default();
     let mut paths = vec![venv.join("bin")];
