@@ -960,8 +960,33 @@ fn is_integer_literal(value: &str) -> bool {
     !digits.is_empty() && digits.chars().all(|c| c.is_ascii_digit() || c == '_')
 }
 
+/// `message` with every number of more than 24 digits (a float the parser or serde printed in
+/// full, e.g. `1000000000000000000000000000000.0` for 1e30) in its shortest form (`1e30`). Up to
+/// 24 digits stay as written, so integers such as 2^64 − 1 read as given.
+fn compact_numbers(message: &str) -> String {
+    let mut out = String::with_capacity(message.len());
+    let mut rest = message;
+    while let Some(start) = rest.find(|c: char| c.is_ascii_digit()) {
+        out.push_str(&rest[..start]);
+        let tail = &rest[start..];
+        let end = tail
+            .find(|c: char| !(c.is_ascii_digit() || c == '.'))
+            .unwrap_or(tail.len());
+        let number = &tail[..end];
+        let digits = number.chars().filter(char::is_ascii_digit).count();
+        match number.parse::<f64>() {
+            Ok(v) if digits > 24 => out.push_str(&format!("{v:?}")),
+            _ => out.push_str(number),
+        }
+        rest = &tail[end..];
+    }
+    out.push_str(rest);
+    out
+}
+
 /// A parser message on one line (the CLI prints errors on one line): TOML's "at line L, column
-/// C" header and its explanation, without the source excerpt drawn between them.
+/// C" header and its explanation, without the source excerpt drawn between them, and numbers
+/// in their short form ([`compact_numbers`]).
 fn one_line(message: &str) -> String {
     let lines: Vec<&str> = message
         .lines()
@@ -972,5 +997,5 @@ fn one_line(message: &str) -> String {
                 && !l.chars().next().is_some_and(|c| c.is_ascii_digit())
         })
         .collect();
-    lines.join(": ")
+    compact_numbers(&lines.join(": "))
 }
