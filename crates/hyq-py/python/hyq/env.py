@@ -38,7 +38,10 @@ def reset_goal(options: Mapping[str, Any] | None) -> list[float] | None:
     goal = options.get("goal")
     if goal is None:
         return None
-    goal = np.asarray(goal, dtype=np.float64)
+    try:
+        goal = np.asarray(goal, dtype=np.float64)
+    except (TypeError, ValueError) as e:
+        raise ValueError(f"reset option goal = {goal!r}: expected [x, y, z] in m ({e})") from None
     if goal.shape != (3,):
         raise ValueError(f"reset option goal has shape {goal.shape}, expected (3,): [x, y, z] in m")
     return [float(v) for v in goal]
