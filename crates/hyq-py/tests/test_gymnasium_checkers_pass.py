@@ -76,7 +76,8 @@ def test_spaces_follow_the_spec_tables() -> None:
     assert clipped.high[row["lf_kfe_angle"]] == pytest.approx(-0.349066, abs=1e-5)
     assert clipped.high[row["rh_kfe_speed"]] == 12.0
     assert (clipped.low[row["trunk_accel_x"]], clipped.high[row["trunk_accel_x"]]) == (-50.0, 50.0)
-    assert (clipped.low[row["trunk_position_z"]], clipped.high[row["trunk_position_z"]]) == (0.0, 1.0)
+    z = row["trunk_position_z"]
+    assert (clipped.low[z], clipped.high[z]) == (0.0, 1.0)
     act = env.action_space
     assert act.shape == (12,) and act.dtype == np.float32
     assert np.all(act.low == -1.0) and np.all(act.high == 1.0)
