@@ -847,10 +847,13 @@ mod tests {
 
     #[test]
     fn defaults_and_arguments_parse_and_bad_ones_are_named() {
-        let root = Path::new("/work/main");
+        let root = Path::new("/nonexistent/repo");
         let d = parse(&[], root).unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(d.reps, 5);
-        assert_eq!(d.anchors, PathBuf::from("/work/shared/bench/anchors"));
+        assert_eq!(
+            d.anchors,
+            PathBuf::from("/nonexistent/shared/bench/anchors")
+        );
         assert!(d.dart);
         let p = parse(
             &strings(&[
@@ -863,9 +866,9 @@ mod tests {
                 "--anchor-steps",
                 "70",
                 "--venv",
-                "/tmp/v",
+                "/nonexistent/venv",
                 "--anchors",
-                "/a",
+                "/nonexistent/anchors",
                 "--no-dart",
             ]),
             root,
@@ -877,14 +880,21 @@ mod tests {
         );
         assert_eq!(
             (p.venv, p.anchors, p.dart),
-            ("/tmp/v".into(), "/a".into(), false)
+            (
+                "/nonexistent/venv".into(),
+                "/nonexistent/anchors".into(),
+                false
+            )
         );
         for (bad, named) in [
             (&["--reps", "0"][..], "--reps 0"),
             (&["--steps", "x"], "--steps x"),
             (&["--venv"], "--venv"),
             (&["--fast"], "--fast"),
-            (&["--venv", "/work/main/.venv"], "outside the repository"),
+            (
+                &["--venv", "/nonexistent/repo/.venv"],
+                "outside the repository",
+            ),
         ] {
             let err = parse(&strings(bad), root).err().unwrap_or_default();
             assert!(err.contains(named), "{bad:?}: {err}");

@@ -10,6 +10,8 @@ mod cli;
 mod docs;
 mod soak;
 mod stages;
+#[cfg(test)]
+mod standalone;
 
 use std::process::ExitCode;
 
