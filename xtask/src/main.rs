@@ -28,13 +28,15 @@ commands:
                                         release build of `hyq`: no panic, no NaN in any output;
                                         prints the episodes and the observed range of each row
   bench-vs-anchors [--reps R] [--steps N] [--vec-steps N] [--anchor-steps N]
-                   [--anchors DIR] [--venv DIR] [--no-dart]
+                   [--venv DIR] [--no-dart]
                                         the speed targets: hyq bench (rapier, DART when
                                         installed, the vector env on 1 and 2 threads) and the
-                                        anchors (MuJoCo, DART from Python; venv outside the
-                                        repository, default /tmp/anchor-venv) interleaved R
-                                        times (default 5); prints medians, min/max and ratios
-                                        and writes target/bench-vs-anchors.md
+                                        anchors in bench/anchors (MuJoCo, DART from Python, on
+                                        models `hyq model` writes into target/anchor-models)
+                                        interleaved R times (default 5); the anchors' venv is
+                                        target/anchor-venv (or --venv DIR, $HYQ_ANCHOR_VENV);
+                                        prints medians, min/max and ratios and writes
+                                        target/bench-vs-anchors.md
   help                                  this text
 ";
 

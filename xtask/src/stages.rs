@@ -31,7 +31,7 @@ pub const DART_INSTALL: &str = "sudo apt-get install -y libdart-dev libdart-coll
 pub const PYTHON_INSTALL: &str = "sudo apt-get install -y python3 python3-venv python3-pip";
 
 /// The oldest CPython the pinned test requirements install on (numpy 2.4 needs 3.11).
-const PYTHON_MIN: (u32, u32) = (3, 11);
+pub const PYTHON_MIN: (u32, u32) = (3, 11);
 
 /// What happened to one stage.
 enum Outcome {
