@@ -8,6 +8,7 @@
 mod bench;
 mod cli;
 mod docs;
+mod mujoco;
 mod soak;
 mod stages;
 
@@ -21,6 +22,9 @@ commands:
                                         backend), the DART backend when DART is installed, the
                                         Python package when its tools are installed; --require
                                         makes a part that cannot run a failure (CI uses it)
+  setup mujoco                          download MuJoCo 4.0.0's C library and headers from the
+                                        package index (pip, pinned sha256) into target/mujoco
+                                        (or $MUJOCO_DIR), for the MuJoCo backend
   soak [--steps N] [--backend rapier|dart] [--seed S]
                                         random actions for N env steps (default 10^6) in a
                                         release build of `hyq`: no panic, no NaN in any output;
@@ -40,6 +44,7 @@ fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let result = match args.first().map(String::as_str) {
         Some("test") => stages::test(&args[1..]),
+        Some("setup") => mujoco::setup(&args[1..]),
         Some("soak") => soak::soak(&args[1..]),
         Some("bench-vs-anchors") => bench::bench_vs_anchors(&args[1..]),
         Some("help") | Some("--help") | Some("-h") | None => {
