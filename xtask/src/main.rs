@@ -3,7 +3,8 @@
 //!
 //! `cargo xtask test` is the project's one test command: the README names it and `.ci/run` runs
 //! it. It runs every test the machine can run, says loudly what it could not run and why, and
-//! fails when a part that was required (`--require dart`, `--require python`) cannot run.
+//! fails when a part that was required (`--require dart`, `--require mujoco`, `--require
+//! python`) cannot run.
 
 mod bench;
 mod cli;
@@ -18,10 +19,12 @@ const HELP: &str = "\
 cargo xtask <command>
 
 commands:
-  test [--require dart|python|all]...   run every test of the workspace: the Rust crates (rapier
+  test [--require dart|mujoco|python|all]...
+                                        run every test of the workspace: the Rust crates (rapier
                                         backend), the DART backend when DART is installed, the
-                                        Python package when its tools are installed; --require
-                                        makes a part that cannot run a failure (CI uses it)
+                                        MuJoCo backend when MuJoCo is set up, the Python package
+                                        when its tools are installed; --require makes a part
+                                        that cannot run a failure (CI uses it)
   setup mujoco                          download MuJoCo 4.0.0's C library and headers from the
                                         package index (pip, pinned sha256) into target/mujoco
                                         (or $MUJOCO_DIR), for the MuJoCo backend
