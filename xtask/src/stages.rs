@@ -246,13 +246,10 @@ pub fn test(args: &[String]) -> Result<(), String> {
             ),
         }
     } else {
-        let tests = cargo_test(
-            &root,
-            &feature_stage_args("hyq-mujoco", "mujoco", &MUJOCO_FEATURE_CRATES, &members)
-                .iter()
-                .map(String::as_str)
-                .collect::<Vec<_>>(),
-        )?;
+        let mut tests = 0;
+        for args in mujoco_stage_args(&members) {
+            tests += cargo_test(&root, &args.iter().map(String::as_str).collect::<Vec<_>>())?;
+        }
         Outcome::Passed { tests }
     };
     results.push((Part::Mujoco.name(), mujoco));
@@ -446,8 +443,39 @@ fn pytest_passed_count(line: &str) -> Option<u64> {
 /// section, the env, the command line, the comparison runs).
 const DART_FEATURE_CRATES: [&str; 4] = ["spec-tests", "hyq-env", "hyq-cli", "hyq-compare"];
 
-/// The crates whose `mujoco` feature runs their tests on the MuJoCo backend too.
-const MUJOCO_FEATURE_CRATES: [&str; 4] = ["spec-tests", "hyq-env", "hyq-cli", "hyq-compare"];
+/// The crates whose `mujoco` feature runs their tests on the MuJoCo backend too (the command
+/// line's MuJoCo tests run on their own, see [`mujoco_stage_args`]).
+const MUJOCO_FEATURE_CRATES: [&str; 3] = ["spec-tests", "hyq-env", "hyq-compare"];
+
+/// The MuJoCo stage's `cargo test` commands: the backend's own tests and every crate of
+/// [`MUJOCO_FEATURE_CRATES`] with its `mujoco` feature; then, to keep the stage short, only the
+/// command line's MuJoCo test file (`hyq-cli/tests/mujoco_backend.rs`) rather than all of its
+/// tests again, which the first stage ran on rapier.
+fn mujoco_stage_args(members: &[String]) -> Vec<Vec<String>> {
+    let mut commands = vec![feature_stage_args(
+        "hyq-mujoco",
+        "mujoco",
+        &MUJOCO_FEATURE_CRATES,
+        members,
+    )];
+    if members.iter().any(|m| m == "hyq-cli") {
+        commands.push(
+            [
+                "test",
+                "--locked",
+                "-p",
+                "hyq-cli",
+                "--features",
+                "hyq-cli/mujoco",
+                "--test",
+                "mujoco_backend",
+            ]
+            .map(String::from)
+            .to_vec(),
+        );
+    }
+    commands
+}
 
 /// The DART stage's `cargo test` arguments: the backend's own tests plus every member crate that
 /// has a `dart` feature, built with it (members not in the workspace yet are left out).
@@ -587,14 +615,21 @@ mod tests {
     }
 
     #[test]
-    fn the_mujoco_stage_runs_every_mujoco_feature_crate_with_its_feature() {
+    fn the_mujoco_stage_runs_every_mujoco_feature_crate_and_the_clis_mujoco_tests() {
         let members: Vec<String> = ["hyq-mujoco", "spec-tests", "hyq-env", "hyq-cli", "xtask"]
             .map(String::from)
             .to_vec();
+        let commands: Vec<String> = mujoco_stage_args(&members)
+            .iter()
+            .map(|c| c.join(" "))
+            .collect();
         assert_eq!(
-            feature_stage_args("hyq-mujoco", "mujoco", &MUJOCO_FEATURE_CRATES, &members).join(" "),
-            "test --locked -p hyq-mujoco -p spec-tests -p hyq-env -p hyq-cli --features \
-             spec-tests/mujoco,hyq-env/mujoco,hyq-cli/mujoco"
+            commands,
+            [
+                "test --locked -p hyq-mujoco -p spec-tests -p hyq-env --features \
+                 spec-tests/mujoco,hyq-env/mujoco",
+                "test --locked -p hyq-cli --features hyq-cli/mujoco --test mujoco_backend",
+            ]
         );
     }
 

@@ -167,29 +167,3 @@ fn rapier_against_dart_within_the_ledger() {
     let json = read_json(&dir);
     assert_eq!(json["engines"][1], "dart");
 }
-
-/// With MuJoCo built in, rapier and MuJoCo are compared the same way (the ledger holds no
-/// rapier-vs-MuJoCo entries yet, so only the run and its reports are checked).
-#[cfg(feature = "mujoco")]
-#[test]
-fn rapier_against_mujoco_writes_the_reports() {
-    let dir = fresh_dir("compare_mujoco");
-    let out = hyq_ok(&[
-        "compare",
-        "--backends",
-        "rapier,mujoco",
-        "--scenario",
-        "limit",
-        "--one-step-states",
-        "5",
-        "--out",
-        dir.to_str().unwrap(),
-    ]);
-    assert!(out.contains("rapier ended joint_limit"), "{out}");
-    assert!(out.contains("mujoco ended joint_limit"), "{out}");
-    let json = read_json(&dir);
-    assert_eq!(json["engines"][1], "mujoco");
-    for file in ["report.md", "report.json", "trunk_x_z.png"] {
-        assert!(dir.join(file).is_file(), "{file} not written");
-    }
-}

@@ -142,25 +142,3 @@ fn the_dart_backend_runs_when_built_in() {
         "the trot walks forward on DART too ({dx} m in 2 s)"
     );
 }
-
-#[cfg(feature = "mujoco")]
-#[test]
-fn the_mujoco_backend_runs_when_built_in() {
-    let out = hyq_ok(&[
-        "run",
-        "--backend",
-        "mujoco",
-        "--json",
-        "--set",
-        "task.max_time_steps=200",
-    ]);
-    let e: Value = serde_json::from_str(out.trim()).unwrap();
-    assert_eq!(e["backend"], "mujoco");
-    assert_eq!(e["steps"], 200);
-    assert_eq!(e["reasons"], serde_json::json!(["timeout"]));
-    let dx = e["final_position"][0].as_f64().unwrap() - e["initial_position"][0].as_f64().unwrap();
-    assert!(
-        dx > 0.2,
-        "the trot walks forward on MuJoCo too ({dx} m in 2 s)"
-    );
-}
