@@ -28,18 +28,18 @@ commands:
   setup mujoco                          download MuJoCo 4.0.0's C library and headers from the
                                         package index (pip, pinned sha256) into target/mujoco
                                         (or $MUJOCO_DIR), for the MuJoCo backend
-  soak [--steps N] [--backend rapier|dart] [--seed S]
+  soak [--steps N] [--backend rapier|dart|mujoco] [--seed S]
                                         random actions for N env steps (default 10^6) in a
                                         release build of `hyq`: no panic, no NaN in any output;
                                         prints the episodes and the observed range of each row
   bench-vs-anchors [--reps R] [--steps N] [--vec-steps N] [--anchor-steps N]
-                   [--anchors DIR] [--venv DIR] [--no-dart]
+                   [--anchors DIR] [--venv DIR] [--no-dart] [--no-mujoco]
                                         the speed targets: hyq bench (rapier, DART when
-                                        installed, the vector env on 1 and 2 threads) and the
-                                        anchors (MuJoCo, DART from Python; venv outside the
-                                        repository, default /tmp/anchor-venv) interleaved R
-                                        times (default 5); prints medians, min/max and ratios
-                                        and writes target/bench-vs-anchors.md
+                                        installed, MuJoCo when set up, the vector env on 1 and
+                                        2 threads) and the anchors (MuJoCo, DART from Python;
+                                        venv outside the repository, default /tmp/anchor-venv)
+                                        interleaved R times (default 5); prints medians,
+                                        min/max and ratios and writes target/bench-vs-anchors.md
   help                                  this text
 ";
 
