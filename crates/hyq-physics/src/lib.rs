@@ -9,6 +9,8 @@
 //!   trunk state and real ground contacts.
 //! - [`actuator`]: the joint PD law with effort and velocity limits, evaluated every sub-step in
 //!   shared code ([`pd_substep`]), so every backend is driven identically.
+//! - [`mjcf`]: the robot as MuJoCo's XML model format, pure text generation (no MuJoCo
+//!   needed), for the MuJoCo backend and for MuJoCo-from-Python benchmarks alike.
 //! - [`bundled::hyq`]: the HyQ robot shipped in `assets/hyq/`, usable from any directory.
 //! - `conformance` (cargo feature `conformance`): the test bodies every backend must pass,
 //!   instantiated with `hyq_physics::conformance_tests!(Backend)` in a backend's
@@ -23,6 +25,7 @@ pub mod bundled;
 pub mod conformance;
 pub mod error;
 pub mod inertia;
+pub mod mjcf;
 pub mod model;
 pub mod profile;
 
