@@ -7,16 +7,18 @@
 //!    `--venv DIR` (relative: to the workspace root) or `$HYQ_ANCHOR_VENV` says otherwise, with
 //!    the versions pinned in `bench/anchors/requirements.txt`;
 //! 2. builds `hyq` in release mode, with every backend of [`SEQUENCE`] whose engine is
-//!    installed (DART when its headers are);
+//!    installed (DART when its headers are, MuJoCo when `cargo xtask setup mujoco` has put it
+//!    in `target/mujoco` or `$MUJOCO_DIR`);
 //! 3. writes the anchors' models afresh with that `hyq` (`hyq model`): `hyq.xml` (MJCF with
 //!    position servos), `hyq.urdf` (capsules as cylinders, for DART's loader) and `hyq.json`
 //!    (the facts the scripts read), into `target/anchor-models/`, so they are always the robot
 //!    the environment simulates;
 //! 4. repeats `--reps` times the measurements of [`SEQUENCE`], in its order, so that every
 //!    repetition sees the same machine load: `hyq bench` on rapier; MuJoCo from Python (the
-//!    env loop `env_random` and MuJoCo's own loop `c_loop`); `hyq bench` on DART; DART from
-//!    Python (Bullet detector, with `world.step()` timed alone in a second pass, and the ODE
-//!    detector); the rapier vector env of 2 envs on 1 thread, then on 2 threads;
+//!    env loop `env_random` and MuJoCo's own loop `c_loop`); `hyq bench` on MuJoCo; `hyq bench`
+//!    on DART; DART from Python (Bullet detector, with `world.step()` timed alone in a second
+//!    pass, and the ODE detector); the rapier vector env of 2 envs on 1 thread, then on 2
+//!    threads;
 //! 5. prints, and writes to `target/bench-vs-anchors.md`, a Markdown report: the CPU model, the
 //!    load, the median, min and max of every figure, and each ratio against its target (the
 //!    median of the per-repetition ratios, each taken within one repetition, and their min and
@@ -41,6 +43,7 @@ use std::process::Command;
 use serde_json::Value;
 
 use crate::cli::{positive, strings, value};
+use crate::mujoco;
 use crate::stages::{
     DART_BULLET_HEADER, PYTHON_INSTALL, PYTHON_MIN, run_cargo, venv_python, workspace_root,
 };
@@ -69,6 +72,20 @@ pub struct BenchArgs {
     pub venv: PathBuf,
     /// Measure the DART backend and DART from Python (when DART is installed).
     pub dart: bool,
+    /// Measure the MuJoCo backend (when MuJoCo is set up); MuJoCo from Python runs either way,
+    /// as the rapier targets' anchor.
+    pub mujoco: bool,
+}
+
+impl BenchArgs {
+    /// Whether `hyq bench --backend <name>` is wanted (`--no-dart`, `--no-mujoco` say no).
+    pub fn wants(&self, backend: &str) -> bool {
+        match backend {
+            "dart" => self.dart,
+            "mujoco" => self.mujoco,
+            _ => true,
+        }
+    }
 }
 
 /// Parses the command's arguments; `root` is the workspace root (for the defaults and for
@@ -83,6 +100,7 @@ pub fn parse(args: &[String], root: &Path, env_venv: Option<PathBuf>) -> Result<
         anchor_steps: 3000,
         venv: env_venv.unwrap_or_else(|| root.join(DEFAULT_VENV)),
         dart: true,
+        mujoco: true,
     };
     let mut it = args.iter();
     while let Some(arg) = it.next() {
@@ -93,6 +111,7 @@ pub fn parse(args: &[String], root: &Path, env_venv: Option<PathBuf>) -> Result<
             "--anchor-steps" => out.anchor_steps = positive(&mut it, COMMAND, arg)?,
             "--venv" => out.venv = PathBuf::from(value(&mut it, COMMAND, arg)?),
             "--no-dart" => out.dart = false,
+            "--no-mujoco" => out.mujoco = false,
             other => {
                 return Err(format!(
                     "`cargo xtask bench-vs-anchors`: unknown argument `{other}`"
@@ -125,6 +144,10 @@ pub enum Series {
     MujocoPy,
     /// MuJoCo's own loop of sub-steps, `c_loop`: env steps per CPU second.
     MujocoC,
+    /// `hyq bench`, MuJoCo: env steps per CPU second.
+    Mujoco,
+    /// `hyq bench`, MuJoCo: share of the step in spec evaluation and observation assembly.
+    MujocoSpecShare,
     /// `hyq bench`, DART: env steps per CPU second.
     Dart,
     /// `hyq bench`, DART: share of the step in spec evaluation and observation assembly.
@@ -148,10 +171,11 @@ pub enum Series {
 
 impl Series {
     /// Every series, in report order.
-    pub const ALL: [Series; 13] = [
+    pub const ALL: [Series; 15] = [
         Series::Rapier,
         Series::MujocoPy,
         Series::MujocoC,
+        Series::Mujoco,
         Series::Dart,
         Series::DartPyBullet,
         Series::DartPyOde,
@@ -162,6 +186,7 @@ impl Series {
         Series::Vec2Cpu,
         Series::RapierSpecShare,
         Series::DartSpecShare,
+        Series::MujocoSpecShare,
     ];
 
     /// The row's label and unit.
@@ -174,6 +199,7 @@ impl Series {
                 "env steps/s, CPU",
             ),
             Series::Dart => ("hyq, DART backend, one env", "env steps/s, CPU"),
+            Series::Mujoco => ("hyq, MuJoCo backend, one env", "env steps/s, CPU"),
             Series::DartPyBullet => (
                 "DART from Python (dartpy 6.20, Bullet, capsules)",
                 "env steps/s, CPU",
@@ -206,12 +232,18 @@ impl Series {
                 ("spec evaluation + observation, rapier", "% of an env step")
             }
             Series::DartSpecShare => ("spec evaluation + observation, DART", "% of an env step"),
+            Series::MujocoSpecShare => {
+                ("spec evaluation + observation, MuJoCo", "% of an env step")
+            }
         }
     }
 
     /// Whether the figure is a fraction printed as a percentage.
     fn is_share(self) -> bool {
-        matches!(self, Series::RapierSpecShare | Series::DartSpecShare)
+        matches!(
+            self,
+            Series::RapierSpecShare | Series::DartSpecShare | Series::MujocoSpecShare
+        )
     }
 }
 
@@ -270,7 +302,7 @@ pub enum Measure {
 
 /// The measurements of one repetition, in order (interleaved so that load changes within a
 /// repetition touch both sides of a ratio alike).
-pub const SEQUENCE: [Measure; 6] = [
+pub const SEQUENCE: [Measure; 7] = [
     Measure::Hyq(HyqBackend {
         name: "rapier",
         feature: None,
@@ -296,6 +328,12 @@ pub const SEQUENCE: [Measure; 6] = [
                 series: Series::MujocoC,
             },
         ],
+    }),
+    Measure::Hyq(HyqBackend {
+        name: "mujoco",
+        feature: Some("mujoco"),
+        rate: Series::Mujoco,
+        spec_share: Series::MujocoSpecShare,
     }),
     Measure::Hyq(HyqBackend {
         name: "dart",
@@ -338,13 +376,20 @@ pub const SEQUENCE: [Measure; 6] = [
     Measure::VecEnv,
 ];
 
-/// Why backend `name` cannot be measured on this machine (`None`: it can).
-pub fn backend_missing(name: &str) -> Option<String> {
+/// Why backend `name` cannot be measured on this machine (`None`: it can); `root` is the
+/// workspace root (MuJoCo is looked for in `$MUJOCO_DIR`, else its `target/mujoco`).
+pub fn backend_missing(name: &str, root: &Path) -> Option<String> {
     match name {
         "dart" if !Path::new(DART_BULLET_HEADER).exists() => Some(format!(
             "DART is not installed ({DART_BULLET_HEADER} missing), so the DART backend was not \
              measured"
         )),
+        "mujoco" => mujoco::check(&mujoco::mujoco_dir(root)).err().map(|why| {
+            format!(
+                "MuJoCo is not set up ({why}; `{}`), so the MuJoCo backend was not measured",
+                mujoco::SETUP_COMMAND
+            )
+        }),
         _ => None,
     }
 }
@@ -437,7 +482,7 @@ pub struct Target {
 }
 
 /// The targets, in report order.
-pub const TARGETS: [Target; 8] = [
+pub const TARGETS: [Target; 11] = [
     Target {
         label: "rapier / MuJoCo from Python",
         goal: Goal::RatioAtLeast {
@@ -497,6 +542,29 @@ pub const TARGETS: [Target; 8] = [
         label: "spec evaluation share, DART",
         goal: Goal::AtMost {
             series: Series::DartSpecShare,
+            target: 0.01,
+        },
+    },
+    Target {
+        label: "MuJoCo backend / MuJoCo from Python",
+        goal: Goal::RatioAtLeast {
+            num: Series::Mujoco,
+            den: Series::MujocoPy,
+            target: 1.3,
+        },
+    },
+    Target {
+        label: "MuJoCo backend / MuJoCo from Python (stretch)",
+        goal: Goal::RatioAtLeast {
+            num: Series::Mujoco,
+            den: Series::MujocoPy,
+            target: 1.5,
+        },
+    },
+    Target {
+        label: "spec evaluation share, MuJoCo",
+        goal: Goal::AtMost {
+            series: Series::MujocoSpecShare,
             target: 0.01,
         },
     },
@@ -953,10 +1021,14 @@ pub fn bench_vs_anchors(args: &[String]) -> Result<(), String> {
     let mut backends = Vec::new();
     for measure in SEQUENCE {
         let Measure::Hyq(b) = measure else { continue };
-        if b.name == "dart" && !args.dart {
+        if !args.wants(b.name) {
+            if b.name == "mujoco" {
+                host.notes
+                    .push("--no-mujoco: the MuJoCo backend was not measured".into());
+            }
             continue;
         }
-        match backend_missing(b.name) {
+        match backend_missing(b.name, &root) {
             Some(why) => host.notes.push(why),
             None => {
                 backends.push(b.name);
@@ -1139,7 +1211,7 @@ mod tests {
             d.venv,
             PathBuf::from("/nonexistent/repo/target/anchor-venv")
         );
-        assert!(d.dart);
+        assert!(d.dart && d.mujoco);
         let from_env = parse(&[], root, Some("/nonexistent/cache/venv".into()))
             .unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(from_env.venv, PathBuf::from("/nonexistent/cache/venv"));
@@ -1156,6 +1228,7 @@ mod tests {
                 "--venv",
                 "/nonexistent/venv",
                 "--no-dart",
+                "--no-mujoco",
             ]),
             root,
             Some("/nonexistent/overridden".into()),
@@ -1165,7 +1238,16 @@ mod tests {
             (p.reps, p.steps, p.vec_steps, p.anchor_steps),
             (3, 100, 50, 70)
         );
-        assert_eq!((p.venv, p.dart), ("/nonexistent/venv".into(), false));
+        assert_eq!(
+            (&p.venv, p.dart, p.mujoco),
+            (&PathBuf::from("/nonexistent/venv"), false, false)
+        );
+        // Each switch turns off its backend alone.
+        assert!(!p.wants("dart") && !p.wants("mujoco") && p.wants("rapier"));
+        assert!(d.wants("dart") && d.wants("mujoco") && d.wants("rapier"));
+        let no_mujoco =
+            parse(&strings(&["--no-mujoco"]), root, None).unwrap_or_else(|e| panic!("{e}"));
+        assert!(no_mujoco.wants("dart") && !no_mujoco.wants("mujoco"));
         // A relative --venv is taken from the workspace root; under target/ is allowed.
         let rel =
             parse(&strings(&["--venv", "target/v"]), root, None).unwrap_or_else(|e| panic!("{e}"));
@@ -1245,7 +1327,13 @@ mod tests {
             );
         }
         assert_eq!(produced.len(), Series::ALL.len());
-        assert_eq!(backend_missing("rapier"), None);
+        let root = Path::new("/nonexistent/repo");
+        assert_eq!(backend_missing("rapier", root), None);
+        // Without MuJoCo in the (missing) workspace, its row is skipped with the setup command.
+        if std::env::var_os("MUJOCO_DIR").is_none() {
+            let why = backend_missing("mujoco", root).unwrap_or_default();
+            assert!(why.contains("cargo xtask setup mujoco"), "{why}");
+        }
     }
 
     #[test]
@@ -1345,6 +1433,22 @@ mod tests {
         assert_eq!(evaluate(&shares, TARGETS[6].goal).met, Some(true));
         let none = evaluate(&shares, TARGETS[2].goal);
         assert_eq!((none.met, none.text.as_str()), (None, "not measured"));
+        // The MuJoCo backend against MuJoCo from Python: 1.3× is the target, 1.5× the stretch.
+        let target = |label: &str| {
+            TARGETS
+                .iter()
+                .find(|t| t.label == label)
+                .map(|t| t.goal)
+                .unwrap_or_else(|| panic!("no target {label:?}"))
+        };
+        let mujoco = vec![rep(&[(Series::Mujoco, 1400.0), (Series::MujocoPy, 1000.0)])];
+        let v = evaluate(&mujoco, target("MuJoCo backend / MuJoCo from Python"));
+        assert_eq!((v.summary, v.met), (Some((1.4, 1.4, 1.4)), Some(true)));
+        let v = evaluate(
+            &mujoco,
+            target("MuJoCo backend / MuJoCo from Python (stretch)"),
+        );
+        assert_eq!(v.met, Some(false), "{}", v.text);
     }
 
     #[test]

@@ -57,13 +57,16 @@ fn unknown_scenario_and_backend_are_named() {
     let e = usage_error(&[
         "compare",
         "--backends",
-        "rapier,mujoco",
+        "rapier,bullet",
         "--scenario",
         "stand",
         "--out",
         OUT,
     ]);
-    assert!(e.contains("mujoco") && e.contains("rapier, dart"), "{e}");
+    assert!(
+        e.contains("bullet") && e.contains("rapier, dart, mujoco"),
+        "{e}"
+    );
     let e = usage_error(&[
         "compare",
         "--backends",
@@ -139,4 +142,21 @@ fn dart_without_the_feature_says_how_to_build_it() {
     assert!(e.contains("--backends rapier,dart"), "{e}");
     assert!(e.contains("--features dart"), "{e}");
     assert!(e.contains("apt-get install"), "{e}");
+}
+
+#[cfg(not(feature = "mujoco"))]
+#[test]
+fn mujoco_without_the_feature_says_how_to_build_it() {
+    let e = usage_error(&[
+        "compare",
+        "--backends",
+        "rapier,mujoco",
+        "--scenario",
+        "trot",
+        "--out",
+        "/nonexistent/x",
+    ]);
+    assert!(e.contains("--backends rapier,mujoco"), "{e}");
+    assert!(e.contains("--features mujoco"), "{e}");
+    assert!(e.contains("cargo xtask setup mujoco"), "{e}");
 }

@@ -16,7 +16,9 @@
 //!   `contype="0" conaffinity="1"`, so robot shapes collide with the ground and never with each
 //!   other; `condim="3"` (sliding friction, no torsional or rolling friction); the friction
 //!   coefficient; the contact `solref`/`solimp`; `margin="0"` and `gap` = the contact detection
-//!   distance, so MuJoCo lists a contact up to that distance apart but pushes only on touch;
+//!   distance, so MuJoCo lists a contact up to that distance apart but pushes only on touch
+//!   (MuJoCo 4.0's meaning of the two; MuJoCo 3 read them differently and would let shapes sink
+//!   by `gap` before pushing: the text is written for MuJoCo 4.0);
 //! - `<worldbody>`: the ground plane, then the trunk with a `<freejoint/>` at its spawn pose and
 //!   the rest of the tree below it, each body at its joint frame with one `hinge` joint (`axis`,
 //!   `range`, `damping`), an `<inertial>` (`pos`, `mass`, `fullinertia`) and its shapes (`box`,
@@ -35,6 +37,9 @@
 //!
 //! Numbers are written in Rust's shortest round-trip form, so MuJoCo parses back exactly the
 //! `f64` values of the model.
+//!
+//! `cargo run -p hyq-physics --example mjcf -- position > hyq.xml` writes the bundled HyQ with
+//! position servos and MuJoCo's default solver settings.
 
 use std::collections::{HashMap, HashSet};
 use std::fmt::Write as _;
