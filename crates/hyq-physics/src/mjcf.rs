@@ -38,8 +38,9 @@
 //! Numbers are written in Rust's shortest round-trip form, so MuJoCo parses back exactly the
 //! `f64` values of the model.
 //!
-//! `cargo run -p hyq-physics --example mjcf -- position > hyq.xml` writes the bundled HyQ with
-//! position servos and MuJoCo's default solver settings.
+//! Users get this text from the command line: `hyq model --format mjcf [--actuators
+//! position|motor|none]` (crates/hyq-cli) writes it for the bundled HyQ and the configuration
+//! (`--config`, `--set`), with MuJoCo's default solver settings.
 
 use std::collections::{HashMap, HashSet};
 use std::fmt::Write as _;
