@@ -1,6 +1,6 @@
 //! `hyq`: the command-line front of the HyQ walk-to-goal environment.
 //!
-//! One module per subcommand (`run`, `bench`, `soak`, `render`, `plot`, `compare`), each with its
+//! One module per subcommand (`run`, `bench`, `soak`, `render`, `plot`, `compare`, `model`), each with its
 //! clap arguments and an `execute` function; the environment options every subcommand shares
 //! (backend, configuration file, `--set` overrides, policy and seed) live in [`options`], the
 //! choice of physics backend in [`backend`], and the JSON line and progress bar several of them
@@ -14,6 +14,7 @@
 mod backend;
 mod bench;
 mod compare;
+mod model;
 mod options;
 mod output;
 mod plot;
@@ -61,6 +62,9 @@ enum Command {
     /// configuration, and k_exp (for the R_e curve) and the env step (for the time axis) are
     /// read from them.
     Plot(plot::PlotArgs),
+    /// Write the simulated robot for other tools: MuJoCo's MJCF, URDF, or the facts a simulator
+    /// loop needs (JSON).
+    Model(model::ModelArgs),
 }
 
 /// A failure of the command, already worded for the user, with its exit status.
@@ -116,6 +120,7 @@ fn main() -> ExitCode {
         Command::Compare(args) => compare::execute(args),
         Command::Render(args) => render::execute(args),
         Command::Plot(args) => plot::execute(args),
+        Command::Model(args) => model::execute(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

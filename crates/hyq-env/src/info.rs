@@ -166,7 +166,7 @@ pub struct StepInfo {
     pub distance_to_goal: f64,
     /// D_n^t = D^t / K (K is at least `hyq_spec::MIN_START_GOAL_DISTANCE` in every episode).
     pub d_n: f64,
-    /// The trunk's roll (rad, intrinsic Z-Y-X, RULINGS §1).
+    /// The trunk's roll (rad, intrinsic Z-Y-X, spec §1).
     pub roll: f64,
     /// The trunk's pitch (rad).
     pub pitch: f64,

@@ -9,6 +9,10 @@
 //!   trunk state and real ground contacts.
 //! - [`actuator`]: the joint PD law with effort and velocity limits, evaluated every sub-step in
 //!   shared code ([`pd_substep`]), so every backend is driven identically.
+//! - [`mjcf`]: the robot as MuJoCo's XML model format, pure text generation (no MuJoCo
+//!   needed), for the MuJoCo backend and for MuJoCo-from-Python benchmarks alike.
+//! - [`urdf_export`]: the loaded robot written back as URDF (fixed links lumped, primitive
+//!   shapes only), for engines and tools outside the project that read URDF.
 //! - [`bundled::hyq`]: the HyQ robot shipped in `assets/hyq/`, usable from any directory.
 //! - `conformance` (cargo feature `conformance`): the test bodies every backend must pass,
 //!   instantiated with `hyq_physics::conformance_tests!(Backend)` in a backend's
@@ -23,8 +27,10 @@ pub mod bundled;
 pub mod conformance;
 pub mod error;
 pub mod inertia;
+pub mod mjcf;
 pub mod model;
 pub mod profile;
+pub mod urdf_export;
 
 pub use actuator::{Actuator, PdScratch, apply_pd, pd_substep};
 pub use backend::{Backend, PhysicsParams, RobotState, TrunkState, check_joint_values};

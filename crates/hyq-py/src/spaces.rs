@@ -2,14 +2,14 @@
 //! spec's §3 table as data, and observations clipped to the table when the env was built with
 //! `clip_observations=True`.
 //!
-//! The declared observation space must contain every observation emitted (RULINGS §3;
+//! The declared observation space must contain every observation emitted (spec §3;
 //! Gymnasium's and Stable-Baselines3's checkers hold an env to it). Clipped, it is the table.
 //! Unclipped (the default), it carries the table's bounds only on the rows that are invariants,
 //! the contact flags (0 or 1) and the quaternion (a unit quaternion's components lie in
 //! [−1, 1]); the rows the physics can leave (joint angles past a limit by an overshoot, joint
 //! speeds, the trunk's acceleration and position) are unbounded, declared as the whole finite
-//! float32 range (±3.4028235e38) rather than ±inf, which both checkers flag as "probably too
-//! low/high". The environment never emits a value outside that range (it ends the episode as
+//! float32 range (±3.4028235e38) rather than ±inf, which Gymnasium's checker flags as "probably
+//! too low/high". The environment never emits a value outside that range (it ends the episode as
 //! `diverged` first).
 
 use hyq_env::Env;

@@ -78,7 +78,7 @@ class HyQEnv(gymnasium.Env):
 
     **Observation**: ``Box(39,)`` float32, the spec's §3 table in order and units (joint angles,
     joint speeds, four foot contact flags, trunk contact flag, trunk quaternion w x y z, trunk
-    acceleration, trunk position). As the project's rulings require (§3), values are **not**
+    acceleration, trunk position). As the project's spec requires (§3), values are **not**
     clipped by default, and the physics does leave the table (joint speeds past ±12 rad/s in
     about a quarter of first steps under random actions, accelerations past ±50 m/s² on
     impacts), so the space declares the table's bounds only where they always hold (the contact
