@@ -75,8 +75,8 @@ pub const JOINT_NOISE_MAX_RAD: f64 = std::f64::consts::TAU;
 /// The reason given when a position is outside the world (see [`WORLD_HALF_EXTENT_M`]).
 pub(crate) fn outside_world_reason() -> String {
     format!(
-        "must lie within ±{WORLD_HALF_EXTENT_M} m of the origin on each axis (m): beyond it \
-         rapier's f32 positions are too coarse for faithful physics"
+        "must lie within ±{WORLD_HALF_EXTENT_M} m of the origin on each axis (m), the world of \
+         every engine: beyond it rapier's f32 positions are too coarse for faithful physics"
     )
 }
 
