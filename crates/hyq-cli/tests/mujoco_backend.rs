@@ -3,13 +3,19 @@
 //! `bench` (its JSON names the backend, physics is most of the step), `soak` (random actions
 //! emit only finite numbers), `render` (frames are written) and `compare --backends
 //! rapier,mujoco` (the three reports are written; the ledger has no rapier-vs-MuJoCo entries
-//! yet, so only the run and what both engines did are checked).
+//! yet, so only the run and what both engines did are checked). Bad input and output hold on
+//! MuJoCo as on rapier: a configuration outside the bounds that keep every number finite is a
+//! usage error, and the largest accepted one writes only numbers; a MuJoCo that cannot be
+//! loaded is one error line and leaves an existing record as it was; a closed stdout ends a
+//! MuJoCo command quietly.
 #![cfg(feature = "mujoco")]
 #![allow(clippy::unwrap_used)]
 
 mod common;
 
-use common::{hyq_ok, one_json_line, scratch};
+use std::process::{Command, Stdio};
+
+use common::{first_null, hyq, hyq_ok, one_json_line, scratch, stderr, usage_error_naming};
 use serde_json::Value;
 
 #[test]
@@ -106,4 +112,108 @@ fn compare_rapier_with_mujoco_writes_the_reports() {
     for file in ["report.md", "report.json", "trunk_x_z.png"] {
         assert!(dir.join(file).is_file(), "{file} not written");
     }
+}
+
+#[test]
+fn configurations_beyond_the_finite_bounds_are_refused_and_the_largest_give_numbers_on_mujoco() {
+    for (set, key) in [
+        ("reset.spawn_xy_m=[1e5, 0]", "reset.spawn_xy_m"),
+        ("task.exp_rew_scaling=1000", "task.exp_rew_scaling"),
+        ("goal.position=[9, 9, 0.6]", "goal.position"),
+    ] {
+        usage_error_naming(&["run", "--backend", "mujoco", "--set", set], &[key]);
+    }
+    let record = scratch("mujoco-largest.jsonl");
+    let out = hyq_ok(&[
+        "run",
+        "--backend",
+        "mujoco",
+        "--json",
+        "--record",
+        record.to_str().unwrap(),
+        "--set",
+        "task.exp_rew_scaling=500",
+        "--set",
+        "task.base_rew_scaling=1e12",
+        "--set",
+        "task.norm_rew_scaling=1e12",
+        "--set",
+        "task.fall_penalty=1e12",
+        "--set",
+        "task.max_time_steps=200",
+    ]);
+    let text = std::fs::read_to_string(&record).unwrap();
+    assert_eq!(text.lines().count(), 200);
+    for (i, line) in text.lines().chain(out.lines()).enumerate() {
+        let v: Value = serde_json::from_str(line).unwrap();
+        assert_eq!(
+            first_null(&v, ""),
+            None,
+            "line {} holds null: {line}",
+            i + 1
+        );
+    }
+}
+
+#[test]
+fn a_mujoco_that_cannot_be_loaded_is_one_line_and_keeps_the_record() {
+    let dir = scratch("mujoco-missing");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let record = dir.join("keep.jsonl");
+    std::fs::write(&record, "precious data\n").unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_hyq"))
+        .args(["run", "--backend", "mujoco", "--record"])
+        .arg(&record)
+        .env("MUJOCO_DIR", dir.join("no-mujoco-here"))
+        .output()
+        .unwrap();
+    let err = stderr(&out);
+    assert!(
+        !out.status.success() && out.status.code() != Some(101),
+        "{err}"
+    );
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.starts_with("hyq: error: ") && err.contains("MuJoCo 4.0.0"),
+        "{err}"
+    );
+    assert_eq!(std::fs::read_to_string(&record).unwrap(), "precious data\n");
+    let left: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
+    assert_eq!(left.len(), 1, "no temporary file is left");
+}
+
+#[test]
+fn a_closed_stdout_ends_mujoco_commands_quietly() {
+    let cases: [&[&str]; 3] = [
+        &[
+            "run",
+            "--backend",
+            "mujoco",
+            "--json",
+            "--set",
+            "task.max_time_steps=5",
+        ],
+        &["soak", "--backend", "mujoco", "--steps", "50"],
+        &["bench", "--backend", "mujoco", "--steps", "20"],
+    ];
+    for args in cases {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_hyq"))
+            .args(args)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        drop(child.stdout.take());
+        let out = child.wait_with_output().unwrap();
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert_eq!(out.status.code(), Some(0), "hyq {args:?}: {err}");
+        assert!(err.is_empty(), "hyq {args:?} printed on stderr: {err}");
+    }
+    // The same commands with a reader succeed (so the above is not a start-up failure).
+    assert!(
+        hyq(&["soak", "--backend", "mujoco", "--steps", "50"])
+            .status
+            .success()
+    );
 }

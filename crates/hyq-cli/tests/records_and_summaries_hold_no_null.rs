@@ -9,22 +9,7 @@
 
 mod common;
 
-use common::{hyq, scratch, stderr, stdout};
-
-/// The first `null` in `v`, by its path.
-fn first_null(v: &serde_json::Value, path: &str) -> Option<String> {
-    match v {
-        serde_json::Value::Null => Some(path.to_owned()),
-        serde_json::Value::Array(items) => items
-            .iter()
-            .enumerate()
-            .find_map(|(i, x)| first_null(x, &format!("{path}[{i}]"))),
-        serde_json::Value::Object(map) => map
-            .iter()
-            .find_map(|(k, x)| first_null(x, &format!("{path}.{k}"))),
-        _ => None,
-    }
-}
+use common::{first_null, hyq, scratch, stderr, stdout};
 
 /// Runs `hyq run --json --record … <sets>`: either a usage error naming `key`, or every line
 /// of the record and of the summary is free of null.
