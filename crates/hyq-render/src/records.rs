@@ -6,7 +6,7 @@
 //! reset, 1 for the first step), `reward` (the step's total reward),
 //! `terms` (`r_b`, `r_n`, `r_e`, `r_reach`, `m_yaw`, `m_pitch`, optional `m_height`,
 //! `joint_penalty`, `fall_penalty`: the spec's per-term breakdown, penalties as the positive
-//! amounts subtracted), `d_n` (D_n^t, `null` when K is too small to divide by) and
+//! amounts subtracted), `d_n` (D_n^t; `null` is read as unknown, as older records held it) and
 //! `distance_to_goal` (D^t, m), and `episode` (the episode's number; optional here). Other keys
 //! (`obs`, `action`, `goal`, …) are ignored, so the environment can log more without breaking
 //! the plots.
@@ -90,7 +90,8 @@ pub struct StepRecord {
     pub reward: f64,
     /// The step's reward terms.
     pub terms: RewardTerms,
-    /// D_n^t, the distance to the goal over the start's (`None` when K is too small).
+    /// D_n^t, the distance to the goal over the start's (`None` for a `null`, which older
+    /// records held when K was too small; records written now always hold a number).
     pub d_n: Option<f64>,
     /// D^t, the distance from the trunk to the goal (m).
     pub distance_to_goal: f64,
