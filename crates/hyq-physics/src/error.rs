@@ -102,6 +102,36 @@ pub enum ModelError {
         /// What is wrong, naming the links or joints involved.
         reason: String,
     },
+    /// A robot choice that is neither a bundled robot nor a profile path.
+    #[error(
+        "unknown robot {choice:?}: not a bundled robot ({bundled}) nor a path to a robot \
+         profile (a .toml file next to its URDF)"
+    )]
+    UnknownRobot {
+        /// What was asked for.
+        choice: String,
+        /// The bundled robots' names, comma-separated.
+        bundled: String,
+    },
+    /// A robot profile file whose robot could not be built: the profile's path, then why.
+    #[error("robot profile {}: {source}", path.display())]
+    InProfile {
+        /// The profile file.
+        path: PathBuf,
+        /// What was wrong with it or its URDF.
+        #[source]
+        source: Box<ModelError>,
+    },
+}
+
+impl ModelError {
+    /// The error itself, without the [`ModelError::InProfile`] wrapping that names the file.
+    pub fn innermost(&self) -> &ModelError {
+        match self {
+            ModelError::InProfile { source, .. } => source.innermost(),
+            other => other,
+        }
+    }
 }
 
 /// Why the physics seam refused an input or could not go on.

@@ -5,17 +5,21 @@ use std::sync::Arc;
 
 use nalgebra::{UnitQuaternion, Vector3};
 
-use super::fixtures::{Rng, build_default, first_difference, random_pd_trajectory, set, step_zero};
+use super::fixtures::{
+    Rng, Robot, build_default, first_difference, random_pd_trajectory, set, step_zero,
+};
 use crate::actuator::{Actuator, PdScratch, pd_substep};
 use crate::backend::{Backend, PhysicsParams, RobotState};
-use crate::bundled;
 use crate::error::PhysicsError;
 
 /// Two worlds built alike and driven alike produce bitwise-identical trajectories (joint
 /// state, trunk state and contacts at every step).
-pub fn same_inputs_give_bitwise_identical_trajectories<B: Backend>(options: &B::Options) {
-    let mut first: B = build_default(options);
-    let mut second: B = build_default(options);
+pub fn same_inputs_give_bitwise_identical_trajectories<B: Backend>(
+    robot: &Robot,
+    options: &B::Options,
+) {
+    let mut first: B = build_default(robot, options);
+    let mut second: B = build_default(robot, options);
     let a = random_pd_trajectory(&mut first, 3, 400);
     let b = random_pd_trajectory(&mut second, 3, 400);
     assert_eq!(first_difference(&a, &b), None, "trajectories differ");
@@ -24,8 +28,8 @@ pub fn same_inputs_give_bitwise_identical_trajectories<B: Backend>(options: &B::
 /// `set_state` forgets everything: after running on (contacts, warm starts, pending torques),
 /// setting a state again and repeating the inputs repeats the trajectory bitwise, as does a
 /// freshly built world; a world as built equals one set to the spawn state.
-pub fn reset_restores_trajectory_bitwise<B: Backend>(options: &B::Options) {
-    let model = bundled::hyq();
+pub fn reset_restores_trajectory_bitwise<B: Backend>(robot: &Robot, options: &B::Options) {
+    let model = Arc::clone(&robot.model);
     let mut rng = Rng::new(5);
     let mut moving = model.spawn_state();
     moving.trunk.linvel = Vector3::new(0.3, -0.1, 0.0);
@@ -34,7 +38,7 @@ pub fn reset_restores_trajectory_bitwise<B: Backend>(options: &B::Options) {
         .map(|_| rng.range(-1.0, 1.0))
         .collect();
     for start in [model.spawn_state(), moving] {
-        let mut b: B = build_default(options);
+        let mut b: B = build_default(robot, options);
         set(&mut b, &start);
         let first = random_pd_trajectory(&mut b, 9, 300);
         // Run on elsewhere, and leave a torque pending that the reset must discard.
@@ -48,7 +52,7 @@ pub fn reset_restores_trajectory_bitwise<B: Backend>(options: &B::Options) {
             None,
             "trajectory after set_state differs"
         );
-        let mut fresh: B = build_default(options);
+        let mut fresh: B = build_default(robot, options);
         set(&mut fresh, &start);
         let fresh_run = random_pd_trajectory(&mut fresh, 9, 300);
         assert_eq!(
@@ -57,8 +61,8 @@ pub fn reset_restores_trajectory_bitwise<B: Backend>(options: &B::Options) {
             "trajectory of a fresh world differs"
         );
     }
-    let mut built: B = build_default(options);
-    let mut spawned: B = build_default(options);
+    let mut built: B = build_default(robot, options);
+    let mut spawned: B = build_default(robot, options);
     set(&mut spawned, &model.spawn_state());
     assert_eq!(
         first_difference(
@@ -72,7 +76,7 @@ pub fn reset_restores_trajectory_bitwise<B: Backend>(options: &B::Options) {
 
 /// Invalid physics parameters are refused when the world is built, and the error names the
 /// field.
-pub fn invalid_params_are_rejected<B: Backend>(options: &B::Options) {
+pub fn invalid_params_are_rejected<B: Backend>(robot: &Robot, options: &B::Options) {
     let cases: [(&str, PhysicsParams); 5] = [
         (
             "dt",
@@ -111,7 +115,7 @@ pub fn invalid_params_are_rejected<B: Backend>(options: &B::Options) {
         ),
     ];
     for (field, params) in cases {
-        match B::build(bundled::hyq(), &params, options) {
+        match B::build(Arc::clone(&robot.model), &params, options) {
             Err(PhysicsError::InvalidParam { field: f, .. }) => assert_eq!(f, field),
             Err(other) => panic!("{field}: expected InvalidParam, got {other}"),
             Ok(_) => panic!("{} accepted an invalid {field}", B::NAME),
@@ -121,8 +125,8 @@ pub fn invalid_params_are_rejected<B: Backend>(options: &B::Options) {
 
 /// Torques, targets and states of the wrong length are errors naming what was wrong, and
 /// leave the world as it was.
-pub fn wrong_length_inputs_are_errors<B: Backend>(options: &B::Options) {
-    let mut b: B = build_default(options);
+pub fn wrong_length_inputs_are_errors<B: Backend>(robot: &Robot, options: &B::Options) {
+    let mut b: B = build_default(robot, options);
     let model = Arc::clone(b.model());
     let n = model.num_joints();
     let before = b.state();
@@ -160,14 +164,16 @@ pub fn wrong_length_inputs_are_errors<B: Backend>(options: &B::Options) {
 
 /// Non-finite states and torques, and orientations that are not unit quaternions, are
 /// rejected with an error naming the value, and leave the world as it was.
-pub fn non_finite_inputs_are_rejected<B: Backend>(options: &B::Options) {
-    let mut b: B = build_default(options);
+pub fn non_finite_inputs_are_rejected<B: Backend>(robot: &Robot, options: &B::Options) {
+    let mut b: B = build_default(robot, options);
     let model = Arc::clone(b.model());
     let before = b.state();
     let spawn = model.spawn_state();
     let mut cases: Vec<(&str, RobotState)> = Vec::new();
     let mut s = spawn.clone();
-    s.q[1] = f64::NAN;
+    // Joints 1 and 2 where the robot has them: not only the first joint is checked.
+    let (second, third) = (1.min(model.num_joints() - 1), 2.min(model.num_joints() - 1));
+    s.q[second] = f64::NAN;
     cases.push(("angle of joint", s));
     let mut s = spawn.clone();
     s.qd[0] = f64::INFINITY;
@@ -194,11 +200,11 @@ pub fn non_finite_inputs_are_rejected<B: Backend>(options: &B::Options) {
         "a non-unit quaternion was accepted"
     );
     let mut torques = vec![0.0; model.num_joints()];
-    torques[2] = f64::NAN;
+    torques[third] = f64::NAN;
     match b.set_joint_torques(&torques) {
         Err(PhysicsError::NonFinite { what, .. }) => {
             assert!(
-                what.contains(&model.joints()[2].name),
+                what.contains(&model.joints()[third].name),
                 "error names {what:?}"
             );
         }
@@ -221,8 +227,8 @@ pub fn non_finite_inputs_are_rejected<B: Backend>(options: &B::Options) {
 /// A step never returns `Ok` with a non-finite state: driven with absurd (finite) torques,
 /// every `Ok` step leaves every read finite, a diverged step says so, and `set_state` brings
 /// the world back.
-pub fn divergence_is_reported_and_recoverable<B: Backend>(options: &B::Options) {
-    let mut b: B = build_default(options);
+pub fn divergence_is_reported_and_recoverable<B: Backend>(robot: &Robot, options: &B::Options) {
+    let mut b: B = build_default(robot, options);
     let model = Arc::clone(b.model());
     let huge = vec![1e300; model.num_joints()];
     let mut diverged = false;
@@ -263,7 +269,7 @@ pub fn divergence_is_reported_and_recoverable<B: Backend>(options: &B::Options) 
         "after set_state (diverged before: {diverged}) the trunk is at {z} m"
     );
     // The world behaves as a fresh one again.
-    let mut fresh: B = build_default(options);
+    let mut fresh: B = build_default(robot, options);
     set(&mut b, &model.spawn_state());
     let again = random_pd_trajectory(&mut b, 13, 100);
     let reference = random_pd_trajectory(&mut fresh, 13, 100);

@@ -6,19 +6,20 @@ use std::sync::Arc;
 use nalgebra::{Isometry3, UnitQuaternion};
 
 use super::fixtures::{
-    build, clearances, read_contacts, set, standing_at, step_pd, step_zero, steps_for,
+    Robot, build, clearances, read_contacts, set, standing_at, step_pd, step_zero, steps_for,
 };
 use crate::actuator::{Actuator, PdScratch};
 use crate::backend::{Backend, PhysicsParams, RobotState};
+use crate::model::RobotModel;
 
 /// Dropped level from rest with zero torques, the trunk follows z₀ − g t²/2 until a foot
 /// touches (within the O(dt) term of a first-order integrator, g·dt·t/2), does not drift or
 /// turn, and contact flags follow the true clearance: never set while a shape is more than
 /// `contact_distance` + 0.5 mm above the ground before and after the step (no speculative
 /// contacts), always set once a shape starts a step touching or penetrating it.
-pub fn free_fall_matches_ballistic_until_contact<B: Backend>(options: &B::Options) {
+pub fn free_fall_matches_ballistic_until_contact<B: Backend>(robot: &Robot, options: &B::Options) {
     let params = PhysicsParams::default();
-    let mut b: B = build(&params, options);
+    let mut b: B = build(robot, &params, options);
     let model = Arc::clone(b.model());
     let drop = 0.1;
     let start = standing_at(&model, model.spawn_height() + drop);
@@ -96,9 +97,9 @@ pub fn free_fall_matches_ballistic_until_contact<B: Backend>(options: &B::Option
 /// Under the default PD gains with the standing pose as target, the robot stands for 10 s from
 /// its spawn state: over the last 5 s the trunk height varies by at most 1 mm, every foot is in
 /// contact at every step, and the trunk never touches the ground.
-pub fn stands_in_nominal_pose_for_10_s<B: Backend>(options: &B::Options) {
+pub fn stands_in_nominal_pose_for_10_s<B: Backend>(robot: &Robot, options: &B::Options) {
     let params = PhysicsParams::default();
-    let mut b: B = build(&params, options);
+    let mut b: B = build(robot, &params, options);
     let model = Arc::clone(b.model());
     set(&mut b, &model.spawn_state());
     let act = Actuator::new(&model);
@@ -149,15 +150,18 @@ pub fn stands_in_nominal_pose_for_10_s<B: Backend>(options: &B::Options) {
 }
 
 /// With zero joint torques the robot cannot hold itself up: from its spawn state it sinks to
-/// less than half its spawn height within 1 s. Laid limp on its side just above the ground, its
-/// trunk lands and is reported in contact within 0.5 s, and not before it is within
-/// `contact_distance` + 1 mm of the ground.
+/// less than half its spawn height within 1 s. Laid limp just above the ground with its trunk
+/// lowest (on its side, or else upside down: the first orientation where the trunk is at least
+/// 1 cm below every other part), its trunk lands and is reported in contact within 0.5 s, and
+/// not before it is within `contact_distance` + 1 mm of the ground.
 ///
 /// (A limp robot left standing may come to rest on legs folded against their joint limits with
-/// its trunk off the ground: HyQ does, its trunk 8 cm up; tipped sideways it ends 3 cm up.)
-pub fn limp_robot_collapses_onto_its_trunk<B: Backend>(options: &B::Options) {
+/// its trunk off the ground: HyQ does, its trunk 8 cm up; tipped sideways it ends 3 cm up. On
+/// their sides, HyQ's and ANYmal C's legs reach below their trunks, ANYmal C's hip drives
+/// propping it 12 cm up, so both are laid upside down.)
+pub fn limp_robot_collapses_onto_its_trunk<B: Backend>(robot: &Robot, options: &B::Options) {
     let params = PhysicsParams::default();
-    let mut b: B = build(&params, options);
+    let mut b: B = build(robot, &params, options);
     let model = Arc::clone(b.model());
     set(&mut b, &model.spawn_state());
     for _ in 0..steps_for(&params, 1.0) {
@@ -170,11 +174,36 @@ pub fn limp_robot_collapses_onto_its_trunk<B: Backend>(options: &B::Options) {
         model.spawn_height()
     );
 
-    // On its side (rolled a quarter turn), the lowest trunk point 2 cm above the ground.
+    // Laid limp with the trunk 2 cm above the ground, in the first orientation (on its side,
+    // upside down, on its other side) where the trunk is the robot's lowest part by at least
+    // 1 cm, so that it lands first.
     let trunk_index = model.trunk_tracked_index();
-    let mut side = model.spawn_state();
-    side.trunk.pose.rotation =
-        UnitQuaternion::from_euler_angles(std::f64::consts::FRAC_PI_2, 0.0, 0.0);
+    let (roll, mut side) = [
+        std::f64::consts::FRAC_PI_2,
+        std::f64::consts::PI,
+        -std::f64::consts::FRAC_PI_2,
+    ]
+    .into_iter()
+    .map(|roll| {
+        let mut s = model.spawn_state();
+        s.trunk.pose.rotation = UnitQuaternion::from_euler_angles(roll, 0.0, 0.0);
+        (roll, s)
+    })
+    .find(|(_, s)| {
+        let (trunk, rest) = trunk_and_rest_clearance(&model, s);
+        trunk + 0.01 <= rest
+    })
+    .unwrap_or_else(|| {
+        panic!(
+            "{}: no orientation (side, upside down, other side) puts the trunk below the legs",
+            model.name()
+        )
+    });
+    println!(
+        "{}: {} laid limp rolled {roll:.2} rad, trunk 2 cm above the ground",
+        B::NAME,
+        model.name()
+    );
     set(&mut b, &side);
     side.trunk.pose.translation.z -= clearances(&b)[trunk_index] - 0.02;
     set(&mut b, &side);
@@ -200,12 +229,34 @@ pub fn limp_robot_collapses_onto_its_trunk<B: Backend>(options: &B::Options) {
     );
 }
 
+/// The lowest world z of the trunk's shapes and of every other body's shapes, for a state (by
+/// the model's forward kinematics).
+fn trunk_and_rest_clearance(model: &RobotModel, state: &RobotState) -> (f64, f64) {
+    let mut poses = vec![Isometry3::identity(); model.num_links()];
+    model
+        .link_poses(&state.trunk.pose, &state.q, &mut poses)
+        .expect("forward kinematics of a valid state");
+    let trunk = model.tracked_lowest_z(model.trunk_tracked_index(), &poses);
+    let rest = model
+        .links()
+        .iter()
+        .zip(&poses)
+        .skip(1)
+        .flat_map(|(l, p)| {
+            l.collisions
+                .iter()
+                .map(move |c| c.shape.lowest_z(&(p * c.origin)))
+        })
+        .fold(f64::INFINITY, f64::min);
+    (trunk, rest)
+}
+
 /// A foot held 5 mm above the ground, while the other feet stand on it, is not in contact
 /// (an engine's speculative contact at that distance does not count); the feet on the ground
 /// are.
-pub fn lifted_foot_reports_no_contact<B: Backend>(options: &B::Options) {
+pub fn lifted_foot_reports_no_contact<B: Backend>(robot: &Robot, options: &B::Options) {
     let params = PhysicsParams::default();
-    let mut b: B = build(&params, options);
+    let mut b: B = build(robot, &params, options);
     let model = Arc::clone(b.model());
     let lifted = 0;
     let foot = &model.tracked()[lifted];

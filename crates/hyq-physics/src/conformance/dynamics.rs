@@ -6,19 +6,19 @@ use std::sync::Arc;
 use nalgebra::Vector3;
 
 use super::fixtures::{
-    Rng, build, engine_poses, fk_poses, read_contacts, read_q, read_qd, set, standing_at, step_pd,
-    step_zero, steps_for, zero_gravity,
+    Rng, Robot, build, engine_poses, fk_poses, read_contacts, read_q, read_qd, set, standing_at,
+    step_pd, step_zero, steps_for, zero_gravity,
 };
 use crate::actuator::{Actuator, PdScratch};
 use crate::backend::{Backend, PhysicsParams};
-use crate::bundled;
+use crate::model::RobotModel;
 
 /// In zero gravity, away from the ground, internal joint torques cannot move the centre of
 /// mass: it keeps its initial velocity (straight line) while the robot tumbles and flails for
 /// 1 s. This catches a floating root whose velocity is integrated at the wrong point.
-pub fn internal_torques_conserve_momentum<B: Backend>(options: &B::Options) {
+pub fn internal_torques_conserve_momentum<B: Backend>(robot: &Robot, options: &B::Options) {
     let params = zero_gravity();
-    let mut b: B = build(&params, options);
+    let mut b: B = build(robot, &params, options);
     let model = Arc::clone(b.model());
     let mut start = standing_at(&model, 3.0);
     start.trunk.linvel = Vector3::new(1.0, -0.3, 0.5);
@@ -65,9 +65,11 @@ pub fn internal_torques_conserve_momentum<B: Backend>(options: &B::Options) {
 /// joint comes apart: the engine's body poses stay within 1 mm of the forward kinematics of its
 /// trunk pose and joint angles. First floating in zero gravity, where every joint must reach
 /// each limit (within 0.1 rad by the end of each 0.5 s phase), then on the ground under the
-/// robot's weight, where every joint must reach each limit at least once in 2 s.
-pub fn joint_limits_hold_under_full_torque<B: Backend>(options: &B::Options) {
-    let model = bundled::hyq();
+/// robot's weight, where every joint must reach at least one of its limits in 2 s (the ground
+/// may block the other: HyQ reaches all of them, ANYmal C's front hips cannot swing back to
+/// horizontal while its feet push on the ground). The count reached is printed.
+pub fn joint_limits_hold_under_full_torque<B: Backend>(robot: &Robot, options: &B::Options) {
+    let model = Arc::clone(&robot.model);
     let n = model.num_joints();
     let act = Actuator::with_gains(&model, &vec![3000.0; n], &vec![30.0; n]).expect("gains");
     let mut worst_overshoot: f64 = 0.0;
@@ -76,7 +78,7 @@ pub fn joint_limits_hold_under_full_torque<B: Backend>(options: &B::Options) {
         (zero_gravity(), standing_at(&model, 3.0), true),
         (PhysicsParams::default(), model.spawn_state(), false),
     ] {
-        let mut b: B = build(&params, options);
+        let mut b: B = build(robot, &params, options);
         set(&mut b, &start);
         let mut scratch = PdScratch::new(n);
         let phase = steps_for(&params, 0.5);
@@ -141,13 +143,21 @@ pub fn joint_limits_hold_under_full_torque<B: Backend>(options: &B::Options) {
                 "joint {} never saturated: the test must drive every joint at full torque",
                 j.name
             );
+            let reached = closest[i].iter().filter(|&&d| d <= 0.1).count();
             assert!(
-                closest[i][0] <= 0.1 && closest[i][1] <= 0.1,
+                reached == 2 || (!in_air && reached == 1),
                 "joint {} came only within {:?} rad of its limits (in the air: {in_air})",
                 j.name,
                 closest[i]
             );
         }
+        let reached = closest.iter().flatten().filter(|&&d| d <= 0.1).count();
+        println!(
+            "{}: {} reached {reached} of its {} joint limits (in the air: {in_air})",
+            B::NAME,
+            model.name(),
+            2 * n
+        );
     }
     // Both figures are part of the report of this test.
     println!(
@@ -162,12 +172,12 @@ pub fn joint_limits_hold_under_full_torque<B: Backend>(options: &B::Options) {
 /// peak at most 4.5. Without the rule the 99th percentile is at least 1.5 times higher, so the
 /// bound is the rule's doing. (The rule cannot do more: joints whipped by their neighbours or
 /// stopped by a limit exceed it with no motor torque at all; see `hyq_physics::actuator`.)
-pub fn velocity_limit_bounds_joint_speed<B: Backend>(options: &B::Options) {
+pub fn velocity_limit_bounds_joint_speed<B: Backend>(robot: &Robot, options: &B::Options) {
     let params = PhysicsParams::default();
-    let model = bundled::hyq();
+    let model = Arc::clone(&robot.model);
     let n = model.num_joints();
     let run = |limit: bool| -> (f64, f64) {
-        let mut b: B = build(&params, options);
+        let mut b: B = build(robot, &params, options);
         let mut act = Actuator::new(&model);
         act.set_velocity_limit(limit);
         let mut scratch = PdScratch::new(n);
@@ -211,38 +221,73 @@ pub fn velocity_limit_bounds_joint_speed<B: Backend>(options: &B::Options) {
 /// The backend applies the model's passive joint damping: in zero gravity with no torque, the
 /// joints carrying only a leaf body, set spinning at 1 rad/s, lose more than half their speed
 /// within 0.5 s (the URDF damping against the leaf's inertia; without damping the speed would
-/// barely change).
-pub fn joint_damping_is_applied<B: Backend>(options: &B::Options) {
+/// barely change). A robot whose URDF damps none of its leaf joints (ANYmal C) is checked on a
+/// copy of its model with each leaf joint damped at 8 ln 2 times the leaf's inertia about the
+/// joint axis (1/16 of the speed would be left after 0.5 s about a fixed axis, less on a free
+/// robot), and the undamped original must keep more than half the speed (no damping the model
+/// does not have).
+pub fn joint_damping_is_applied<B: Backend>(robot: &Robot, options: &B::Options) {
     let params = zero_gravity();
-    let mut b: B = build(&params, options);
-    let model = Arc::clone(b.model());
+    let model = Arc::clone(&robot.model);
     let leaves: Vec<usize> = (0..model.num_joints())
         .filter(|&j| {
             let child = model.joints()[j].child;
-            model.links().iter().all(|l| l.parent != Some(child)) && model.joints()[j].damping > 0.0
+            model.links().iter().all(|l| l.parent != Some(child))
         })
         .collect();
-    assert!(
-        !leaves.is_empty(),
-        "the robot needs a damped leaf joint for this test"
-    );
-    let mut start = standing_at(&model, 3.0);
-    for &j in &leaves {
-        let joint = &model.joints()[j];
-        start.q[j] = 0.5 * (joint.lower + joint.upper);
-        start.qd[j] = 1.0;
-    }
-    set(&mut b, &start);
-    for _ in 0..steps_for(&params, 0.5) {
-        step_zero(&mut b);
-    }
-    let qd = read_qd(&b);
-    for &j in &leaves {
+    assert!(!leaves.is_empty(), "a tree of joints has a leaf joint");
+    let damped: Vec<usize> = leaves
+        .iter()
+        .copied()
+        .filter(|&j| model.joints()[j].damping > 0.0)
+        .collect();
+    let spin = |model: &Arc<RobotModel>, joints: &[usize]| -> Vec<f64> {
+        let mut b: B = B::build(Arc::clone(model), &params, options)
+            .unwrap_or_else(|e| panic!("{} backend failed to build: {e}", B::NAME));
+        let mut start = standing_at(model, 3.0);
+        for &j in joints {
+            let joint = &model.joints()[j];
+            start.q[j] = 0.5 * (joint.lower + joint.upper);
+            start.qd[j] = 1.0;
+        }
+        set(&mut b, &start);
+        for _ in 0..steps_for(&params, 0.5) {
+            step_zero(&mut b);
+        }
+        let qd = read_qd(&b);
+        joints.iter().map(|&j| qd[j]).collect()
+    };
+    let (tested, joints) = if damped.is_empty() {
+        let undamped = spin(&model, &leaves);
+        for (&j, qd) in leaves.iter().zip(&undamped) {
+            assert!(
+                qd.abs() > 0.5,
+                "undamped joint {} slowed to {qd} rad/s within 0.5 s (started at 1 rad/s)",
+                model.joints()[j].name
+            );
+        }
+        let damping: Vec<(usize, f64)> = leaves
+            .iter()
+            .map(|&j| (j, 8.0 * std::f64::consts::LN_2 * model.axis_inertia(j)))
+            .collect();
+        println!(
+            "{}: {} has no damped leaf joint; testing a copy damped at {:?} N·m·s/rad",
+            B::NAME,
+            model.name(),
+            damping
+        );
+        (Arc::new(model.with_joint_damping(&damping)), leaves)
+    } else {
+        (model, damped)
+    };
+    let qd = spin(&tested, &joints);
+    for (&j, qd) in joints.iter().zip(&qd) {
         assert!(
-            qd[j].abs() < 0.5,
-            "joint {} still turns at {} rad/s after 0.5 s (started at 1 rad/s)",
-            model.joints()[j].name,
-            qd[j]
+            qd.abs() < 0.5,
+            "joint {} (damping {} N·m·s/rad) still turns at {qd} rad/s after 0.5 s (started at \
+             1 rad/s)",
+            tested.joints()[j].name,
+            tested.joints()[j].damping
         );
     }
 }

@@ -3,6 +3,7 @@
 //! recording trajectories bit for bit. Every helper panics with the backend's name on failure
 //! (they are for tests and benches, where a failure is the report).
 
+use std::path::Path;
 use std::sync::Arc;
 
 use nalgebra::{Isometry3, UnitQuaternion, Vector3};
@@ -13,16 +14,73 @@ use crate::actuator::{Actuator, PdScratch, pd_substep};
 use crate::backend::{Backend, PhysicsParams, RobotState};
 use crate::bundled;
 use crate::model::RobotModel;
+use crate::profile::Profile;
 
-/// The bundled robot on backend `B` with `params` and `options`.
-pub fn build<B: Backend>(params: &PhysicsParams, options: &B::Options) -> B {
-    B::build(bundled::hyq(), params, options)
-        .unwrap_or_else(|e| panic!("{} backend failed to build: {e}", B::NAME))
+/// The robot a conformance test runs on: its model, and the URDF text and profile it was
+/// built from (the tests that check the model against the URDF read them independently).
+#[derive(Debug, Clone)]
+pub struct Robot {
+    /// The model every backend builds.
+    pub model: Arc<RobotModel>,
+    /// The URDF text the model was built from.
+    pub urdf: String,
+    /// The profile the model was built from.
+    pub profile: Profile,
+}
+
+impl Robot {
+    /// A bundled robot ([`bundled::NAMES`]); panics on an unknown name (a test's mistake).
+    pub fn bundled(name: &str) -> Self {
+        let sources =
+            bundled::sources(name).unwrap_or_else(|| panic!("no bundled robot named {name:?}"));
+        let model = bundled::by_name(name).unwrap_or_else(|| panic!("{name} is bundled"));
+        let profile = Profile::from_toml_str(sources.profile, name)
+            .unwrap_or_else(|e| panic!("bundled profile of {name}: {e}"));
+        Self {
+            model,
+            urdf: sources.urdf.to_owned(),
+            profile,
+        }
+    }
+
+    /// The robot of a profile file (its URDF path is relative to the profile); panics if it
+    /// cannot be loaded, with the loader's error.
+    pub fn from_profile(path: impl AsRef<Path>) -> Self {
+        let path = path.as_ref();
+        let read = |p: &Path| {
+            std::fs::read_to_string(p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
+        };
+        let profile = Profile::from_toml_str(&read(path), &path.display().to_string())
+            .unwrap_or_else(|e| panic!("{e}"));
+        let urdf = read(
+            &path
+                .parent()
+                .unwrap_or_else(|| Path::new("."))
+                .join(&profile.urdf),
+        );
+        let model = RobotModel::load(path).unwrap_or_else(|e| panic!("{e}"));
+        Self {
+            model: Arc::new(model),
+            urdf,
+            profile,
+        }
+    }
+}
+
+/// `robot` on backend `B` with `params` and `options`.
+pub fn build<B: Backend>(robot: &Robot, params: &PhysicsParams, options: &B::Options) -> B {
+    B::build(Arc::clone(&robot.model), params, options).unwrap_or_else(|e| {
+        panic!(
+            "{} backend failed to build {}: {e}",
+            B::NAME,
+            robot.model.name()
+        )
+    })
 }
 
 /// [`build`] with the default physics parameters.
-pub fn build_default<B: Backend>(options: &B::Options) -> B {
-    build(&PhysicsParams::default(), options)
+pub fn build_default<B: Backend>(robot: &Robot, options: &B::Options) -> B {
+    build(robot, &PhysicsParams::default(), options)
 }
 
 /// The default physics parameters without gravity.

@@ -6,10 +6,9 @@ use std::collections::HashMap;
 
 use nalgebra::Isometry3;
 
+use super::fixtures::Robot;
 use crate::backend::RobotState;
-use crate::bundled;
 use crate::model::RobotModel;
-use crate::profile::Profile;
 
 type Mat4 = [[f64; 4]; 4];
 
@@ -73,9 +72,9 @@ fn isometry_to_mat(p: &Isometry3<f64>) -> Mat4 {
 
 /// World position of each foot's collision-shape centre, from the URDF text, the profile and a
 /// state, by walking each foot's chain up to the root and composing transforms by hand.
-pub(super) fn independent_foot_centres(state: &RobotState) -> Vec<[f64; 3]> {
-    let robot = urdf_rs::read_from_string(bundled::HYQ_URDF).expect("bundled URDF parses");
-    let profile = Profile::from_toml_str(bundled::HYQ_PROFILE, "bundled").expect("profile");
+pub(super) fn independent_foot_centres(fixture: &Robot, state: &RobotState) -> Vec<[f64; 3]> {
+    let robot = urdf_rs::read_from_string(&fixture.urdf).expect("the robot's URDF parses");
+    let profile = &fixture.profile;
     let angle_of: HashMap<&str, f64> = profile
         .joints
         .iter()

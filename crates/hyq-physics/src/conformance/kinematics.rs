@@ -6,20 +6,19 @@ use std::sync::Arc;
 use nalgebra::{Isometry3, Translation3, Vector3};
 
 use super::fixtures::{
-    Rng, build, build_default, engine_poses, fk_poses, read_contacts, read_q, read_qd, set,
+    Rng, Robot, build, build_default, engine_poses, fk_poses, read_contacts, read_q, read_qd, set,
     standing_at, step_pd, step_zero, zero_gravity,
 };
 use super::independent_fk::{foot_centres_from, independent_foot_centres, max_distance};
 use crate::actuator::{Actuator, PdScratch};
 use crate::backend::{Backend, RobotState, TrunkState};
-use crate::bundled;
 
 /// The robot's mass is the sum of every URDF link's mass (read independently from the URDF
 /// text), in the model and in the engine.
-pub fn total_mass_matches_urdf<B: Backend>(options: &B::Options) {
-    let robot = urdf_rs::read_from_string(bundled::HYQ_URDF).expect("bundled URDF parses");
-    let urdf_mass: f64 = robot.links.iter().map(|l| l.inertial.mass.value).sum();
-    let b: B = build_default(options);
+pub fn total_mass_matches_urdf<B: Backend>(robot: &Robot, options: &B::Options) {
+    let urdf = urdf_rs::read_from_string(&robot.urdf).expect("the robot's URDF parses");
+    let urdf_mass: f64 = urdf.links.iter().map(|l| l.inertial.mass.value).sum();
+    let b: B = build_default(robot, options);
     let model = b.model();
     assert!(
         (model.total_mass() - urdf_mass).abs() < 1e-9,
@@ -38,8 +37,11 @@ pub fn total_mass_matches_urdf<B: Backend>(options: &B::Options) {
 /// Foot positions agree three ways for random configurations (trunk anywhere, any
 /// orientation, joints anywhere in their limits): composed by hand from the URDF text, from
 /// the model's forward kinematics, and from the engine's own body poses.
-pub fn forward_kinematics_matches_independent_urdf_computation<B: Backend>(options: &B::Options) {
-    let mut b: B = build(&zero_gravity(), options);
+pub fn forward_kinematics_matches_independent_urdf_computation<B: Backend>(
+    robot: &Robot,
+    options: &B::Options,
+) {
+    let mut b: B = build(robot, &zero_gravity(), options);
     let model = Arc::clone(b.model());
     let mut rng = Rng::new(7);
     for _ in 0..8 {
@@ -51,7 +53,7 @@ pub fn forward_kinematics_matches_independent_urdf_computation<B: Backend>(optio
             q: rng.joint_angles(&model, 0.0),
             qd: vec![0.0; model.num_joints()],
         };
-        let expected = independent_foot_centres(&state);
+        let expected = independent_foot_centres(robot, &state);
 
         let mut poses = vec![Isometry3::identity(); model.num_links()];
         model
@@ -84,8 +86,8 @@ pub fn forward_kinematics_matches_independent_urdf_computation<B: Backend>(optio
 
 /// A state set is the state read back (within f32 rounding), and contacts read false until
 /// the first step.
-pub fn set_state_round_trips<B: Backend>(options: &B::Options) {
-    let mut b: B = build_default(options);
+pub fn set_state_round_trips<B: Backend>(robot: &Robot, options: &B::Options) {
+    let mut b: B = build_default(robot, options);
     let model = Arc::clone(b.model());
     let mut rng = Rng::new(11);
     for _ in 0..8 {
@@ -159,9 +161,12 @@ fn fd_slack(v0: f64, v1: f64) -> f64 {
 /// the world-frame one: finite differences of the trunk pose over each step agree with the
 /// velocities reported before and after it, while the robot tumbles freely in zero gravity
 /// (where the origin's and the centre of mass's velocities differ by ω × r ≈ 0.2 m/s).
-pub fn trunk_velocity_is_the_frame_origin_velocity<B: Backend>(options: &B::Options) {
+pub fn trunk_velocity_is_the_frame_origin_velocity<B: Backend>(
+    robot: &Robot,
+    options: &B::Options,
+) {
     let params = zero_gravity();
-    let mut b: B = build(&params, options);
+    let mut b: B = build(robot, &params, options);
     let model = Arc::clone(b.model());
     let mut start = standing_at(&model, 3.0);
     start.trunk.linvel = Vector3::new(0.2, 0.1, -0.1);
@@ -194,9 +199,9 @@ pub fn trunk_velocity_is_the_frame_origin_velocity<B: Backend>(options: &B::Opti
 /// agree with finite differences over each step (see the trunk test for the criterion) while
 /// the legs flail in zero gravity, away from the ground and the joint limits. (Contacts and
 /// limit stops change velocities within a step non-monotonically, so they are left out.)
-pub fn joint_velocities_match_finite_differences<B: Backend>(options: &B::Options) {
+pub fn joint_velocities_match_finite_differences<B: Backend>(robot: &Robot, options: &B::Options) {
     let params = zero_gravity();
-    let mut b: B = build(&params, options);
+    let mut b: B = build(robot, &params, options);
     let model = Arc::clone(b.model());
     set(&mut b, &standing_at(&model, 3.0));
     let act = Actuator::new(&model);
@@ -227,15 +232,15 @@ pub fn joint_velocities_match_finite_differences<B: Backend>(options: &B::Option
 /// [`Backend::state`] and put back with [`Backend::set_state`] follows the uninterrupted run
 /// (flailing in zero gravity, away from the ground and the joint limits). Stale or misplaced
 /// velocities would make it veer off within a few round trips.
-pub fn state_read_back_continues_the_trajectory<B: Backend>(options: &B::Options) {
+pub fn state_read_back_continues_the_trajectory<B: Backend>(robot: &Robot, options: &B::Options) {
     let params = zero_gravity();
-    let model = bundled::hyq();
+    let model = Arc::clone(&robot.model);
     let mut start = standing_at(&model, 3.0);
     start.trunk.linvel = Vector3::new(0.3, -0.2, 0.1);
     start.trunk.angvel = Vector3::new(0.5, 1.0, -1.5);
     let act = Actuator::new(&model);
     let run = |round_trip: bool| -> RobotState {
-        let mut b: B = build(&params, options);
+        let mut b: B = build(robot, &params, options);
         set(&mut b, &start);
         let mut scratch = PdScratch::new(model.num_joints());
         let mut rng = Rng::new(31);

@@ -6,12 +6,24 @@
 //! hyq_physics::conformance_tests!(hyq_rapier::RapierBackend);
 //! // or, with engine options:
 //! hyq_physics::conformance_tests!(hyq_rapier::RapierBackend, hyq_rapier::RapierOptions::default());
+//! // or on another robot, in its own module:
+//! mod anymal_c {
+//!     use hyq_physics::conformance::fixtures::Robot;
+//!     hyq_physics::conformance_tests!(
+//!         hyq_rapier::RapierBackend,
+//!         hyq_rapier::RapierOptions::default(),
+//!         Robot::bundled("anymal_c")
+//!     );
+//! }
 //! ```
 //!
 //! and enables this module with `hyq-physics = { …, features = ["conformance"] }` in its
-//! dev-dependencies. Every test uses the bundled robot ([`crate::bundled::hyq`]) and derives
-//! its numbers from the model, the URDF text or physics, never from a particular engine: a
-//! second engine passes the suite unchanged or has a real difference to explain.
+//! dev-dependencies. Every test takes the robot ([`fixtures::Robot`], the bundled HyQ by
+//! default) and derives its numbers from the model, the URDF text or physics, never from a
+//! particular engine or robot: a second engine or robot passes the suite unchanged or has a
+//! real difference to explain. Where a check depends on a robot property (a damped joint, how
+//! a limp robot comes to rest), the test derives what to check from the model and says what it
+//! checked; nothing is skipped.
 //!
 //! Each `pub fn` below states the invariant it checks. Tolerances are stated where they are
 //! used, with the reason for their size.
@@ -49,14 +61,31 @@ pub use kinematics::{
 };
 
 /// Instantiates every conformance test for a backend type, as `#[test]` functions in the
-/// calling module; the second form passes engine options (an expression, evaluated per test).
+/// calling module:
+///
+/// - `conformance_tests!(Backend)`: the bundled HyQ with the backend's default options;
+/// - `conformance_tests!(Backend, options)`: with engine options (an expression of the
+///   backend's `Options` type, evaluated per test);
+/// - `conformance_tests!(Backend, options, robot)`: on another robot, an expression of type
+///   [`fixtures::Robot`] (e.g. `Robot::bundled("anymal_c")`, `Robot::from_profile(path)`),
+///   evaluated per test.
+///
+/// Each test calls `hyq_physics::conformance::<test>::<Backend>(&robot, &options)`; to run the
+/// suite on two robots, instantiate it in two modules.
 #[macro_export]
 macro_rules! conformance_tests {
     ($backend:ty) => {
         $crate::conformance_tests!($backend, <$backend as $crate::Backend>::Options::default());
     };
     ($backend:ty, $options:expr) => {
-        $crate::conformance_tests!(@each $backend, $options,
+        $crate::conformance_tests!(
+            $backend,
+            $options,
+            $crate::conformance::fixtures::Robot::bundled($crate::bundled::DEFAULT)
+        );
+    };
+    ($backend:ty, $options:expr, $robot:expr) => {
+        $crate::conformance_tests!(@each $backend, $options, $robot,
             total_mass_matches_urdf,
             forward_kinematics_matches_independent_urdf_computation,
             set_state_round_trips,
@@ -79,12 +108,13 @@ macro_rules! conformance_tests {
             divergence_is_reported_and_recoverable,
         );
     };
-    (@each $backend:ty, $options:expr, $($name:ident),* $(,)?) => {
+    (@each $backend:ty, $options:expr, $robot:expr, $($name:ident),* $(,)?) => {
         $(
             #[test]
             fn $name() {
                 let options = $options;
-                $crate::conformance::$name::<$backend>(&options);
+                let robot = $robot;
+                $crate::conformance::$name::<$backend>(&robot, &options);
             }
         )*
     };

@@ -10,7 +10,7 @@ use super::index::UrdfIndex;
 use super::tree::BodyBuild;
 use super::{Joint, Link};
 use crate::error::ModelError;
-use crate::profile::Profile;
+use crate::profile::{JointEntry, Profile};
 
 /// Resolves every profile joint to its URDF joint: it must exist, be revolute, and be listed
 /// once, under a short name used once. Returns the profile index of each resolved URDF joint.
@@ -30,11 +30,11 @@ pub(super) fn resolve(
                 joint: entry.urdf.clone(),
                 referenced_by: field.clone(),
             })?;
-        if robot.joints[ji].joint_type != urdf_rs::JointType::Revolute {
+        if !is_movable(&robot.joints[ji].joint_type) {
             return Err(ModelError::InvalidProfile {
                 field,
                 reason: format!(
-                    "joint {:?} is {:?}; only revolute joints can be actuated",
+                    "joint {:?} is {:?}; only revolute and continuous joints can be actuated",
                     entry.urdf, robot.joints[ji].joint_type
                 ),
             });
@@ -53,6 +53,14 @@ pub(super) fn resolve(
         }
     }
     Ok(profile_index_of_urdf_joint)
+}
+
+/// Whether a URDF joint type is one the model actuates (a revolute DoF).
+pub(super) fn is_movable(kind: &urdf_rs::JointType) -> bool {
+    matches!(
+        kind,
+        urdf_rs::JointType::Revolute | urdf_rs::JointType::Continuous
+    )
 }
 
 /// Turns the bodies into links and makes each movable body's actuated joint, in profile order.
@@ -80,7 +88,8 @@ pub(super) fn assemble(
                 })?;
                 joints[pi] = Some(make_joint(
                     urdf_joint,
-                    &profile.joints[pi].name,
+                    pi,
+                    &profile.joints[pi],
                     parent,
                     bi,
                     body.joint_origin,
@@ -133,10 +142,12 @@ pub(super) fn check_standing(profile: &Profile, joints: &[Joint]) -> Result<(), 
     Ok(())
 }
 
-/// Validates a revolute URDF joint and turns it into an actuated [`Joint`].
+/// Validates a movable URDF joint and turns it into an actuated [`Joint`], with the limits the
+/// profile entry `joints[pi]` overrides.
 fn make_joint(
     joint: &urdf_rs::Joint,
-    short_name: &str,
+    pi: usize,
+    entry: &JointEntry,
     parent: usize,
     child: usize,
     origin: Isometry3<f64>,
@@ -152,25 +163,7 @@ fn make_joint(
             joint.axis.xyz.0
         )));
     }
-    let l = &joint.limit;
-    if !(l.lower.is_finite() && l.upper.is_finite() && l.lower < l.upper) {
-        return Err(invalid(format!(
-            "position limits [{}, {}] must be finite with lower < upper",
-            l.lower, l.upper
-        )));
-    }
-    if !(l.effort.is_finite() && l.effort > 0.0) {
-        return Err(invalid(format!(
-            "effort limit {} N·m must be finite and positive",
-            l.effort
-        )));
-    }
-    if !(l.velocity.is_finite() && l.velocity > 0.0) {
-        return Err(invalid(format!(
-            "velocity limit {} rad/s must be finite and positive",
-            l.velocity
-        )));
-    }
+    let limits = Limits::of(joint, pi, entry)?;
     let (damping, friction) = joint
         .dynamics
         .as_ref()
@@ -180,22 +173,108 @@ fn make_joint(
             "damping {damping} N·m·s/rad must be finite and non-negative"
         )));
     }
-    if friction != 0.0 {
+    if !(friction.is_finite() && friction >= 0.0) {
         return Err(invalid(format!(
-            "Coulomb joint friction {friction} N·m is not supported (must be 0)"
+            "Coulomb friction {friction} N·m must be finite and non-negative"
         )));
     }
     Ok(Joint {
-        name: short_name.to_owned(),
+        name: entry.name.clone(),
         urdf_name: joint.name.clone(),
         parent,
         child,
         origin,
         axis: Unit::new_normalize(axis),
-        lower: l.lower,
-        upper: l.upper,
-        effort: l.effort,
-        velocity: l.velocity,
+        lower: limits.lower,
+        upper: limits.upper,
+        effort: limits.effort,
+        velocity: limits.velocity,
         damping,
+        friction,
     })
+}
+
+/// A joint's limits: the URDF's, each replaced by the profile's override when it has one.
+struct Limits {
+    lower: f64,
+    upper: f64,
+    effort: f64,
+    velocity: f64,
+}
+
+impl Limits {
+    fn of(joint: &urdf_rs::Joint, pi: usize, entry: &JointEntry) -> Result<Self, ModelError> {
+        let field = |key: &str| format!("joints[{pi}].{key}");
+        let overridden = |key: &str, value: Option<f64>, positive: bool| match value {
+            Some(v) if !(v.is_finite() && (!positive || v > 0.0)) => {
+                Err(ModelError::InvalidProfile {
+                    field: field(key),
+                    reason: format!(
+                        "{v} must be finite{}",
+                        if positive { " and positive" } else { "" }
+                    ),
+                })
+            }
+            other => Ok(other),
+        };
+        let l = &joint.limit;
+        let continuous = joint.joint_type == urdf_rs::JointType::Continuous;
+        // A continuous joint's <limit> has no position limits, whatever it says.
+        let (urdf_lower, urdf_upper) = if continuous {
+            (None, None)
+        } else {
+            (Some(l.lower), Some(l.upper))
+        };
+        let lower = overridden("lower", entry.lower, false)?.or(urdf_lower);
+        let upper = overridden("upper", entry.upper, false)?.or(urdf_upper);
+        let effort = overridden("effort", entry.effort, true)?.unwrap_or(l.effort);
+        let velocity = overridden("velocity", entry.velocity, true)?.unwrap_or(l.velocity);
+        let invalid = |reason: String| ModelError::InvalidJoint {
+            joint: joint.name.clone(),
+            reason,
+        };
+        let (Some(lower), Some(upper)) = (lower, upper) else {
+            return Err(invalid(format!(
+                "a continuous joint has no position limits; give {} and {} in the robot profile",
+                field("lower"),
+                field("upper")
+            )));
+        };
+        if lower == 0.0 && upper == 0.0 && entry.lower.is_none() && entry.upper.is_none() {
+            return Err(invalid(format!(
+                "the URDF gives no position limits (no <limit lower upper>); add them to the \
+                 URDF or give {} and {} in the robot profile",
+                field("lower"),
+                field("upper")
+            )));
+        }
+        if !(lower.is_finite() && upper.is_finite() && lower < upper) {
+            return Err(invalid(format!(
+                "position limits [{lower}, {upper}] must be finite with lower < upper \
+                 (the profile's {} and {} override the URDF's)",
+                field("lower"),
+                field("upper")
+            )));
+        }
+        if !(effort.is_finite() && effort > 0.0) {
+            return Err(invalid(format!(
+                "effort limit {effort} N·m must be finite and positive (the profile's {} \
+                 overrides the URDF's)",
+                field("effort")
+            )));
+        }
+        if !(velocity.is_finite() && velocity > 0.0) {
+            return Err(invalid(format!(
+                "velocity limit {velocity} rad/s must be finite and positive (the profile's \
+                 {} overrides the URDF's)",
+                field("velocity")
+            )));
+        }
+        Ok(Self {
+            lower,
+            upper,
+            effort,
+            velocity,
+        })
+    }
 }

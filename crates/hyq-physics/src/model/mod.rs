@@ -20,6 +20,7 @@
 //! links, with `parts.rs` converting each link's mass and shapes), `joints.rs` (the actuated
 //! joints in profile order) and `tracked.rs` (feet and trunk).
 
+mod gait;
 mod index;
 mod joints;
 mod parts;
@@ -33,9 +34,10 @@ use nalgebra::{Isometry3, Matrix3, Unit, UnitQuaternion, Vector3};
 
 use crate::backend::{RobotState, TrunkState};
 use crate::error::{ModelError, PhysicsError};
-use crate::profile::Profile;
+use crate::profile::{ObservationBounds, Profile};
+pub use gait::{Gait, GaitLeg};
 use index::UrdfIndex;
-use profile_values::check_profile_values;
+use profile_values::{check_observation_bounds, check_profile_values};
 
 /// A primitive collision shape, in the frame given by its [`Collision::origin`].
 #[derive(Debug, Clone, PartialEq)]
@@ -164,6 +166,9 @@ pub struct Joint {
     pub velocity: f64,
     /// Viscous joint damping (N·m·s/rad), applied by the backend as passive joint damping.
     pub damping: f64,
+    /// Coulomb joint friction (N·m, URDF `<dynamics friction>`), applied by the shared
+    /// actuator (see [`crate::actuator`]), so identically on every backend.
+    pub friction: f64,
 }
 
 /// A set of collision shapes whose ground contact is reported (a foot, or the trunk).
@@ -192,10 +197,14 @@ pub struct RobotModel {
     kp: Vec<f64>,
     kd: Vec<f64>,
     total_mass: f64,
+    observation_bounds: Option<ObservationBounds>,
+    gait: Option<Gait>,
 }
 
 impl RobotModel {
     /// Loads a robot from its profile file; the URDF path inside is relative to the profile.
+    /// Errors about the robot's content come wrapped in [`ModelError::InProfile`], naming the
+    /// file ([`ModelError::innermost`] unwraps them).
     pub fn load(profile_path: impl AsRef<Path>) -> Result<Self, ModelError> {
         let profile_path = profile_path.as_ref();
         let profile_text =
@@ -214,7 +223,16 @@ impl RobotModel {
             path: urdf_path.clone(),
             source,
         })?;
-        Self::from_urdf_str(&urdf_text, &urdf_path.display().to_string(), &profile)
+        Self::from_urdf_str(&urdf_text, &urdf_path.display().to_string(), &profile).map_err(|e| {
+            match e {
+                // These already name the URDF file.
+                ModelError::Urdf { .. } => e,
+                other => ModelError::InProfile {
+                    path: profile_path.to_owned(),
+                    source: Box::new(other),
+                },
+            }
+        })
     }
 
     /// Builds a robot from URDF text and a parsed profile (the profile's `urdf` path is not
@@ -245,6 +263,12 @@ impl RobotModel {
             joints::assemble(robot, profile, tree.bodies, &profile_index_of_urdf_joint)?;
         joints::check_standing(profile, &joints)?;
         let tracked = tracked::tracked_bodies(profile, &links, &tree.placements)?;
+        let observation_bounds = check_observation_bounds(profile)?;
+        let gait = profile
+            .gait
+            .as_ref()
+            .map(|g| Gait::resolve(g, profile, &joints))
+            .transpose()?;
 
         let kp = profile
             .joints
@@ -272,6 +296,8 @@ impl RobotModel {
             kp,
             kd,
             total_mass,
+            observation_bounds,
+            gait,
         })
     }
 
@@ -352,6 +378,17 @@ impl RobotModel {
         &self.kd
     }
 
+    /// The declared bounds of the trunk's observation rows, when the profile gives them
+    /// (`[observation]`); environments use the spec's (HyQ's) bounds otherwise.
+    pub fn observation_bounds(&self) -> Option<&ObservationBounds> {
+        self.observation_bounds.as_ref()
+    }
+
+    /// The scripted trot's leg map and parameters (the profile's `[gait]`), if it has one.
+    pub fn gait(&self) -> Option<&Gait> {
+        self.gait.as_ref()
+    }
+
     /// Total mass of the robot (kg).
     pub fn total_mass(&self) -> f64 {
         self.total_mass
@@ -405,6 +442,32 @@ impl RobotModel {
             }
         }
         Ok(())
+    }
+
+    /// The inertia (kg·m²) of joint `j`'s child body about the joint's axis through the joint
+    /// frame's origin (the child body frame's origin).
+    ///
+    /// # Panics
+    /// If `j` is not a joint index.
+    pub fn axis_inertia(&self, j: usize) -> f64 {
+        let joint = &self.joints[j];
+        let link = &self.links[joint.child];
+        let c = link.com;
+        let about_origin =
+            link.inertia + (Matrix3::identity() * c.norm_squared() - c * c.transpose()) * link.mass;
+        let a = joint.axis.into_inner();
+        (a.transpose() * about_origin * a)[(0, 0)]
+    }
+
+    /// A copy with the given joints' damping (N·m·s/rad) replaced: the conformance suite's
+    /// damping test on a robot whose URDF damps none of its joints.
+    #[cfg(feature = "conformance")]
+    pub(crate) fn with_joint_damping(&self, damping: &[(usize, f64)]) -> Self {
+        let mut copy = self.clone();
+        for &(j, d) in damping {
+            copy.joints[j].damping = d;
+        }
+        copy
     }
 
     /// The whole robot's centre of mass (world) for body poses from [`RobotModel::link_poses`].

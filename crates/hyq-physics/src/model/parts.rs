@@ -6,7 +6,7 @@ use nalgebra::{Isometry3, Matrix3, Translation3, UnitQuaternion, Vector3};
 use super::tree::BodyBuild;
 use super::{Collision, Shape};
 use crate::error::ModelError;
-use crate::inertia::{MassProperties, check_inertia};
+use crate::inertia::MassProperties;
 
 /// URDF rpy (fixed axes x, then y, then z: `R = Rz(yaw) Ry(pitch) Rx(roll)`) and xyz to an
 /// isometry.
@@ -54,7 +54,15 @@ pub(super) fn add_link_to_body(
         i.ixy, i.iyy, i.iyz, //
         i.ixz, i.iyz, i.izz,
     );
-    check_inertia(&tensor, false).map_err(invalid)?;
+    // Only finiteness is checked per link: a link fixed to others is part of one rigid body,
+    // and it is that body's tensor that must be physically valid (see `tree::check_masses`).
+    // Upstream URDFs give sensor links placeholder tensors that are invalid on their own.
+    if tensor.iter().any(|v| !v.is_finite()) {
+        return Err(invalid(format!(
+            "non-finite tensor entry in {:?}",
+            tensor.as_slice()
+        )));
+    }
     // The tensor is given in the inertial frame; rotate it into the body frame.
     let frame = in_body * urdf_pose(&inertial.origin);
     let r = frame.rotation.to_rotation_matrix();
@@ -125,7 +133,9 @@ fn collision(
         },
         urdf_rs::Geometry::Mesh { filename, .. } => {
             return Err(invalid(format!(
-                "mesh {filename:?} is not supported; use box, sphere, capsule or cylinder"
+                "mesh {filename:?} is not supported (the rapier and DART backends take box, \
+                 sphere, capsule and cylinder collisions); replace it in the URDF by primitives \
+                 that bound the mesh"
             )));
         }
     };

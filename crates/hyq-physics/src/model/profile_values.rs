@@ -1,7 +1,7 @@
 //! Phase 0 of building a model: the profile's own values, those that need no URDF.
 
 use crate::error::ModelError;
-use crate::profile::Profile;
+use crate::profile::{ObservationBounds, Profile};
 
 /// Checks the profile's own values (those that need no URDF).
 pub(super) fn check_profile_values(profile: &Profile) -> Result<(), ModelError> {
@@ -50,4 +50,27 @@ pub(super) fn check_profile_values(profile: &Profile) -> Result<(), ModelError> 
         }
     }
     Ok(())
+}
+
+/// Checks the profile's `[observation]` bounds (each finite with min < max) and returns them.
+pub(super) fn check_observation_bounds(
+    profile: &Profile,
+) -> Result<Option<ObservationBounds>, ModelError> {
+    let Some(bounds) = &profile.observation else {
+        return Ok(None);
+    };
+    for (key, table) in [
+        ("trunk_acceleration", &bounds.trunk_acceleration),
+        ("trunk_position", &bounds.trunk_position),
+    ] {
+        for (axis, [min, max]) in table.iter().flatten().enumerate() {
+            if !(min.is_finite() && max.is_finite() && min < max) {
+                return Err(ModelError::InvalidProfile {
+                    field: format!("observation.{key}[{axis}]"),
+                    reason: format!("[{min}, {max}] must be finite with min < max"),
+                });
+            }
+        }
+    }
+    Ok(Some(bounds.clone()))
 }

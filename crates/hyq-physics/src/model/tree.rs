@@ -8,6 +8,7 @@ use nalgebra::Isometry3;
 
 use super::Collision;
 use super::index::UrdfIndex;
+use super::joints::is_movable;
 use super::parts::{add_link_to_body, pose_is_finite, urdf_pose};
 use crate::error::ModelError;
 use crate::inertia::{MassProperties, check_inertia};
@@ -114,7 +115,7 @@ pub(super) fn walk(
                     bodies[body].lumped.push(joint.child.link.clone());
                     Target::Lump(body, origin)
                 }
-                urdf_rs::JointType::Revolute => Target::New {
+                ref kind if is_movable(kind) => Target::New {
                     parent: Some(body),
                     joint: Some(ji),
                     origin,
@@ -123,7 +124,8 @@ pub(super) fn walk(
                     return Err(ModelError::InvalidJoint {
                         joint: joint.name.clone(),
                         reason: format!(
-                            "type {other:?} is not supported (revolute and fixed joints only)"
+                            "type {other:?} is not supported (revolute, continuous and fixed \
+                             joints only); make it fixed, or revolute with limits, in the URDF"
                         ),
                     });
                 }
@@ -147,21 +149,33 @@ pub(super) fn walk(
     Ok(Tree { bodies, placements })
 }
 
-/// Checks that every body has a usable mass: positive, with a positive definite tensor.
+/// Checks that every body has a usable mass: positive, with a physically valid, invertible
+/// tensor. The check is on the body, after lumping, not on each URDF link: a fixed link's
+/// placeholder tensor that is invalid on its own is fine inside a valid body.
 pub(super) fn check_masses(bodies: &[BodyBuild]) -> Result<(), ModelError> {
     for body in bodies {
+        let whole = if body.lumped.is_empty() {
+            String::new()
+        } else {
+            format!(
+                "the body of link {:?} and the links fixed to it ({}) ",
+                body.name,
+                body.lumped.join(", ")
+            )
+        };
         if body.mass.mass <= 0.0 {
             return Err(ModelError::InvalidInertia {
                 link: body.name.clone(),
                 reason: format!(
-                    "total mass {} kg of a moving body must be positive",
+                    "{whole}has total mass {} kg; a moving body's mass must be positive: give \
+                     the link (or a link fixed to it) an <inertial> with a mass",
                     body.mass.mass
                 ),
             });
         }
         check_inertia(&body.mass.inertia, true).map_err(|reason| ModelError::InvalidInertia {
             link: body.name.clone(),
-            reason,
+            reason: format!("{whole}{reason}"),
         })?;
     }
     Ok(())
