@@ -12,7 +12,7 @@ pub struct RapierOptions {
     /// 34–39, 59–64 and 107–115 µs at 1, 2 and 4 (see the crate's README). The conformance
     /// suite passes at all three; fewer make joint limits softer under full torque (worst
     /// overshoot 0.087 rad at 1, 0.032 at 2, 0.013 at 4) and free-floating momentum drift
-    /// larger (6.4, 1.8, 0.7 mm in a violent second). Standing is the same at 1 to 4.
+    /// larger (5.3, 2.3, 1.4 mm in a violent second). Standing is the same at 1 to 4.
     pub solver_iterations: usize,
     /// Natural frequency (Hz) of the ground-contact constraint (rapier's
     /// `static_contact_softness`) (default: 240; rapier's own default is 60). A standing HyQ's

@@ -44,7 +44,7 @@ pub fn internal_torques_conserve_momentum<B: Backend>(robot: &Robot, options: &B
         worst = worst.max(err);
     }
     // A first-order integrator at 1 kHz drifts by millimetres in this violent second (rapier:
-    // 0.7 mm at 4 solver iterations, 6 mm at 1); a root integrated at its frame origin
+    // 1.4 mm at 4 solver iterations, 5.3 mm at 1); a root integrated at its frame origin
     // instead of its centre of mass is off by decimetres (0.3 m).
     println!(
         "{}: centre of mass left its straight line by {worst:.2e} m in 1 s",
