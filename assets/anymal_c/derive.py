@@ -6,9 +6,9 @@ Writes `anymal_c.urdf` and `LICENSE` next to this script from the package's
 package's SRDF `standing` group state. Standard library only; the output is a pure function of
 the input, so running it again gives the same bytes.
 
-    python3 -m pip download --no-deps -d /tmp/erd example-robot-data==6.0.0
-    python3 assets/anymal_c/derive.py /tmp/erd/example_robot_data-6.0.0-0-py3-none-any.whl
-    python3 assets/anymal_c/derive.py --check /tmp/erd/example_robot_data-6.0.0-0-py3-none-any.whl
+    python3 -m pip download --no-deps -d erd example-robot-data==6.0.0
+    python3 assets/anymal_c/derive.py erd/example_robot_data-6.0.0-0-py3-none-any.whl
+    python3 assets/anymal_c/derive.py --check erd/example_robot_data-6.0.0-0-py3-none-any.whl
 
 `--check` writes nothing and exits with status 1 if a committed file differs from what the
 package gives (the wheel is 131 MB, so this is a command to run by hand, not a CI stage).
