@@ -131,9 +131,14 @@ fn profile_joint_missing_from_urdf() {
         Err(ModelError::MissingJoint {
             joint,
             referenced_by,
+            available,
         }) => {
             assert_eq!(joint, "rh_knee");
             assert_eq!(referenced_by, "joints[11].urdf");
+            assert!(
+                available.contains("rh_kfe_joint"),
+                "lists the fix: {available}"
+            );
         }
         other => panic!("expected MissingJoint, got {other:?}"),
     }
@@ -177,7 +182,9 @@ fn profile_foot_collision_missing_from_urdf() {
             link,
             collision,
             referenced_by,
+            available,
         }) => {
+            assert_eq!(available, "lh_shin, lh_foot", "lists the fix");
             assert_eq!(
                 (link.as_str(), collision.as_str()),
                 ("lh_lowerleg", "lh_toe")
@@ -290,6 +297,22 @@ fn massless_moving_body_is_an_invalid_inertia() {
                 reason.contains("give the link"),
                 "says what to do: {reason}"
             );
+        }
+        other => panic!("expected InvalidInertia, got {other:?}"),
+    }
+}
+
+#[test]
+fn singular_moving_body_is_an_invalid_inertia() {
+    // A point mass: positive mass, zero tensor. It cannot turn about its joint.
+    let urdf = urdf_with(
+        "ixx=\"0.05071\" ixy=\"-4e-05\" ixz=\"-0.00159\" iyy=\"0.05486\" iyz=\"-5e-05\" izz=\"0.00571\"",
+        "ixx=\"0\" ixy=\"0\" ixz=\"0\" iyy=\"0\" iyz=\"0\" izz=\"0\"",
+    );
+    match load(&urdf, &profile()) {
+        Err(ModelError::InvalidInertia { link, reason }) => {
+            assert_eq!(link, "lf_hipassembly");
+            assert!(reason.contains("positive definite"), "{reason}");
         }
         other => panic!("expected InvalidInertia, got {other:?}"),
     }

@@ -29,6 +29,13 @@ pub(super) fn resolve(
             .ok_or_else(|| ModelError::MissingJoint {
                 joint: entry.urdf.clone(),
                 referenced_by: field.clone(),
+                available: robot
+                    .joints
+                    .iter()
+                    .filter(|j| is_movable(&j.joint_type))
+                    .map(|j| j.name.as_str())
+                    .collect::<Vec<_>>()
+                    .join(", "),
             })?;
         if !is_movable(&robot.joints[ji].joint_type) {
             return Err(ModelError::InvalidProfile {

@@ -50,6 +50,7 @@ pub(super) fn tracked_bodies(
                     link: foot.link.clone(),
                     collision: name.clone(),
                     referenced_by: format!("{field}.collision"),
+                    available: collision_names(body, &foot.link),
                 },
                 None => ModelError::InvalidProfile {
                     field: format!("{field}.link"),
@@ -78,4 +79,21 @@ pub(super) fn tracked_bodies(
         shapes: (0..links[0].collisions.len()).collect(),
     });
     Ok(tracked)
+}
+
+/// The names of the collisions declared on URDF link `link` (now in `body`), unnamed ones as
+/// `#i` (their index on the link), comma-separated; "none" if it has none.
+fn collision_names(body: &Link, link: &str) -> String {
+    let names: Vec<String> = body
+        .collisions
+        .iter()
+        .filter(|c| c.urdf_link == link)
+        .enumerate()
+        .map(|(i, c)| c.name.clone().unwrap_or_else(|| format!("#{i}")))
+        .collect();
+    if names.is_empty() {
+        "none".into()
+    } else {
+        names.join(", ")
+    }
 }
