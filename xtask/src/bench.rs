@@ -2,12 +2,13 @@
 //! by side in one run, with the ratios the speed targets are stated in.
 //!
 //! What it does, in order:
-//! 1. builds `hyq` in release mode, with the DART backend when DART is installed;
+//! 1. builds `hyq` in release mode, with the DART backend when DART is installed and the MuJoCo
+//!    backend when MuJoCo is set up (`cargo xtask setup mujoco`);
 //! 2. sets up (or reuses) the anchors' Python virtual environment outside the repository, with
 //!    the versions the anchor harness pins (`run_anchors.sh`): numpy, mujoco, dartpy;
 //! 3. repeats `--reps` times, in this order so that every repetition sees the same machine
 //!    load: `hyq bench` on rapier; MuJoCo from Python (`bench_mujoco.py`, cases `env_random` and
-//!    its C loop `phys_c_random`); `hyq bench` on DART; DART from Python (`bench_dart.py`,
+//!    its C loop `phys_c_random`); `hyq bench` on MuJoCo; `hyq bench` on DART; DART from Python (`bench_dart.py`,
 //!    Bullet and ODE detectors, capsule legs); the rapier vector env of 2 envs on 1 thread,
 //!    then on 2 threads;
 //! 4. prints, and writes to `target/bench-vs-anchors.md`, a Markdown report: the CPU model, the
@@ -28,6 +29,7 @@ use std::process::Command;
 use serde_json::Value;
 
 use crate::cli::{positive, strings, value};
+use crate::mujoco;
 use crate::stages::{DART_BULLET_HEADER, run_cargo, venv_python, workspace_root};
 
 /// The anchor harness's pinned versions (`run_anchors.sh`).
@@ -57,6 +59,8 @@ pub struct BenchArgs {
     pub venv: PathBuf,
     /// Measure the DART backend (when DART is installed).
     pub dart: bool,
+    /// Measure the MuJoCo backend (when MuJoCo is set up).
+    pub mujoco: bool,
 }
 
 /// Parses the command's arguments; `root` is the workspace root (for the defaults and for
@@ -77,6 +81,7 @@ pub fn parse(args: &[String], root: &Path) -> Result<BenchArgs, String> {
         venv: std::env::var_os("ANCHOR_VENV")
             .map_or_else(|| PathBuf::from("/tmp/anchor-venv"), PathBuf::from),
         dart: true,
+        mujoco: true,
     };
     let mut it = args.iter();
     while let Some(arg) = it.next() {
@@ -88,6 +93,7 @@ pub fn parse(args: &[String], root: &Path) -> Result<BenchArgs, String> {
             "--anchors" => out.anchors = PathBuf::from(value(&mut it, COMMAND, arg)?),
             "--venv" => out.venv = PathBuf::from(value(&mut it, COMMAND, arg)?),
             "--no-dart" => out.dart = false,
+            "--no-mujoco" => out.mujoco = false,
             other => {
                 return Err(format!(
                     "`cargo xtask bench-vs-anchors`: unknown argument `{other}`"
@@ -116,6 +122,10 @@ pub enum Series {
     MujocoPy,
     /// MuJoCo's C loop, `phys_c_random`: env steps per CPU second.
     MujocoC,
+    /// `hyq bench`, MuJoCo: env steps per CPU second.
+    Mujoco,
+    /// `hyq bench`, MuJoCo: share of the step in spec evaluation and observation assembly.
+    MujocoSpecShare,
     /// `hyq bench`, DART: env steps per CPU second.
     Dart,
     /// `hyq bench`, DART: share of the step in spec evaluation and observation assembly.
@@ -139,10 +149,11 @@ pub enum Series {
 
 impl Series {
     /// Every series, in report order.
-    pub const ALL: [Series; 13] = [
+    pub const ALL: [Series; 15] = [
         Series::Rapier,
         Series::MujocoPy,
         Series::MujocoC,
+        Series::Mujoco,
         Series::Dart,
         Series::DartPyBullet,
         Series::DartPyOde,
@@ -153,6 +164,7 @@ impl Series {
         Series::Vec2Cpu,
         Series::RapierSpecShare,
         Series::DartSpecShare,
+        Series::MujocoSpecShare,
     ];
 
     /// The row's label and unit.
@@ -162,6 +174,7 @@ impl Series {
             Series::MujocoPy => ("MuJoCo 4.0 from Python (`env_random`)", "env steps/s, CPU"),
             Series::MujocoC => ("MuJoCo 4.0, C loop (`phys_c_random`)", "env steps/s, CPU"),
             Series::Dart => ("hyq, DART backend, one env", "env steps/s, CPU"),
+            Series::Mujoco => ("hyq, MuJoCo backend, one env", "env steps/s, CPU"),
             Series::DartPyBullet => (
                 "DART from Python (dartpy 6.20, Bullet, capsules)",
                 "env steps/s, CPU",
@@ -194,12 +207,18 @@ impl Series {
                 ("spec evaluation + observation, rapier", "% of an env step")
             }
             Series::DartSpecShare => ("spec evaluation + observation, DART", "% of an env step"),
+            Series::MujocoSpecShare => {
+                ("spec evaluation + observation, MuJoCo", "% of an env step")
+            }
         }
     }
 
     /// Whether the figure is a fraction printed as a percentage.
     fn is_share(self) -> bool {
-        matches!(self, Series::RapierSpecShare | Series::DartSpecShare)
+        matches!(
+            self,
+            Series::RapierSpecShare | Series::DartSpecShare | Series::MujocoSpecShare
+        )
     }
 }
 
@@ -267,7 +286,7 @@ pub struct Target {
 }
 
 /// The targets, in report order.
-pub const TARGETS: [Target; 8] = [
+pub const TARGETS: [Target; 11] = [
     Target {
         label: "rapier / MuJoCo from Python",
         goal: Goal::RatioAtLeast {
@@ -327,6 +346,29 @@ pub const TARGETS: [Target; 8] = [
         label: "spec evaluation share, DART",
         goal: Goal::AtMost {
             series: Series::DartSpecShare,
+            target: 0.01,
+        },
+    },
+    Target {
+        label: "MuJoCo backend / MuJoCo from Python",
+        goal: Goal::RatioAtLeast {
+            num: Series::Mujoco,
+            den: Series::MujocoPy,
+            target: 1.3,
+        },
+    },
+    Target {
+        label: "MuJoCo backend / MuJoCo from Python (stretch)",
+        goal: Goal::RatioAtLeast {
+            num: Series::Mujoco,
+            den: Series::MujocoPy,
+            target: 1.5,
+        },
+    },
+    Target {
+        label: "spec evaluation share, MuJoCo",
+        goal: Goal::AtMost {
+            series: Series::MujocoSpecShare,
             target: 0.01,
         },
     },
@@ -691,9 +733,22 @@ pub fn bench_vs_anchors(args: &[String]) -> Result<(), String> {
         ));
     }
 
+    let mujoco = args.mujoco && mujoco::check(&mujoco::mujoco_dir(&root)).is_ok();
+    if args.mujoco && !mujoco {
+        host.notes.push(format!(
+            "MuJoCo is not set up (`{}`), so the MuJoCo backend was not measured",
+            mujoco::SETUP_COMMAND
+        ));
+    }
+
     let mut build = strings(&["build", "--release", "--locked", "-p", "hyq-cli"]);
-    if dart {
-        build.extend(strings(&["--features", "dart"]));
+    let features: Vec<&str> = [(dart, "dart"), (mujoco, "mujoco")]
+        .iter()
+        .filter(|(on, _)| *on)
+        .map(|(_, f)| *f)
+        .collect();
+    if !features.is_empty() {
+        build.extend(strings(&["--features", &features.join(",")]));
     }
     let status = run_cargo(&root, &build)?;
     if !status.success() {
@@ -758,6 +813,13 @@ pub fn bench_vs_anchors(args: &[String]) -> Result<(), String> {
             Series::MujocoC,
             parse_anchor(&out, "mujoco", "phys_c_random")?,
         );
+        if mujoco {
+            let m = hyq_bench("mujoco", &["--steps", &steps], &mut raw)?;
+            r.insert(Series::Mujoco, m.cpu);
+            if let Some(share) = m.spec_share {
+                r.insert(Series::MujocoSpecShare, share);
+            }
+        }
         if dart {
             let d = hyq_bench("dart", &["--steps", &steps], &mut raw)?;
             r.insert(Series::Dart, d.cpu);
@@ -847,11 +909,14 @@ mod tests {
 
     #[test]
     fn defaults_and_arguments_parse_and_bad_ones_are_named() {
-        let root = Path::new("/work/main");
+        let root = Path::new("/nonexistent/repo");
         let d = parse(&[], root).unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(d.reps, 5);
-        assert_eq!(d.anchors, PathBuf::from("/work/shared/bench/anchors"));
-        assert!(d.dart);
+        assert_eq!(
+            d.anchors,
+            PathBuf::from("/nonexistent/shared/bench/anchors")
+        );
+        assert!(d.dart && d.mujoco);
         let p = parse(
             &strings(&[
                 "--reps",
@@ -863,10 +928,11 @@ mod tests {
                 "--anchor-steps",
                 "70",
                 "--venv",
-                "/tmp/v",
+                "/nonexistent/venv",
                 "--anchors",
-                "/a",
+                "/nonexistent/anchors",
                 "--no-dart",
+                "--no-mujoco",
             ]),
             root,
         )
@@ -876,15 +942,23 @@ mod tests {
             (3, 100, 50, 70)
         );
         assert_eq!(
-            (p.venv, p.anchors, p.dart),
-            ("/tmp/v".into(), "/a".into(), false)
+            (p.venv, p.anchors, p.dart, p.mujoco),
+            (
+                "/nonexistent/venv".into(),
+                "/nonexistent/anchors".into(),
+                false,
+                false
+            )
         );
         for (bad, named) in [
             (&["--reps", "0"][..], "--reps 0"),
             (&["--steps", "x"], "--steps x"),
             (&["--venv"], "--venv"),
             (&["--fast"], "--fast"),
-            (&["--venv", "/work/main/.venv"], "outside the repository"),
+            (
+                &["--venv", "/nonexistent/repo/.venv"],
+                "outside the repository",
+            ),
         ] {
             let err = parse(&strings(bad), root).err().unwrap_or_default();
             assert!(err.contains(named), "{bad:?}: {err}");

@@ -3,13 +3,17 @@
 //!
 //! `cargo xtask test` is the project's one test command: the README names it and `.ci/run` runs
 //! it. It runs every test the machine can run, says loudly what it could not run and why, and
-//! fails when a part that was required (`--require dart`, `--require python`) cannot run.
+//! fails when a part that was required (`--require dart`, `--require mujoco`, `--require
+//! python`) cannot run.
 
 mod bench;
 mod cli;
 mod docs;
+mod mujoco;
 mod soak;
 mod stages;
+#[cfg(test)]
+mod standalone;
 
 use std::process::ExitCode;
 
@@ -17,22 +21,27 @@ const HELP: &str = "\
 cargo xtask <command>
 
 commands:
-  test [--require dart|python|all]...   run every test of the workspace: the Rust crates (rapier
+  test [--require dart|mujoco|python|all]...
+                                        run every test of the workspace: the Rust crates (rapier
                                         backend), the DART backend when DART is installed, the
-                                        Python package when its tools are installed; --require
-                                        makes a part that cannot run a failure (CI uses it)
-  soak [--steps N] [--backend rapier|dart] [--seed S]
+                                        MuJoCo backend when MuJoCo is set up, the Python package
+                                        when its tools are installed; --require makes a part
+                                        that cannot run a failure (CI uses it)
+  setup mujoco                          download MuJoCo 4.0.0's C library and headers from the
+                                        package index (pip, pinned sha256) into target/mujoco
+                                        (or $MUJOCO_DIR), for the MuJoCo backend
+  soak [--steps N] [--backend rapier|dart|mujoco] [--seed S]
                                         random actions for N env steps (default 10^6) in a
                                         release build of `hyq`: no panic, no NaN in any output;
                                         prints the episodes and the observed range of each row
   bench-vs-anchors [--reps R] [--steps N] [--vec-steps N] [--anchor-steps N]
-                   [--anchors DIR] [--venv DIR] [--no-dart]
+                   [--anchors DIR] [--venv DIR] [--no-dart] [--no-mujoco]
                                         the speed targets: hyq bench (rapier, DART when
-                                        installed, the vector env on 1 and 2 threads) and the
-                                        anchors (MuJoCo, DART from Python; venv outside the
-                                        repository, default /tmp/anchor-venv) interleaved R
-                                        times (default 5); prints medians, min/max and ratios
-                                        and writes target/bench-vs-anchors.md
+                                        installed, MuJoCo when set up, the vector env on 1 and
+                                        2 threads) and the anchors (MuJoCo, DART from Python;
+                                        venv outside the repository, default /tmp/anchor-venv)
+                                        interleaved R times (default 5); prints medians,
+                                        min/max and ratios and writes target/bench-vs-anchors.md
   help                                  this text
 ";
 
@@ -40,6 +49,7 @@ fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let result = match args.first().map(String::as_str) {
         Some("test") => stages::test(&args[1..]),
+        Some("setup") => mujoco::setup(&args[1..]),
         Some("soak") => soak::soak(&args[1..]),
         Some("bench-vs-anchors") => bench::bench_vs_anchors(&args[1..]),
         Some("help") | Some("--help") | Some("-h") | None => {

@@ -2,7 +2,7 @@
 //! and the share of the step's time in each part.
 //!
 //! # Workload
-//! The anchor harness's `env_random` case (`shared/bench/anchors/bench_mujoco.py`): one env, one
+//! The anchor harness's `env_random` case (`bench_mujoco.py`, docs/benchmarks.md): one env, one
 //! thread; every env step takes a fresh action drawn uniformly from the action space (with the
 //! default `normalized` actions: joint targets uniform within the joint limits), drawn before
 //! the timed region in blocks of [`BLOCK`] so the policy is not timed; an episode that ends is

@@ -93,7 +93,7 @@ fn json_lines_carry_the_same_summary_per_episode() {
         ] {
             assert!(terms[key].is_f64(), "terms.{key}: {terms}");
         }
-        // Σ r_n telescopes to k_norm (D^0 − D^T) / K (RULINGS §4.1).
+        // Σ r_n telescopes to k_norm (D^0 − D^T) / K (spec §4.2).
         let d0 = e["initial_distance_to_goal"].as_f64().unwrap();
         let dt = e["final_distance_to_goal"].as_f64().unwrap();
         let r_n = terms["r_n"].as_f64().unwrap();

@@ -24,6 +24,9 @@
 //!
 //! [physics.dart]     # the DART backend's options, read when a DART env is built
 //!
+//! [physics.mujoco]   # the MuJoCo backend's options, read when a MuJoCo env is built
+//! noslip_iterations = 10
+//!
 //! [reset]         # spawn placement and reset noise (see ResetConfig)
 //! joint_noise_rad = 0.0
 //! ```
@@ -45,9 +48,10 @@ use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
 /// The names of the engine tables `[physics.<name>]` a configuration may hold, one per backend
-/// crate (`hyq-rapier`, `hyq-dart`). A table is read only by the backend of that name; the
-/// list exists so that a misspelt engine table is an error rather than silently ignored.
-pub const ENGINE_TABLES: [&str; 2] = ["rapier", "dart"];
+/// crate (`hyq-rapier`, `hyq-dart`, `hyq-mujoco`). A table is read only by the backend of that
+/// name; the list exists so that a misspelt engine table is an error rather than silently
+/// ignored.
+pub const ENGINE_TABLES: [&str; 3] = ["rapier", "dart", "mujoco"];
 
 /// The whole configuration of an environment (see the module docs for the file layout).
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -276,7 +280,7 @@ impl<'de> Deserialize<'de> for Gains {
 }
 
 /// `[physics]`: hyq-physics' engine-independent [`PhysicsParams`] as plain keys, plus one
-/// optional sub-table per engine (`[physics.rapier]`, `[physics.dart]`, see
+/// optional sub-table per engine (`[physics.rapier]`, `[physics.dart]`, `[physics.mujoco]`, see
 /// [`ENGINE_TABLES`]) that is deserialised into that backend's `Options` when an environment
 /// on it is built, so one file serves every engine.
 #[derive(Clone, Debug, Default, PartialEq)]

@@ -1,6 +1,6 @@
 //! The environment: the spec's rules (hyq-spec) joined to a physics backend (hyq-physics).
 //!
-//! One env step (spec §6.3, RULINGS §3):
+//! One env step (spec §3, §6.3):
 //!
 //! 1. the action is checked (length, finiteness, range) before anything changes, then mapped to
 //!    joint targets q* ([`crate::action`]);

@@ -1,4 +1,4 @@
-//! Goals and reset states (not in the spec; RULINGS "Not in the spec": the default goal is 5 m
+//! Goals and reset states (spec §7.5 and §7.6, beyond the original spec: the default goal is 5 m
 //! straight ahead of the spawn point along +x at the robot's nominal standing trunk height).
 //!
 //! With S = (x_s, y_s) the spawn point and h the goal height (`goal.height_m`, else the robot

@@ -167,7 +167,7 @@ pub struct StepInfo {
     /// D_n^t = D^t / K, or `None` when K is too small to divide by (only allowed while r_n and
     /// r_e are off).
     pub d_n: Option<f64>,
-    /// The trunk's roll (rad, intrinsic Z-Y-X, RULINGS §1).
+    /// The trunk's roll (rad, intrinsic Z-Y-X, spec §1).
     pub roll: f64,
     /// The trunk's pitch (rad).
     pub pitch: f64,

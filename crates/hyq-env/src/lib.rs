@@ -69,7 +69,7 @@
 //! |---|---|---|
 //! | r_b | k_base · (D^{t−1} − D^t) | off (`base_rew_scaling` unset) |
 //! | r_n | k_norm · (D^{t−1} − D^t) / K | off (`norm_rew_scaling` unset) |
-//! | r_e | R_e(D_n^t) − R_e(D_n^{t−1}), R_e the continuous curve of RULINGS §4.3 | k_exp = 5 |
+//! | r_e | R_e(D_n^t) − R_e(D_n^{t−1}), R_e the continuous curve of spec §4.3 | k_exp = 5 |
 //! | r_reach | `reach_target_bonus_reward` on the step the goal is reached | 0 |
 //! | m_yaw, m_pitch | 1 within ±2.5°, else max(0, cos angle) | 2.5° |
 //! | m_height | opt-in §5.2 multiplier | off (1) |

@@ -9,6 +9,8 @@
 //!   trunk state and real ground contacts.
 //! - [`actuator`]: the joint PD law with effort and velocity limits, evaluated every sub-step in
 //!   shared code ([`pd_substep`]), so every backend is driven identically.
+//! - [`mjcf`]: the robot as MuJoCo's XML model format, pure text generation (no MuJoCo
+//!   needed), for the MuJoCo backend and for MuJoCo-from-Python benchmarks alike.
 //! - [`bundled`]: the robots shipped in `assets/` (HyQ, the default, and ANYmal C), usable from
 //!   any directory, and [`resolve_robot`], which every front end uses to turn a robot choice
 //!   (a bundled name or a profile path) into a model.
@@ -25,6 +27,7 @@ pub mod bundled;
 pub mod conformance;
 pub mod error;
 pub mod inertia;
+pub mod mjcf;
 pub mod model;
 pub mod profile;
 

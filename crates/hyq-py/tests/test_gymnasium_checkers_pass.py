@@ -36,7 +36,7 @@ def test_check_env_passes_without_warnings(render_mode: str | None, repeat: int)
 @pytest.mark.parametrize("render_mode", [None, "rgb_array"])
 @pytest.mark.parametrize("repeat", [1, 2, 3])
 def test_raw_observations_pass_every_other_check(render_mode: str | None, repeat: int) -> None:
-    # Unclipped (the default, RULINGS section 3), a violent random action can push a joint
+    # Unclipped (the default, spec §3), a violent random action can push a joint
     # speed past the table's 12 rad/s: the checker may then say so, and must say nothing else.
     env = gym.make("HyQ-v0", render_mode=render_mode)
     with warnings.catch_warnings(record=True) as caught:

@@ -2,7 +2,7 @@
 //! records as the environment would (rewards from `hyq-spec`'s rules) and plots them.
 //!
 //! ```sh
-//! cargo run --release -p hyq-render --example kinematic_demo -- /tmp/hyq-render-demo
+//! cargo run --release -p hyq-render --example kinematic_demo -- target/hyq-render-demo
 //! ```
 //!
 //! Writes `trot.gif`, `frames/frame_*.png` (every 20th frame), `records.jsonl` and

@@ -1,4 +1,4 @@
-//! Spec §4 (Reward), eqs. (1)–(5), with RULINGS §4 and §5:
+//! Spec §4 (Reward), eqs. (1)–(5), and §5:
 //!
 //! r = (r_b + r_n + r_e + r_reach) · m_yaw · m_pitch − joint_penalty − fall_penalty, with
 //! r_b = k_base (D^{t−1} − D^t), r_n = k_norm (D^{t−1} − D^t) / K, r_e = R_e(D_n^t) − R_e(D_n^{t−1})
@@ -18,7 +18,7 @@ use hyq_physics::na::Point3;
 use hyq_spec::{EpisodeRules, StepSnapshot, Termination};
 use spec_tests::{env, orientation, position, reset, run_policy};
 
-/// R_e as RULINGS §4.3 rules it, written out independently of hyq-spec.
+/// R_e as spec §4.3 rules it, written out independently of hyq-spec.
 fn cumulative_exponential(d_n: f64, k: f64) -> f64 {
     if d_n <= 1.0 {
         ((k * (1.0 - d_n)).exp() - 1.0) / k
