@@ -66,8 +66,9 @@ pub fn internal_torques_conserve_momentum<B: Backend>(robot: &Robot, options: &B
 /// trunk pose and joint angles. First floating in zero gravity, where every joint must reach
 /// each limit (within 0.1 rad by the end of each 0.5 s phase), then on the ground under the
 /// robot's weight, where every joint must reach at least one of its limits in 2 s (the ground
-/// may block the other: HyQ reaches all of them, ANYmal C's front hips cannot swing back to
-/// horizontal while its feet push on the ground). The count reached is printed.
+/// may block the other: HyQ reaches all of them; on rapier and DART, ANYmal C's front hips do
+/// not swing back to horizontal while its feet push on the ground). The count reached is
+/// printed.
 pub fn joint_limits_hold_under_full_torque<B: Backend>(robot: &Robot, options: &B::Options) {
     let model = Arc::clone(&robot.model);
     let n = model.num_joints();
