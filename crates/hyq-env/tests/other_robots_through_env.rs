@@ -1,11 +1,11 @@
 //! Invariant: the environment runs any robot its profile describes, on every engine. ANYmal C
 //! (bundled) settles at its profile's standing height, and its scripted trot, from its
 //! profile's `[gait]`, walks at least 1 m toward the default goal in 10 s without falling or
-//! any other termination, on rapier and (with `--features dart`) on DART. A third robot from a
-//! fixture profile (ANYmal C with its hip abduction joints fixed: 8 joints, two tracked feet,
-//! joint names unlike HyQ's, its own trunk observation bounds) goes through `Env` on rapier:
-//! the spaces, row names and bounds follow the profile, it stands, it trots forward, and the
-//! same seed and actions repeat bit for bit.
+//! any other termination, on rapier and (with `--features dart` / `mujoco`) on DART and
+//! MuJoCo. A third robot from a fixture profile (ANYmal C with its hip abduction joints fixed:
+//! 8 joints, two tracked feet, joint names unlike HyQ's, its own trunk observation bounds) goes
+//! through `Env` on rapier: the spaces, row names and bounds follow the profile, it stands, it
+//! trots forward, and the same seed and actions repeat bit for bit.
 
 mod common;
 
@@ -109,6 +109,24 @@ fn anymal_c_stands_at_its_profile_height_on_dart() {
 fn anymal_c_trot_walks_a_metre_toward_the_goal_on_dart() {
     // Measured 3.27 m (the profile's comment); 1 m is the contract.
     assert!(trot_progress::<hyq_dart::DartBackend>(&bundled::anymal_c()) >= 1.0);
+}
+
+#[cfg(feature = "mujoco")]
+#[test]
+fn anymal_c_stands_at_its_profile_height_on_mujoco() {
+    let model = bundled::anymal_c();
+    let z = standing_height::<hyq_mujoco::MujocoBackend>(&model);
+    assert!(
+        (z - model.standing_height()).abs() < 5e-4,
+        "settled at {z}, profile says {}",
+        model.standing_height()
+    );
+}
+
+#[cfg(feature = "mujoco")]
+#[test]
+fn anymal_c_trot_walks_a_metre_toward_the_goal_on_mujoco() {
+    assert!(trot_progress::<hyq_mujoco::MujocoBackend>(&bundled::anymal_c()) >= 1.0);
 }
 
 /// The fixture robot, loaded through the front ends' resolver from a profile path: its URDF
