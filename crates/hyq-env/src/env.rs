@@ -36,6 +36,7 @@ use hyq_physics::{
 };
 use hyq_spec::distance::{MIN_START_GOAL_DISTANCE, StartGoalDistance};
 use hyq_spec::observation::trunk_acceleration;
+use hyq_spec::robot::Bounds;
 use hyq_spec::{
     Clipping, EpisodeError, EpisodeRules, JointDescription, JointRange, Observation,
     ObservationLayout, RobotDescription, StepSnapshot, TaskConfig, TrunkDescription,
@@ -243,7 +244,8 @@ fn stream(seed: u64, stream: u64) -> ChaCha8Rng {
 }
 
 /// The rules' view of `model`: joints with their limits and speed limits, the feet and the
-/// trunk (with the spec's §3 bounds for the trunk rows).
+/// trunk, with the declared bounds of the trunk rows from the robot's profile
+/// (`[observation]`) where it gives them, else the spec's §3 bounds (HyQ's).
 fn robot_description(model: &RobotModel) -> Result<RobotDescription, ConfigError> {
     let bad = |what: String| ConfigError::Invalid {
         key: "robot".into(),
@@ -266,9 +268,15 @@ fn robot_description(model: &RobotModel) -> Result<RobotDescription, ConfigError
         .iter()
         .map(|t| t.name.clone())
         .collect();
+    let spec = TrunkDescription::spec();
+    let bounds = |given: Option<[[f64; 2]; 3]>, spec: [Bounds; 3]| {
+        given.map_or(spec, |b| b.map(|[min, max]| Bounds { min, max }))
+    };
+    let given = model.observation_bounds();
     let trunk = TrunkDescription {
         name: tracked[model.trunk_tracked_index()].name.clone(),
-        ..TrunkDescription::spec()
+        acceleration: bounds(given.and_then(|b| b.trunk_acceleration), spec.acceleration),
+        position: bounds(given.and_then(|b| b.trunk_position), spec.position),
     };
     RobotDescription::new(joints, feet, trunk).map_err(|e| bad(e.to_string()))
 }

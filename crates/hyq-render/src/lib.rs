@@ -99,7 +99,7 @@ mod scene;
 mod text;
 mod writer;
 
-pub use camera::{Camera, CameraConfig, NEAR_PLANE_M};
+pub use camera::{Camera, CameraConfig, NEAR_PLANE_M, REFERENCE_DISTANCE_M, REFERENCE_HEIGHT_M};
 pub use error::{PlotError, RenderError, WriteError};
 pub use frame::Frame;
 pub use plot::{
