@@ -264,7 +264,13 @@ pub fn test(args: &[String]) -> Result<(), String> {
         match python_tools(&root) {
             Err(why) => Outcome::Skipped { why },
             Ok(venv) => Outcome::Passed {
-                tests: python_stage(&root, &venv)?,
+                // With MuJoCo set up, the package is built with it, so that its tests run
+                // `backend="mujoco"` too.
+                tests: python_stage(
+                    &root,
+                    &venv,
+                    has("hyq-mujoco") && mujoco::check(&mujoco::mujoco_dir(&root)).is_ok(),
+                )?,
             },
         }
     };
@@ -379,8 +385,9 @@ pub(crate) fn venv_command(venv: &Path, dir: &Path, program: &Path) -> Command {
 /// dependencies), builds the extension with the dev
 /// profile and installs the package (`maturin develop`: fast to build; users get release
 /// builds from `maturin build --release` or `pip install`), builds the `hyq` command the CLI
-/// parity test runs, then runs pytest and returns how many tests passed.
-fn python_stage(root: &Path, venv: &Path) -> Result<u64, String> {
+/// parity test runs, then runs pytest and returns how many tests passed. `with_mujoco` builds
+/// the package with its `mujoco` feature.
+fn python_stage(root: &Path, venv: &Path, with_mujoco: bool) -> Result<u64, String> {
     let crate_dir = root.join("crates").join("hyq-py");
     let python = venv_python(venv);
     run_in_venv(
@@ -404,12 +411,11 @@ fn python_stage(root: &Path, venv: &Path) -> Result<u64, String> {
             "requirements-test-nodeps.txt",
         ],
     )?;
-    run_in_venv(
-        venv,
-        &crate_dir,
-        &python,
-        &["-m", "maturin", "develop", "--locked"],
-    )?;
+    let mut develop = vec!["-m", "maturin", "develop", "--locked"];
+    if with_mujoco {
+        develop.extend(["--features", "mujoco"]);
+    }
+    run_in_venv(venv, &crate_dir, &python, &develop)?;
     cargo_test(root, &["build", "--locked", "-p", "hyq-cli"])?;
     let target = std::env::var_os("CARGO_TARGET_DIR")
         .map(PathBuf::from)

@@ -43,7 +43,7 @@ use serde::Serialize;
 
 use crate::Failure;
 use crate::backend::with_backend;
-use crate::options::{EnvArgs, make_env, robot, usage};
+use crate::options::{EnvArgs, make_env, usage};
 use crate::output::{print, print_json_line};
 
 /// Actions drawn ahead of the timed region at a time.
@@ -133,8 +133,10 @@ pub struct BenchReport {
     pub schema_version: u32,
     /// `"env_random"`: the anchors' case this reproduces.
     pub workload: &'static str,
-    /// The backend's name (`"rapier"`, `"dart"`).
+    /// The backend's name (`"rapier"`, `"dart"`, `"mujoco"`).
     pub backend: &'static str,
+    /// The robot's name (its profile's `name`: `"hyq"`, `"anymal_c"`, ...).
+    pub robot: String,
     /// `"release"` or `"debug"` (a build with debug assertions): compare only release figures.
     pub profile: &'static str,
     /// The action mode (`"normalized"` unless configured otherwise).
@@ -174,8 +176,10 @@ pub struct VecBenchReport {
     pub schema_version: u32,
     /// `"env_random_vec"`: `env_random` in every env of a vector env.
     pub workload: &'static str,
-    /// The backend's name (`"rapier"`, `"dart"`).
+    /// The backend's name (`"rapier"`, `"dart"`, `"mujoco"`).
     pub backend: &'static str,
+    /// The robot's name (its profile's `name`: `"hyq"`, `"anymal_c"`, ...).
+    pub robot: String,
     /// `"release"` or `"debug"`.
     pub profile: &'static str,
     /// N, the envs in the vector env.
@@ -213,6 +217,7 @@ struct Pass {
 
 /// Runs `hyq bench`.
 pub fn execute(args: BenchArgs) -> Result<(), Failure> {
+    let model = args.env.model()?;
     let config = args.env.config()?;
     if args.num_envs >= 2 {
         let cores = std::thread::available_parallelism().map_or(1, |n| n.get() as u64);
@@ -220,7 +225,7 @@ pub fn execute(args: BenchArgs) -> Result<(), Failure> {
         return with_backend!(args.env.backend, B => {
             let n = usize::try_from(args.num_envs)
                 .map_err(|_| usage(format!("--num-envs {}: too many", args.num_envs)))?;
-            let vec = VecEnv::<B>::new(robot(), config, n, AutoReset::NextStep)
+            let vec = VecEnv::<B>::new(model, config, n, AutoReset::NextStep)
                 .map_err(|e| usage(format!("cannot build the {} vector env: {e}", B::NAME)))?;
             let t = usize::try_from(threads)
                 .map_err(|_| usage(format!("--threads {threads}: too many")))?;
@@ -235,7 +240,7 @@ pub fn execute(args: BenchArgs) -> Result<(), Failure> {
         return Err(usage("--threads needs --num-envs N with N ≥ 2"));
     }
     with_backend!(args.env.backend, B => {
-        let mut env = make_env::<B>(robot(), config)?;
+        let mut env = make_env::<B>(model, config)?;
         let report = bench(&mut env, args.steps, args.seed)?;
         print_report(&report, args.json)
     })
@@ -311,6 +316,7 @@ pub fn bench_vec<B: Backend>(
         schema_version: 1,
         workload: "env_random_vec",
         backend: B::NAME,
+        robot: vec.env(0).model().name().to_owned(),
         profile: if cfg!(debug_assertions) {
             "debug"
         } else {
@@ -337,8 +343,8 @@ fn print_vec_report(r: &VecBenchReport, json: bool) -> Result<(), Failure> {
     let mut t = String::new();
     let _ = writeln!(
         t,
-        "hyq bench: {} backend, {} build, workload {} ({} envs, {} pool threads, {} sub-steps each)",
-        r.backend, r.profile, r.workload, r.num_envs, r.threads, r.substeps_per_env_step
+        "hyq bench: {} on the {} backend, {} build, workload {} ({} envs, {} pool threads, {} sub-steps each)",
+        r.robot, r.backend, r.profile, r.workload, r.num_envs, r.threads, r.substeps_per_env_step
     );
     let _ = writeln!(
         t,
@@ -386,6 +392,7 @@ pub fn bench<B: Backend>(env: &mut Env<B>, steps: u64, seed: u64) -> Result<Benc
         schema_version: 1,
         workload: "env_random",
         backend: B::NAME,
+        robot: env.model().name().to_owned(),
         profile: if cfg!(debug_assertions) {
             "debug"
         } else {
@@ -482,8 +489,8 @@ fn print_report(r: &BenchReport, json: bool) -> Result<(), Failure> {
     let e = &r.episodes_ended;
     let _ = writeln!(
         t,
-        "hyq bench: {} backend, {} build, workload {} ({} actions, {} x {} s sub-steps)",
-        r.backend, r.profile, r.workload, r.action_mode, r.substeps_per_env_step, r.dt
+        "hyq bench: {} on the {} backend, {} build, workload {} ({} actions, {} x {} s sub-steps)",
+        r.robot, r.backend, r.profile, r.workload, r.action_mode, r.substeps_per_env_step, r.dt
     );
     let _ = writeln!(
         t,

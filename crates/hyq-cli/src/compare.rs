@@ -1,6 +1,7 @@
-//! `hyq compare`: the same action sequence on two physics backends, and a report of where they
-//! agree and where they drift apart (hyq-compare): `report.md`, `report.json` and
-//! `trunk_x_z.png` in `--out DIR`.
+//! `hyq compare`: the same action sequence on two or three physics backends, and a report of
+//! where they agree and where they drift apart (hyq-compare): `report.md`, `report.json` and
+//! `trunk_x_z.png` in `--out DIR`; with three backends the top-level report sets the three
+//! side by side and each pair's full report is in `DIR/<a>_vs_<b>/`.
 //!
 //! Exit status: 0 when the reports are written, whatever they found; with `--strict`, 1 (after
 //! writing the reports) when any metric is outside the ledger, so CI can gate on it; 2 for bad
@@ -13,27 +14,32 @@ use std::path::PathBuf;
 use clap::builder::TypedValueParser as _;
 use clap::{Args, ValueEnum as _};
 use hyq_compare::{
-    ComparisonSpec, DEFAULT_ONE_STEP_STATES, Ledger, MARKDOWN_FILE, Report, Scenario,
-    check_seconds, parse_override, prepare_output_dir,
+    ComparisonSpec, DEFAULT_ONE_STEP_STATES, Ledger, MARKDOWN_FILE, Plan, Report, Scenario,
+    check_seconds, compare_all, parse_override, prepare_output_dir,
 };
 
 use crate::Failure;
 use crate::backend::{BackendChoice, not_built, with_backend};
-use crate::options::{robot, usage};
+use crate::options::{RobotArgs, usage};
 
 /// `hyq compare` arguments.
 #[derive(Debug, Args)]
 pub struct CompareArgs {
-    /// The two backends, comma-separated: rapier,dart or rapier,mujoco (the point of the
-    /// command), or the same one twice (a self-check: exact agreement, or the effect of --set-b).
-    #[arg(long, value_name = "A,B", default_value = "rapier,dart", value_parser = parse_backends)]
-    backends: BackendPair,
+    /// The backends, comma-separated: two (rapier,dart or rapier,mujoco; or the same one twice,
+    /// a self-check: exact agreement, or the effect of --set-b) or three different ones
+    /// (rapier,dart,mujoco: every pair compared, one report).
+    #[arg(long, value_name = "A,B[,C]", default_value = "rapier,dart", value_parser = parse_backends)]
+    backends: Backends,
     /// The scenario (see `docs/backend-comparison.md`): stand (hold the pose), fall (a pushed
-    /// robot tips over), limit (lf_hfe driven to its limit), trot (the scripted trot), random (random
+    /// robot tips over), limit (the first [gait] leg's hip joint, lf_hfe on the bundled robots,
+    /// driven to its limit), trot (the scripted trot), random (random
     /// actions), reach (the trot to a goal on its path).
     #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(Scenario::NAMES)
         .try_map(|s| s.parse::<Scenario>()))]
     scenario: Scenario,
+    /// The robot.
+    #[command(flatten)]
+    robot: RobotArgs,
     /// Seed of both resets and of the random policy.
     #[arg(long, default_value_t = 0)]
     seed: u64,
@@ -61,20 +67,21 @@ pub struct CompareArgs {
     #[arg(long = "set", value_name = "TABLE.KEY=VALUE")]
     set: Vec<String>,
     /// Override one configuration value on the second backend only (e.g. a perturbation:
-    /// `--set-b physics.gravity=[0,0,-10.791]`). Repeatable.
+    /// `--set-b physics.gravity=[0,0,-10.791]`); two backends only. Repeatable.
     #[arg(long = "set-b", value_name = "TABLE.KEY=VALUE")]
     set_b: Vec<String>,
 }
 
-/// Two backends.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct BackendPair(BackendChoice, BackendChoice);
+/// The backends to compare: two, or three different ones.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Backends(Vec<BackendChoice>);
 
-fn parse_backends(s: &str) -> Result<BackendPair, String> {
+fn parse_backends(s: &str) -> Result<Backends, String> {
     let names: Vec<&str> = s.split(',').map(str::trim).collect();
-    if names.len() != 2 {
+    if !(2..=3).contains(&names.len()) {
         return Err(format!(
-            "expected two backends separated by a comma (e.g. rapier,dart), got {s:?}"
+            "expected two or three backends separated by commas (e.g. rapier,dart or \
+             rapier,dart,mujoco), got {s:?}"
         ));
     }
     let pick = |name: &str| {
@@ -82,7 +89,18 @@ fn parse_backends(s: &str) -> Result<BackendPair, String> {
             format!("unknown backend {name:?} (possible backends: rapier, dart, mujoco)")
         })
     };
-    Ok(BackendPair(pick(names[0])?, pick(names[1])?))
+    let choices = names
+        .iter()
+        .map(|n| pick(n))
+        .collect::<Result<Vec<_>, String>>()?;
+    if choices.len() == 3
+        && (choices[0] == choices[1] || choices[0] == choices[2] || choices[1] == choices[2])
+    {
+        return Err(format!(
+            "three backends must differ (a self-check compares one backend twice: A,A), got {s:?}"
+        ));
+    }
+    Ok(Backends(choices))
 }
 
 fn parse_seconds(s: &str) -> Result<f64, String> {
@@ -109,11 +127,19 @@ fn command_line() -> String {
 
 /// Runs `hyq compare`.
 pub fn execute(args: CompareArgs) -> Result<(), Failure> {
-    let BackendPair(a, b) = args.backends;
-    if let Some(missing) = [a, b].into_iter().find(|c| !c.built()) {
+    let choices = args.backends.0.clone();
+    let model = args.robot.model()?;
+    if let Some(missing) = choices.iter().copied().find(|c| !c.built()) {
+        let names: Vec<&str> = choices.iter().map(|c| c.name()).collect();
         return Err(not_built(
             missing,
-            &format!("--backends {},{}", a.name(), b.name()),
+            &format!("--backends {}", names.join(",")),
+        ));
+    }
+    if choices.len() > 2 && !args.set_b.is_empty() {
+        return Err(usage(
+            "--set-b: overrides the second backend of a two-backend comparison; with three \
+             backends use --set (every side)",
         ));
     }
     let ledger = match &args.ledger {
@@ -137,6 +163,10 @@ pub fn execute(args: CompareArgs) -> Result<(), Failure> {
     };
     prepare_output_dir(&args.out).map_err(|e| usage(format!("--out: {e}")))?;
 
+    if choices.len() > 2 {
+        return execute_many(&args, &choices, model, &spec, &ledger);
+    }
+    let (a, b) = (choices[0], choices[1]);
     let (name_a, name_b) = (a.name(), b.name());
     // The second side of a self-comparison is labelled apart, so the report's columns and the
     // plot's legend can be told apart.
@@ -148,16 +178,8 @@ pub fn execute(args: CompareArgs) -> Result<(), Failure> {
     let labels = [name_a, label_b.as_str()];
     let report: Report = with_backend!(a, A => {
         with_backend!(b, B => {
-            hyq_compare::compare::<A, B>(robot(), &spec, labels, &ledger).map_err(|e| {
-                // Overrides and the configuration they make are checked only when the
-                // comparison builds it: those are bad input too.
-                use hyq_compare::CompareError as E;
-                let status = match e {
-                    E::Override { .. } | E::Config(_) | E::StateDependentActions { .. } => 2,
-                    _ => 1,
-                };
-                Failure { status, message: e.to_string() }
-            })
+            hyq_compare::compare::<A, B>(model.clone(), &spec, labels, &ledger)
+                .map_err(compare_failure)
         })
     })?;
     report
@@ -169,15 +191,97 @@ pub fn execute(args: CompareArgs) -> Result<(), Failure> {
     print_summary(&report, &args);
     if args.strict && report.flagged > 0 {
         let names: Vec<&str> = report.flags().map(|c| c.metric.name()).collect();
-        return Err(Failure {
+        return Err(strict_failure(report.flagged, &names, &args));
+    }
+    Ok(())
+}
+
+/// A comparison's error as a failure: overrides and the configuration they make are checked
+/// only when the comparison builds it, and are bad input too (status 2); the rest status 1.
+fn compare_failure(e: hyq_compare::CompareError) -> Failure {
+    use hyq_compare::CompareError as E;
+    let status = match e {
+        E::Override { .. }
+        | E::Config(_)
+        | E::StateDependentActions { .. }
+        | E::Scenario { .. } => 2,
+        _ => 1,
+    };
+    Failure {
+        status,
+        message: e.to_string(),
+    }
+}
+
+fn strict_failure(flagged: usize, names: &[&str], args: &CompareArgs) -> Failure {
+    Failure {
+        status: 1,
+        message: format!(
+            "--strict: {flagged} metric(s) outside the ledger ({}); see {}",
+            names.join(", "),
+            args.out.join(MARKDOWN_FILE).display()
+        ),
+    }
+}
+
+/// `hyq compare` with three backends: each runs the plan once, every pair is compared.
+fn execute_many(
+    args: &CompareArgs,
+    choices: &[BackendChoice],
+    model: std::sync::Arc<hyq_physics::RobotModel>,
+    spec: &ComparisonSpec,
+    ledger: &Ledger,
+) -> Result<(), Failure> {
+    let plan = Plan::new(model, spec).map_err(compare_failure)?;
+    let mut sides = Vec::with_capacity(choices.len());
+    for &choice in choices {
+        let side = with_backend!(choice, B => {
+            plan.run_side::<B>(choice.name(), &[]).map_err(compare_failure)
+        })?;
+        sides.push(side);
+    }
+    let report = compare_all(&plan, &mut sides, ledger).map_err(compare_failure)?;
+    report
+        .write(&args.out, &command_line())
+        .map_err(|e| Failure {
             status: 1,
-            message: format!(
-                "--strict: {} metric(s) outside the ledger ({}); see {}",
-                report.flagged,
-                names.join(", "),
-                args.out.join(MARKDOWN_FILE).display()
-            ),
-        });
+            message: e.to_string(),
+        })?;
+    let mut out = std::io::stdout().lock();
+    let end = |s: &hyq_compare::SideReport| {
+        let r: Vec<&str> = s.end_reasons.iter().map(|r| r.as_str()).collect();
+        format!("{} {} at step {}", s.label, r.join("+"), s.end_step)
+    };
+    let ends: Vec<String> = report.sides.iter().map(end).collect();
+    let _ = writeln!(
+        out,
+        "scenario {} on {} (seed {}, {} s): {}",
+        report.scenario,
+        report.robot,
+        report.seed,
+        report.seconds,
+        ends.join(", ")
+    );
+    for p in &report.pairs {
+        let _ = writeln!(
+            out,
+            "{} vs {}: trunk position divergence rms {:.4} m, max {:.4} m; return diff {:.3}; {} metric(s) outside the ledger",
+            p.labels[0],
+            p.labels[1],
+            p.trunk_position.rms,
+            p.trunk_position.max,
+            p.return_diff,
+            p.flagged
+        );
+    }
+    let _ = writeln!(out, "reports written to {}", args.out.display());
+    if args.strict && report.flagged > 0 {
+        let names: Vec<&str> = report
+            .pairs
+            .iter()
+            .flat_map(|p| p.flagged_metrics.iter().map(String::as_str))
+            .collect();
+        return Err(strict_failure(report.flagged, &names, args));
     }
     Ok(())
 }

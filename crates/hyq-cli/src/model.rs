@@ -29,7 +29,7 @@ use hyq_physics::{Shape, mjcf, urdf_export};
 use serde::Serialize;
 
 use crate::Failure;
-use crate::options::{ConfigArgs, robot, usage};
+use crate::options::{ConfigArgs, RobotArgs, usage};
 
 /// The file format.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -77,6 +77,9 @@ pub struct ModelArgs {
     /// The file to write [default: stdout].
     #[arg(long, value_name = "FILE")]
     out: Option<PathBuf>,
+    /// The robot.
+    #[command(flatten)]
+    robot: RobotArgs,
     /// The configuration (time step, gravity, friction, contact distance, gains, sub-steps,
     /// t_max, ε_joint are read from it).
     #[command(flatten)]
@@ -374,8 +377,8 @@ fn render(args: &ModelArgs, model: &RobotModel, config: &EnvConfig) -> Result<St
 
 /// Runs `hyq model`.
 pub fn execute(args: ModelArgs) -> Result<(), Failure> {
+    let model = args.robot.model()?;
     let config = args.configuration.config()?;
-    let model = robot();
     let text = render(&args, &model, &config)?;
     match &args.out {
         None => print!("{text}"),

@@ -1,4 +1,4 @@
-//! The options subcommands share: the physics backend, a configuration file and `--set`
+//! The options subcommands share: the physics backend, the robot, a configuration file and `--set`
 //! overrides of single configuration values ([`EnvArgs`], with the configuration part alone in
 //! [`ConfigArgs`] for commands that build no environment), the policy and seed of the commands
 //! that run an episode ([`PolicyArgs`]); and building the environment and the policy from them.
@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use clap::Args;
-use hyq_env::{Env, EnvConfig, Policy, RandomPolicy, Stand, Trot, TrotParams};
+use hyq_env::{Env, EnvConfig, Policy, RandomPolicy, Stand, Trot};
 use hyq_physics::{Backend, RobotModel};
 
 use crate::Failure;
@@ -20,9 +20,40 @@ pub struct EnvArgs {
     /// The physics backend.
     #[arg(long, value_enum, default_value_t = BackendChoice::Rapier)]
     pub backend: BackendChoice,
+    /// The robot.
+    #[command(flatten)]
+    pub robot: RobotArgs,
     /// The configuration file and overrides.
     #[command(flatten)]
     pub configuration: ConfigArgs,
+}
+
+/// The robot option (shared by every command that builds an environment, and `hyq model`).
+#[derive(Debug, Clone, Args)]
+pub struct RobotArgs {
+    /// The robot: a bundled robot's name (hyq, anymal_c) or the path to a robot profile (a
+    /// .toml file next to its URDF; see docs/adding-a-robot.md).
+    #[arg(long = "robot", value_name = "NAME|PROFILE.toml", default_value = hyq_physics::bundled::DEFAULT)]
+    pub choice: String,
+}
+
+impl RobotArgs {
+    /// The chosen robot's model: a bundled one is shared, a profile is loaded. A choice that is
+    /// neither, or a profile that cannot be used, is a usage error naming it.
+    pub fn model(&self) -> Result<Arc<RobotModel>, Failure> {
+        hyq_physics::resolve_robot(&self.choice).map_err(|e| {
+            usage(format!(
+                "--robot {}: {}",
+                self.choice,
+                one_line(&e.to_string())
+            ))
+        })
+    }
+}
+
+/// `text` on one line: line breaks (from a parser's multi-line message) become spaces.
+fn one_line(text: &str) -> String {
+    text.split_whitespace().collect::<Vec<_>>().join(" ")
 }
 
 /// The configuration options alone: a file and `--set` overrides (`hyq plot` reads k_exp and
@@ -52,6 +83,11 @@ impl EnvArgs {
     /// The configuration: the defaults, then the file, then the overrides, validated.
     pub fn config(&self) -> Result<EnvConfig, Failure> {
         self.configuration.config()
+    }
+
+    /// The chosen robot's model (see [`RobotArgs::model`]).
+    pub fn model(&self) -> Result<Arc<RobotModel>, Failure> {
+        self.robot.model()
     }
 }
 
@@ -86,11 +122,6 @@ impl ConfigArgs {
     }
 }
 
-/// The bundled HyQ robot.
-pub fn robot() -> Arc<RobotModel> {
-    hyq_physics::bundled::hyq()
-}
-
 /// An environment on backend `B` with `config`.
 pub fn make_env<B: Backend>(model: Arc<RobotModel>, config: EnvConfig) -> Result<Env<B>, Failure> {
     Env::new(model, config)
@@ -115,7 +146,7 @@ impl PolicyArgs {
             PolicyChoice::Stand => Box::new(Stand),
             PolicyChoice::Random => Box::new(RandomPolicy::new(self.seed)),
             PolicyChoice::Trot => Box::new(
-                Trot::new(env.model(), TrotParams::default())
+                Trot::from_profile(env.model())
                     .map_err(|e| usage(format!("--policy trot: {e}")))?,
             ),
         })

@@ -25,7 +25,7 @@ use hyq_render::{
 
 use crate::Failure;
 use crate::backend::with_backend;
-use crate::options::{EnvArgs, PolicyArgs, make_env, robot, usage};
+use crate::options::{EnvArgs, PolicyArgs, make_env, usage};
 use crate::output::{OutputFile, StagedDir, print_line, progress_bar};
 
 /// `hyq render` arguments.
@@ -186,9 +186,10 @@ fn open_output(args: &RenderArgs, plan: &Plan) -> Result<Output, Failure> {
 
 /// Runs `hyq render`.
 pub fn execute(args: RenderArgs) -> Result<(), Failure> {
+    let model = args.env.model()?;
     let config = args.env.config()?;
     with_backend!(args.env.backend, B => {
-        let env = make_env::<B>(robot(), config)?;
+        let env = make_env::<B>(model, config)?;
         render_episode(env, &args)
     })
 }

@@ -18,7 +18,7 @@ use serde::Serialize;
 
 use crate::Failure;
 use crate::backend::with_backend;
-use crate::options::{EnvArgs, PolicyArgs, make_env, robot, usage};
+use crate::options::{EnvArgs, PolicyArgs, make_env, usage};
 use crate::output::{OutputFile, print, print_json_line, print_line, progress_bar};
 use crate::plot::LivePlots;
 use crate::table::Table;
@@ -61,6 +61,8 @@ pub struct RunArgs {
 pub struct EpisodeSummary {
     /// The backend's name.
     pub backend: &'static str,
+    /// The robot's name.
+    pub robot: String,
     /// The policy's name.
     pub policy: &'static str,
     /// The episode number (1 for the first).
@@ -98,9 +100,10 @@ pub struct EpisodeSummary {
 
 /// Runs `hyq run`.
 pub fn execute(args: RunArgs) -> Result<(), Failure> {
+    let model = args.env.model()?;
     let config = args.env.config()?;
     with_backend!(args.env.backend, B => {
-        let env = make_env::<B>(robot(), config)?;
+        let env = make_env::<B>(model, config)?;
         run_episodes(env, &args)
     })
 }
@@ -129,6 +132,7 @@ fn run_episodes<B: Backend>(mut env: Env<B>, args: &RunArgs) -> Result<(), Failu
     let bar = progress_bar(args.episodes.saturating_mul(t_max));
     let mut action = vec![0.0; env.action_space().len()];
     let mut summaries = Vec::new();
+    let robot = env.model().name().to_owned();
     for episode in 0..args.episodes {
         let seed = (episode == 0).then_some(args.policy.seed);
         let reset = env
@@ -140,6 +144,7 @@ fn run_episodes<B: Backend>(mut env: Env<B>, args: &RunArgs) -> Result<(), Failu
         let info = reset.info;
         let mut summary = EpisodeSummary {
             backend: B::NAME,
+            robot: robot.clone(),
             policy: policy.name(),
             episode: info.episode,
             steps: 0,
@@ -218,6 +223,13 @@ fn run_episodes<B: Backend>(mut env: Env<B>, args: &RunArgs) -> Result<(), Failu
     };
     bar.finish_and_clear();
     if !args.json {
+        print_line(&format!(
+            "hyq run: {} on {}, policy {}, seed {}",
+            env.model().name(),
+            B::NAME,
+            policy.name(),
+            args.policy.seed
+        ))?;
         print(&summary_table(&summaries))?;
         if let Some(dir) = &args.plot {
             print_line(&format!("wrote {plots_written} plots to {}", dir.display()))?;

@@ -23,7 +23,7 @@ use serde::Serialize;
 use crate::Failure;
 use crate::backend::with_backend;
 use crate::bench::Ended;
-use crate::options::{EnvArgs, make_env, robot};
+use crate::options::{EnvArgs, make_env};
 use crate::output::{print, print_json_line, progress_bar};
 use crate::table::Table;
 
@@ -69,6 +69,8 @@ pub struct RowRange {
 pub struct SoakReport {
     /// The backend's name.
     pub backend: &'static str,
+    /// The robot's name.
+    pub robot: String,
     /// The seed.
     pub seed: u64,
     /// Env steps taken.
@@ -85,9 +87,10 @@ pub struct SoakReport {
 
 /// Runs `hyq soak`.
 pub fn execute(args: SoakArgs) -> Result<(), Failure> {
+    let model = args.env.model()?;
     let config = args.env.config()?;
     with_backend!(args.env.backend, B => {
-        let mut env = make_env::<B>(robot(), config)?;
+        let mut env = make_env::<B>(model, config)?;
         let report = soak(&mut env, args.steps, args.seed, true)?;
         print_report(&report, args.json)
     })
@@ -233,6 +236,7 @@ pub fn soak<B: Backend>(
     bar.finish_and_clear();
     Ok(SoakReport {
         backend: B::NAME,
+        robot: env.model().name().to_owned(),
         seed,
         steps,
         episodes,
@@ -250,8 +254,8 @@ fn print_report(r: &SoakReport, json: bool) -> Result<(), Failure> {
     let e = &r.episodes_ended;
     let _ = writeln!(
         t,
-        "hyq soak: {} backend, seed {}: {} env steps, {} episodes, no panic, no non-finite value",
-        r.backend, r.seed, r.steps, r.episodes
+        "hyq soak: {} on the {} backend, seed {}: {} env steps, {} episodes, no panic, no non-finite value",
+        r.robot, r.backend, r.seed, r.steps, r.episodes
     );
     let _ = writeln!(
         t,

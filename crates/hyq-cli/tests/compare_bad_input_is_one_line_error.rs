@@ -76,7 +76,27 @@ fn unknown_scenario_and_backend_are_named() {
         "--out",
         OUT,
     ]);
-    assert!(e.contains("two backends"), "{e}");
+    assert!(e.contains("two or three backends"), "{e}");
+    let e = usage_error(&[
+        "compare",
+        "--backends",
+        "rapier,rapier,rapier",
+        "--scenario",
+        "stand",
+        "--out",
+        OUT,
+    ]);
+    assert!(e.contains("three backends must differ"), "{e}");
+    let e = usage_error(&[
+        "compare",
+        "--backends",
+        "rapier,dart,mujoco,rapier",
+        "--scenario",
+        "stand",
+        "--out",
+        OUT,
+    ]);
+    assert!(e.contains("two or three backends"), "{e}");
 }
 
 #[test]

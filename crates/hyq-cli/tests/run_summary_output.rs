@@ -1,4 +1,5 @@
-//! Invariant: `hyq run` prints one summary per episode: as a table by default (header, rule, one
+//! Invariant: `hyq run` prints one summary per episode: as a table by default (a title naming
+//! the robot, backend, policy and seed, then header, rule, one
 //! row per episode naming the steps, return, each reward term's sum, the reasons and the
 //! distance to the goal), or with `--json` one JSON object per line whose numbers agree with
 //! the episode (the return is the sum of the terms composed per step; a timeout at t_max).
@@ -15,7 +16,9 @@ use serde_json::Value;
 fn the_default_run_is_one_ten_second_trot_episode_in_a_table() {
     let out = hyq_ok(&["run"]);
     let lines: Vec<&str> = out.lines().collect();
-    assert_eq!(lines.len(), 3, "header, rule, one episode:\n{out}");
+    assert_eq!(lines.len(), 4, "title, header, rule, one episode:\n{out}");
+    assert_eq!(lines[0], "hyq run: hyq on rapier, policy trot, seed 0");
+    let lines = &lines[1..];
     for column in [
         "episode",
         "steps",
@@ -156,7 +159,7 @@ fn large_sums_are_printed_in_short_scientific_form_small_ones_with_three_decimal
         "--set",
         "task.norm_rew_scaling=1e12",
     ]);
-    let row: Vec<&str> = out.lines().nth(2).unwrap().split_whitespace().collect();
+    let row: Vec<&str> = out.lines().nth(3).unwrap().split_whitespace().collect();
     // return, r_b, r_n: large, in the form 1.234e11; r_e: small, with three decimals.
     for cell in &row[3..6] {
         let (mantissa, exponent) = cell.split_once('e').unwrap_or_else(|| panic!("{out}"));

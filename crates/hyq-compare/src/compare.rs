@@ -116,6 +116,234 @@ fn fingerprint(script: &[f64]) -> String {
     format!("{h:016x}")
 }
 
+/// A comparison made ready to run: the scenario's configuration and the action script every
+/// side receives, for one robot.
+pub struct Plan {
+    model: Arc<RobotModel>,
+    spec: ComparisonSpec,
+    seconds: f64,
+    steps: u64,
+    base: EnvConfig,
+    script: Vec<f64>,
+    start: Option<hyq_physics::RobotState>,
+}
+
+impl Plan {
+    /// Checks `spec` for `model` and builds the scenario's configuration and action script.
+    pub fn new(model: Arc<RobotModel>, spec: &ComparisonSpec) -> Result<Self, CompareError> {
+        let seconds = spec.seconds();
+        check_seconds(seconds)?;
+        if !(1..=1000).contains(&spec.one_step_states) {
+            return Err(CompareError::OneStepStates {
+                value: spec.one_step_states,
+            });
+        }
+        let scenario = spec.scenario;
+        let base = scenario.config(&model, seconds)?;
+        let config_a = side_config(spec, &base, &[])?;
+        let config_b = side_config(spec, &base, &spec.overrides_b)?;
+        let steps = base.task.max_time_steps;
+        // The episode length is the script's: an override of t_max would leave a side without
+        // actions (longer) or cut the comparison short on one side only (shorter).
+        for config in [&config_a, &config_b] {
+            if config.task.max_time_steps != steps {
+                return Err(CompareError::Override {
+                    item: format!("task.max_time_steps={}", config.task.max_time_steps),
+                    reason:
+                        "the episode length comes from the run length (seconds), not an override"
+                            .into(),
+                });
+            }
+        }
+        // The script is built from the first side's action space; the second side must read
+        // actions the same way or "the same actions" would mean different targets.
+        if config_a.action != config_b.action {
+            return Err(CompareError::Override {
+                item: "action.*".into(),
+                reason: "the two sides must share the action configuration".into(),
+            });
+        }
+        let script = scenario.actions(&model, &config_a, spec.seed, steps)?;
+        let start = scenario.initial_state(&model);
+        Ok(Self {
+            model,
+            spec: spec.clone(),
+            seconds,
+            steps,
+            base,
+            script,
+            start,
+        })
+    }
+
+    /// The robot.
+    pub fn model(&self) -> &Arc<RobotModel> {
+        &self.model
+    }
+
+    /// What is compared.
+    pub fn spec(&self) -> &ComparisonSpec {
+        &self.spec
+    }
+
+    /// Runs one side on backend `B`, labelled `label`, with the side's own overrides `own`
+    /// (after the shared ones): the script's episode and the standing height. The side keeps
+    /// its environment for the one-step comparison ([`Plan::pair`]).
+    pub fn run_side<B: Backend>(
+        &self,
+        label: &str,
+        own: &[(String, String)],
+    ) -> Result<Side, CompareError> {
+        let config = side_config(&self.spec, &self.base, own)?;
+        let mut env = build_env::<B>(label, self.model.clone(), config)?;
+        let traj = run_script(
+            label,
+            &mut env,
+            self.spec.seed,
+            self.start.as_ref(),
+            &self.script,
+        )?;
+        // Standing height under the side's physics (the default task and control, with the
+        // side's overrides).
+        let stand = side_config(&self.spec, &EnvConfig::default(), own)?;
+        let height = standing_height::<B>(label, self.model.clone(), stand)?;
+        Ok(Side {
+            traj,
+            height,
+            own: own.to_vec(),
+            env: Box::new(env),
+        })
+    }
+
+    /// Compares two sides that ran this plan: the trajectories, the one-step comparison (the
+    /// shared states sampled from `a`'s run) and every metric against `ledger`.
+    pub fn pair(
+        &self,
+        a: &mut Side,
+        b: &mut Side,
+        ledger: &Ledger,
+    ) -> Result<Report, CompareError> {
+        let spec = &self.spec;
+        let scenario = spec.scenario;
+        let (traj_a, traj_b) = (&a.traj, &b.traj);
+        let picked = sample_indices(traj_a, spec.one_step_states);
+        let shared: Vec<(u64, &hyq_physics::RobotState, &[f64])> = picked
+            .iter()
+            .map(|&t| (t as u64, &traj_a.states[t], traj_a.targets_after(t)))
+            .collect();
+        let after_a = a.env.one_step(&traj_a.label, &shared)?;
+        let after_b = b.env.one_step(&traj_b.label, &shared)?;
+        let errors: Vec<OneStepErrors> = after_a
+            .iter()
+            .zip(&after_b)
+            .map(|(x, y)| one_step_errors(x, y))
+            .collect();
+        let one_step_summary = summarise_one_step(&errors);
+
+        let trajectory = compare_trajectories(traj_a, traj_b);
+        let sides = [
+            side_report(traj_a, a.height, &spec.overrides, &a.own),
+            side_report(traj_b, b.height, &spec.overrides, &b.own),
+        ];
+        let values = metric_values(
+            traj_a,
+            traj_b,
+            &trajectory,
+            &one_step_summary,
+            [a.height, b.height],
+        );
+        let env_dt = self.base.env_dt();
+        let series = Series::from_runs(traj_a, traj_b).with_divergences(&trajectory, env_dt);
+        let engines = [traj_a.engine, traj_b.engine];
+        let robot = self.model.name();
+        let checks: Vec<Check> = values
+            .iter()
+            .map(|(metric, value)| {
+                let (tolerance, source) = ledger.tolerance(robot, engines, scenario, *metric);
+                Check {
+                    metric: *metric,
+                    value: *value,
+                    tolerance,
+                    // A NaN never passes.
+                    within: *value <= tolerance,
+                    source,
+                }
+            })
+            .collect();
+        Ok(Report {
+            robot: robot.to_owned(),
+            scenario,
+            description: scenario.description(&self.model),
+            seed: spec.seed,
+            seconds: self.seconds,
+            env_dt_s: env_dt,
+            script_steps: self.steps,
+            script_fingerprint: fingerprint(&self.script),
+            overrides: written(&spec.overrides).collect(),
+            overrides_b: written(&b.own).collect(),
+            engines: [engines[0].to_owned(), engines[1].to_owned()],
+            ledger: ledger.origin.clone(),
+            sides,
+            trajectory,
+            one_step: OneStepReport {
+                states: errors.len(),
+                states_in_contact: errors.iter().filter(|e| e.in_contact).count(),
+                sub_steps: 1,
+                summary: one_step_summary,
+                per_state: errors,
+            },
+            flagged: checks.iter().filter(|c| !c.within).count(),
+            checks,
+            series,
+        })
+    }
+}
+
+/// One side of a comparison after its run: the trajectory, the standing height, and the
+/// environment kept for the one-step comparison.
+pub struct Side {
+    traj: Trajectory,
+    height: f64,
+    own: Vec<(String, String)>,
+    env: Box<dyn OneStepper>,
+}
+
+impl Side {
+    /// What the side did.
+    pub fn trajectory(&self) -> &Trajectory {
+        &self.traj
+    }
+
+    /// Its standing height (m).
+    pub fn standing_height(&self) -> f64 {
+        self.height
+    }
+
+    /// The side's summary for a report (its own overrides after `shared`).
+    pub fn report(&self, shared: &[(String, String)]) -> SideReport {
+        side_report(&self.traj, self.height, shared, &self.own)
+    }
+}
+
+/// An environment on some backend that takes one sub-step from shared states.
+trait OneStepper {
+    fn one_step(
+        &mut self,
+        label: &str,
+        shared: &[(u64, &hyq_physics::RobotState, &[f64])],
+    ) -> Result<Vec<crate::run::OneStepResult>, CompareError>;
+}
+
+impl<B: Backend> OneStepper for hyq_env::Env<B> {
+    fn one_step(
+        &mut self,
+        label: &str,
+        shared: &[(u64, &hyq_physics::RobotState, &[f64])],
+    ) -> Result<Vec<crate::run::OneStepResult>, CompareError> {
+        one_step(label, self, shared)
+    }
+}
+
 /// Runs the comparison of backend `A` (labelled `labels[0]`) against backend `B`
 /// (`labels[1]`), both on `model`, and checks every metric against `ledger`.
 ///
@@ -127,120 +355,10 @@ pub fn compare<A: Backend, B: Backend>(
     labels: [&str; 2],
     ledger: &Ledger,
 ) -> Result<Report, CompareError> {
-    let seconds = spec.seconds();
-    check_seconds(seconds)?;
-    if !(1..=1000).contains(&spec.one_step_states) {
-        return Err(CompareError::OneStepStates {
-            value: spec.one_step_states,
-        });
-    }
-    let scenario = spec.scenario;
-    let base = scenario.config(seconds)?;
-    let config_a = side_config(spec, &base, &[])?;
-    let config_b = side_config(spec, &base, &spec.overrides_b)?;
-    let steps = base.task.max_time_steps;
-    // The episode length is the script's: an override of t_max would leave a side without
-    // actions (longer) or cut the comparison short on one side only (shorter).
-    for config in [&config_a, &config_b] {
-        if config.task.max_time_steps != steps {
-            return Err(CompareError::Override {
-                item: format!("task.max_time_steps={}", config.task.max_time_steps),
-                reason: "the episode length comes from the run length (seconds), not an override"
-                    .into(),
-            });
-        }
-    }
-    // The script is built from the first side's action space; the second side must read
-    // actions the same way or "the same actions" would mean different targets.
-    if config_a.action != config_b.action {
-        return Err(CompareError::Override {
-            item: "action.*".into(),
-            reason: "the two sides must share the action configuration".into(),
-        });
-    }
-    let script = scenario.actions(&model, &config_a, spec.seed, steps)?;
-
-    let mut env_a = build_env::<A>(labels[0], model.clone(), config_a.clone())?;
-    let mut env_b = build_env::<B>(labels[1], model.clone(), config_b.clone())?;
-    let start = scenario.initial_state(&model);
-    let traj_a = run_script(labels[0], &mut env_a, spec.seed, start.as_ref(), &script)?;
-    let traj_b = run_script(labels[1], &mut env_b, spec.seed, start.as_ref(), &script)?;
-
-    // Standing height under each side's physics (the default task and control, with the
-    // side's overrides).
-    let stand_a = side_config(spec, &EnvConfig::default(), &[])?;
-    let stand_b = side_config(spec, &EnvConfig::default(), &spec.overrides_b)?;
-    let height_a = standing_height::<A>(labels[0], model.clone(), stand_a)?;
-    let height_b = standing_height::<B>(labels[1], model.clone(), stand_b)?;
-
-    let picked = sample_indices(&traj_a, spec.one_step_states);
-    let shared: Vec<(u64, &hyq_physics::RobotState, &[f64])> = picked
-        .iter()
-        .map(|&t| (t as u64, &traj_a.states[t], traj_a.targets_after(t)))
-        .collect();
-    let after_a = one_step(labels[0], &mut env_a, &shared)?;
-    let after_b = one_step(labels[1], &mut env_b, &shared)?;
-    let errors: Vec<OneStepErrors> = after_a
-        .iter()
-        .zip(&after_b)
-        .map(|(a, b)| one_step_errors(a, b))
-        .collect();
-    let one_step_summary = summarise_one_step(&errors);
-
-    let trajectory = compare_trajectories(&traj_a, &traj_b);
-    let sides = [
-        side_report(&traj_a, height_a, &spec.overrides, &[]),
-        side_report(&traj_b, height_b, &spec.overrides, &spec.overrides_b),
-    ];
-    let values = metric_values(
-        &traj_a,
-        &traj_b,
-        &trajectory,
-        &one_step_summary,
-        [height_a, height_b],
-    );
-    let series =
-        Series::from_runs(&traj_a, &traj_b).with_divergences(&trajectory, config_a.env_dt());
-    let engines = [A::NAME, B::NAME];
-    let checks: Vec<Check> = values
-        .iter()
-        .map(|(metric, value)| {
-            let (tolerance, source) = ledger.tolerance(engines, scenario, *metric);
-            Check {
-                metric: *metric,
-                value: *value,
-                tolerance,
-                // A NaN never passes.
-                within: *value <= tolerance,
-                source,
-            }
-        })
-        .collect();
-    Ok(Report {
-        scenario,
-        description: scenario.description(),
-        seed: spec.seed,
-        seconds,
-        env_dt_s: config_a.env_dt(),
-        script_steps: steps,
-        script_fingerprint: fingerprint(&script),
-        overrides: written(&spec.overrides).collect(),
-        overrides_b: written(&spec.overrides_b).collect(),
-        engines: [A::NAME.to_owned(), B::NAME.to_owned()],
-        ledger: ledger.origin.clone(),
-        sides,
-        trajectory,
-        one_step: OneStepReport {
-            states: errors.len(),
-            states_in_contact: errors.iter().filter(|e| e.in_contact).count(),
-            sub_steps: 1,
-            summary: one_step_summary,
-            per_state: errors,
-        },
-        flagged: checks.iter().filter(|c| !c.within).count(),
-        checks,
-        series,
-    })
+    let plan = Plan::new(model, spec)?;
+    let mut a = plan.run_side::<A>(labels[0], &[])?;
+    let mut b = plan.run_side::<B>(labels[1], &spec.overrides_b)?;
+    plan.pair(&mut a, &mut b, ledger)
 }
 
 /// The one-step comparison's part of the report.

@@ -1,9 +1,11 @@
 //! The ledger of known divergences: the tolerance of every checked metric, and the known
 //! divergences between two engines that widen it, each with its reason.
 //!
-//! A metric's tolerance for a comparison of engines {E1, E2} in scenario S is, in this order:
-//! the `[[known]]` entry for {E1, E2} (either order), S and that metric; else the entry for
-//! {E1, E2}, scenario `"all"` and that metric; else `[default]`'s value. `[default]` says how
+//! Known divergences are measured on one robot and hold for it alone: every entry names its
+//! robot (the profile's `name`). A metric's tolerance for a comparison of engines {E1, E2} on
+//! robot R in scenario S is, in this order: the `[[known]]` entry for R, {E1, E2} (either
+//! order), S and that metric; else the entry for R, {E1, E2}, scenario `"all"` and that
+//! metric; else `[default]`'s value. `[default]` says how
 //! closely two backends simulating the same model must agree when nothing is known: two runs of
 //! the same engine with the same inputs agree exactly, so it is the strict claim a new engine
 //! pair has to earn entries against. A metric passes when its value ≤ its tolerance (a NaN never
@@ -15,6 +17,7 @@
 //! # ...
 //!
 //! [[known]]
+//! robot = "hyq"
 //! backends = ["rapier", "dart"]
 //! scenario = "trot"                    # a scenario name, or "all"
 //! metric = "trunk_position_max_m"
@@ -32,7 +35,7 @@ use serde::{Deserialize, Serialize};
 use crate::error::CompareError;
 use crate::scenario::Scenario;
 
-/// The ledger shipped with the crate (`crates/hyq-compare/ledger.toml`), for rapier vs DART.
+/// The ledger shipped with the crate (`crates/hyq-compare/ledger.toml`).
 pub const BUILT_IN: &str = include_str!("../ledger.toml");
 
 /// A checked metric. Every value is a non-negative number where smaller means closer
@@ -156,6 +159,8 @@ pub enum ScenarioScope {
 /// A known divergence between two engines: a metric's widened tolerance and why.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Known {
+    /// The robot it was measured on (its profile's `name`).
+    pub robot: String,
     /// The two engines (`Backend::NAME`), in either order.
     pub backends: [String; 2],
     /// The scenarios it covers.
@@ -169,9 +174,10 @@ pub struct Known {
 }
 
 impl Known {
-    fn covers(&self, engines: [&str; 2], scenario: Scenario) -> bool {
-        let pair = (self.backends[0] == engines[0] && self.backends[1] == engines[1])
-            || (self.backends[0] == engines[1] && self.backends[1] == engines[0]);
+    fn covers(&self, robot: &str, engines: [&str; 2], scenario: Scenario) -> bool {
+        let pair = self.robot == robot
+            && ((self.backends[0] == engines[0] && self.backends[1] == engines[1])
+                || (self.backends[0] == engines[1] && self.backends[1] == engines[0]));
         pair && match self.scenario {
             ScenarioScope::All => true,
             ScenarioScope::One(s) => s == scenario,
@@ -216,6 +222,7 @@ struct RawLedger {
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct RawKnown {
+    robot: String,
     backends: [String; 2],
     scenario: String,
     metric: String,
@@ -270,8 +277,9 @@ impl Ledger {
         let mut known: Vec<Known> = Vec::with_capacity(raw.known.len());
         for (i, k) in raw.known.into_iter().enumerate() {
             let at = format!(
-                "[[known]] entry {} ({} {} {})",
+                "[[known]] entry {} ({} {} {} {})",
                 i + 1,
+                k.robot,
                 k.backends.join(","),
                 k.scenario,
                 k.metric
@@ -286,10 +294,14 @@ impl Ledger {
             if k.reason.trim().is_empty() {
                 return Err(bad(format!("{at}: the reason is empty")));
             }
+            if k.robot.trim().is_empty() {
+                return Err(bad(format!("{at}: the robot name is empty")));
+            }
             if k.backends.iter().any(|b| b.trim().is_empty()) {
                 return Err(bad(format!("{at}: a backend name is empty")));
             }
             let entry = Known {
+                robot: k.robot,
                 backends: k.backends,
                 scenario,
                 metric,
@@ -303,6 +315,7 @@ impl Ledger {
             };
             if known.iter().any(|o| {
                 o.metric == entry.metric
+                    && o.robot == entry.robot
                     && o.scenario == entry.scenario
                     && pair(&o.backends) == pair(&entry.backends)
             }) {
@@ -317,17 +330,19 @@ impl Ledger {
         })
     }
 
-    /// The tolerance of `metric` for engines `engines` in `scenario`, and where it came from.
+    /// The tolerance of `metric` for engines `engines` on `robot` in `scenario`, and where it
+    /// came from.
     pub fn tolerance(
         &self,
+        robot: &str,
         engines: [&str; 2],
         scenario: Scenario,
         metric: Metric,
     ) -> (f64, ToleranceSource) {
         let find = |want: ScenarioScope| {
-            self.known
-                .iter()
-                .find(|k| k.metric == metric && k.scenario == want && k.covers(engines, scenario))
+            self.known.iter().find(|k| {
+                k.metric == metric && k.scenario == want && k.covers(robot, engines, scenario)
+            })
         };
         match find(ScenarioScope::One(scenario)).or_else(|| find(ScenarioScope::All)) {
             Some(k) => (

@@ -29,22 +29,25 @@ mod compare;
 mod error;
 pub mod ledger;
 pub mod metrics;
+mod multi;
 mod plot;
 mod report;
 pub mod run;
 mod scenario;
 
 pub use compare::{
-    Check, ComparisonSpec, DEFAULT_ONE_STEP_STATES, OneStepReport, compare, parse_override,
+    Check, ComparisonSpec, DEFAULT_ONE_STEP_STATES, OneStepReport, Plan, Side, compare,
+    parse_override,
 };
 pub use error::CompareError;
 pub use ledger::{Known, Ledger, Metric, ScenarioScope, ToleranceSource};
-pub use plot::{PLOT_SIZE, plot_trunk_x_z};
+pub use multi::{MultiReport, PairSummary, compare_all};
+pub use plot::{PLOT_SIZE, plot_many, plot_trunk_x_z};
 pub use report::{
     JSON_FILE, MARKDOWN_FILE, PLOT_FILE, Report, SERIES_POINTS, Series, SideReport,
     prepare_output_dir,
 };
 pub use scenario::{
-    LIMIT_ACTION, LIMIT_JOINT, MAX_SECONDS, REACH_ACCEPTED_ERROR_M, REACH_BONUS, REACH_GOAL,
-    Scenario, check_seconds,
+    LIMIT_ACTION, MAX_SECONDS, REACH_ACCEPTED_ERROR_M, REACH_AHEAD_M, REACH_BONUS, REACH_LATERAL_M,
+    Scenario, check_seconds, reach_goal,
 };

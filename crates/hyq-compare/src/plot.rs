@@ -11,6 +11,7 @@ use plotters::prelude::*;
 use plotters::style::FontStyle;
 
 use crate::error::CompareError;
+use crate::multi::MultiReport;
 use crate::report::Report;
 
 /// The plot's size (px).
@@ -23,7 +24,17 @@ const FAMILY: &str = "hyq-compare-sans";
 /// DejaVu Sans, the subset hyq-render bundles (its `assets/fonts/`, with the licence).
 const SANS: &[u8] = hyq_render::SANS;
 
-const COLOURS: [RGBColor; 2] = [RGBColor(0x4e, 0x79, 0xa7), RGBColor(0xe1, 0x57, 0x59)];
+const COLOURS: [RGBColor; 3] = [
+    RGBColor(0x4e, 0x79, 0xa7),
+    RGBColor(0xe1, 0x57, 0x59),
+    RGBColor(0xf2, 0x8e, 0x2b),
+];
+/// The pairs' divergence lines in a plot of three or more backends.
+const PAIR_COLOURS: [RGBColor; 3] = [
+    GREEN,
+    RGBColor(0xb0, 0x7a, 0xa1),
+    RGBColor(0x76, 0xb7, 0xb2),
+];
 const GREEN: RGBColor = RGBColor(0x59, 0xa1, 0x4f);
 const INK: RGBColor = RGBColor(0x2b, 0x2f, 0x36);
 
@@ -158,6 +169,76 @@ pub fn plot_trunk_x_z(report: &Report, path: &Path) -> Result<(), CompareError> 
                     "m",
                     &[("divergence", &s.divergence_time_s, &s.trunk_position_m)],
                     &[GREEN],
+                )
+            })
+            .and_then(|()| root.present().map_err(|e| e.to_string()));
+        drawn.map_err(fail)?;
+    }
+    write_png(path, &rgb, (width, height)).map_err(|e| fail(e.to_string()))
+}
+
+/// Draws a several-backend report's plot into `path` (PNG, [`PLOT_SIZE`]): every backend's
+/// trunk x and z, and every pair's trunk position divergence.
+pub fn plot_many(report: &MultiReport, path: &Path) -> Result<(), CompareError> {
+    let fail = |message: String| CompareError::Plot {
+        path: path.to_owned(),
+        message,
+    };
+    font_registered().map_err(fail)?;
+    let (width, height) = PLOT_SIZE;
+    let mut rgb = vec![0u8; width as usize * height as usize * 3];
+    {
+        let root = BitMapBackend::with_buffer(&mut rgb, (width, height)).into_drawing_area();
+        let labels: Vec<&str> = report.sides.iter().map(|s| s.label.as_str()).collect();
+        let title = format!(
+            "{}: scenario {}, seed {}",
+            labels.join(" vs "),
+            report.scenario,
+            report.seed
+        );
+        let x: Vec<(&str, &[f64], &[f64])> = labels
+            .iter()
+            .zip(&report.traces)
+            .map(|(l, t)| (*l, t[0].as_slice(), t[1].as_slice()))
+            .collect();
+        let z: Vec<(&str, &[f64], &[f64])> = labels
+            .iter()
+            .zip(&report.traces)
+            .map(|(l, t)| (*l, t[0].as_slice(), t[2].as_slice()))
+            .collect();
+        let names: Vec<String> = report
+            .pairs
+            .iter()
+            .map(|p| format!("{} vs {}", p.labels[0], p.labels[1]))
+            .collect();
+        let d: Vec<(&str, &[f64], &[f64])> = names
+            .iter()
+            .zip(&report.reports)
+            .map(|(n, r)| {
+                (
+                    n.as_str(),
+                    r.series.divergence_time_s.as_slice(),
+                    r.series.trunk_position_m.as_slice(),
+                )
+            })
+            .collect();
+        let drawn = root
+            .fill(&WHITE)
+            .map_err(|e| e.to_string())
+            .and_then(|()| {
+                root.titled(&title, (FAMILY, 22).into_font().color(&INK))
+                    .map_err(|e| e.to_string())
+            })
+            .and_then(|body| {
+                let panels = body.split_evenly((3, 1));
+                panel(&panels[0], "trunk x", "x (m)", &x, &COLOURS)?;
+                panel(&panels[1], "trunk z", "z (m)", &z, &COLOURS)?;
+                panel(
+                    &panels[2],
+                    "trunk position divergence per pair",
+                    "m",
+                    &d,
+                    &PAIR_COLOURS,
                 )
             })
             .and_then(|()| root.present().map_err(|e| e.to_string()));

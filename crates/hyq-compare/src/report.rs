@@ -126,10 +126,12 @@ impl Series {
 /// A whole comparison.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Report {
+    /// The robot's name (its profile's `name`).
+    pub robot: String,
     /// The scenario.
     pub scenario: Scenario,
     /// What it does.
-    pub description: &'static str,
+    pub description: String,
     /// The seed.
     pub seed: u64,
     /// The run length asked for (s).
@@ -216,6 +218,7 @@ impl Report {
             "# Comparison: {} vs {}, scenario `{}`\n",
             a.label, b.label, self.scenario
         );
+        let _ = writeln!(w, "Robot: `{}`.\n", self.robot);
         let _ = writeln!(w, "Scenario: {}.\n", self.description);
         let _ = writeln!(w, "```\n{command}\n```\n");
         let _ = writeln!(
@@ -390,7 +393,7 @@ impl Report {
 }
 
 /// A number with 4 significant digits (plain notation between 1e-3 and 1e4).
-fn sig(v: f64) -> String {
+pub(crate) fn sig(v: f64) -> String {
     if v == 0.0 {
         "0".to_owned()
     } else if !v.is_finite() {

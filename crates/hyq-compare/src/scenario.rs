@@ -10,16 +10,24 @@
 //! |---|---|---|---|---|
 //! | `stand` | default | hold the standing pose ([`Stand`]) | 5 s | timeout |
 //! | `fall` | default; starts pushed: trunk rolling at 6 rad/s and moving sideways at 1.5 m/s | standing targets | 3 s | `fell` |
-//! | `limit` | default | standing, except `lf_hfe` driven to its upper limit (normalized action +1) | 3 s | `joint_limit` |
-//! | `trot` | default (goal 5 m ahead) | the scripted open-loop [`Trot`] | 10 s | timeout |
+//! | `limit` | default | standing, except the limit joint driven to its upper limit (normalized action +1) | 3 s | `joint_limit` |
+//! | `trot` | default (goal 5 m ahead) | the scripted open-loop [`Trot`], the profile's `[gait]` | 10 s | timeout |
 //! | `random` | default | uniform random actions ([`RandomPolicy`] seeded with the seed) | 5 s | usually `joint_limit` |
-//! | `reach` | goal fixed at (1, −0.2, 0.57) m, `accepted_error = 0.3` m, `reach_target_bonus_reward = 10` | the trot | 10 s | `reached` |
+//! | `reach` | goal fixed 1 m ahead, [`REACH_LATERAL_M`] to the side, at the robot's standing height; `accepted_error = 0.3` m, `reach_target_bonus_reward = 10` | the trot | 10 s | `reached` |
+//!
+//! Robot facts come from the model's profile, never from this crate: the limit joint is the
+//! hip joint of the first leg of the profile's `[gait]` table (HyQ's and ANYmal C's `lf_hfe`),
+//! the trot is the profile's, and the reach goal's height is the profile's
+//! `[spawn] standing_height` (HyQ 0.5895 m, ANYmal C 0.5341 m). A robot without a `[gait]`
+//! table can run `stand`, `fall` and `random`; `limit`, `trot` and `reach` say what is missing.
 //!
 //! `reach`: the spec's default reach cube (1 mm side, §6.1) is never hit by an open-loop gait
-//! whose trunk bobs and drifts by centimetres, so the scenario places the goal on the trot's
-//! path (1 m ahead, where it has drifted about 0.2 m to the right, at its mean trunk height) and
-//! widens the cube to 0.3 m (a user variable, spec §2); the trot enters it after about 2.7 s on
-//! either engine.
+//! whose trunk bobs and drifts by centimetres, so the scenario places the goal near the trot's
+//! path (1 m ahead, 0.1 m to the right) and widens the cube to 0.3 m (a user variable, spec
+//! §2). Where the trunk crosses x = 1 m, seed 0: HyQ's trot has drifted 0.20–0.22 m to the
+//! right on rapier, DART and MuJoCo, so it enters the cube on all three; ANYmal C's 0.04–0.05 m
+//! to the right on rapier and MuJoCo but 0.20 m to the left on DART, which then misses the cube
+//! and runs to the time limit (a divergence the comparison reports).
 
 use std::fmt;
 use std::str::FromStr;
@@ -27,7 +35,6 @@ use std::sync::Arc;
 
 use hyq_env::{
     ActionMode, ActionSpace, EnvConfig, GoalMode, Policy, PolicyInput, RandomPolicy, Stand, Trot,
-    TrotParams,
 };
 use hyq_physics::na::Vector3;
 use hyq_physics::{RobotModel, RobotState};
@@ -35,9 +42,8 @@ use serde::Serialize;
 
 use crate::error::CompareError;
 
-/// The joint the `limit` scenario drives to a limit, and which limit (+1: the upper one).
-pub const LIMIT_JOINT: &str = "lf_hfe";
-/// The normalized action of [`LIMIT_JOINT`] in the `limit` scenario: +1 is its upper limit.
+/// The normalized action of the limit joint ([`Scenario::limit_joint`]) in the `limit`
+/// scenario: +1 is its upper limit.
 pub const LIMIT_ACTION: f64 = 1.0;
 
 /// The trunk's angular velocity at the start of `fall` (rad/s, world): a sideways shove.
@@ -45,8 +51,11 @@ pub const FALL_PUSH_ANGVEL: [f64; 3] = [6.0, 0.0, 0.0];
 /// The trunk's linear velocity at the start of `fall` (m/s, world).
 pub const FALL_PUSH_LINVEL: [f64; 3] = [0.0, -1.5, 0.0];
 
-/// The goal of the `reach` scenario (m, world).
-pub const REACH_GOAL: [f64; 3] = [1.0, -0.2, 0.57];
+/// How far ahead (+x) the goal of the `reach` scenario lies (m).
+pub const REACH_AHEAD_M: f64 = 1.0;
+/// The goal's sideways offset in the `reach` scenario (m, world y): to the right, where the
+/// bundled robots' trots drift.
+pub const REACH_LATERAL_M: f64 = -0.1;
 /// The reach cube's side in the `reach` scenario (m; the spec's `accepted_error`).
 pub const REACH_ACCEPTED_ERROR_M: f64 = 0.3;
 /// The reach bonus in the `reach` scenario, so that r_reach shows in the reward sums.
@@ -92,26 +101,56 @@ impl Scenario {
         Self::NAMES[self as usize]
     }
 
-    /// One sentence saying what the scenario does.
-    pub const fn description(self) -> &'static str {
+    /// One sentence saying what the scenario does with `model` (its limit joint, its reach
+    /// goal).
+    pub fn description(self, model: &RobotModel) -> String {
         match self {
-            Scenario::Stand => "hold the standing pose (default configuration)",
-            Scenario::Fall => {
-                "a pushed robot: it starts in the standing pose with the trunk rolling at 6 rad/s \
-                 about +x and moving at 1.5 m/s towards −y, holds the standing targets, and tips \
-                 over onto its side"
-            }
+            Scenario::Stand => "hold the standing pose (default configuration)".to_owned(),
+            Scenario::Fall => "a pushed robot: it starts in the standing pose with the trunk \
+                 rolling at 6 rad/s about +x and moving at 1.5 m/s towards −y, holds the \
+                 standing targets, and tips over onto its side"
+                .to_owned(),
             Scenario::Limit => {
-                "stand, with lf_hfe driven to its upper limit (normalized action +1) until the \
-                 spec's joint-limit rule (§6.2) ends the episode"
+                let joint = self
+                    .limit_joint(model)
+                    .map_or("the limit joint", |j| model.joints()[j].name.as_str());
+                format!(
+                    "stand, with {joint} driven to its upper limit (normalized action +1) until \
+                     the spec's joint-limit rule (§6.2) ends the episode"
+                )
             }
-            Scenario::Trot => "the scripted open-loop trot along +x (hyq-env's Trot, defaults)",
-            Scenario::Random => "uniform random normalized actions, redrawn every env step",
+            Scenario::Trot => {
+                "the scripted open-loop trot along +x (hyq-env's Trot, the profile's [gait])"
+                    .to_owned()
+            }
+            Scenario::Random => "uniform random normalized actions, redrawn every env step".into(),
             Scenario::Reach => {
-                "the trot towards a goal on its path, at (1, −0.2, 0.57) m, with a 0.3 m reach \
-                 cube (accepted_error) and a reach bonus of 10"
+                let g = reach_goal(model);
+                format!(
+                    "the trot towards a goal near its path, at ({}, {}, {}) m (z: the robot's \
+                     standing height), with a 0.3 m reach cube (accepted_error) and a reach \
+                     bonus of 10",
+                    g[0], g[1], g[2]
+                )
             }
         }
+    }
+
+    /// The joint the `limit` scenario drives to its upper limit: the hip joint of the first
+    /// leg of `model`'s `[gait]` table.
+    pub fn limit_joint(self, model: &RobotModel) -> Result<usize, CompareError> {
+        model
+            .gait()
+            .and_then(|g| g.legs.first())
+            .map(|leg| leg.hip)
+            .ok_or_else(|| CompareError::Scenario {
+                scenario: self.name(),
+                reason: format!(
+                    "the robot profile of {} has no [gait] table, whose first leg's hip joint \
+                     this scenario drives",
+                    model.name()
+                ),
+            })
     }
 
     /// The scenario's default length (s of simulated time).
@@ -123,9 +162,9 @@ impl Scenario {
         }
     }
 
-    /// The scenario's configuration, `seconds` long: the defaults, the scenario's changes, and
-    /// `max_time_steps` = ⌈seconds / Δt_env⌉. Validated.
-    pub fn config(self, seconds: f64) -> Result<EnvConfig, CompareError> {
+    /// The scenario's configuration for `model`, `seconds` long: the defaults, the scenario's
+    /// changes, and `max_time_steps` = ⌈seconds / Δt_env⌉. Validated.
+    pub fn config(self, model: &RobotModel, seconds: f64) -> Result<EnvConfig, CompareError> {
         check_seconds(seconds)?;
         let mut config = EnvConfig::default();
         match self {
@@ -133,7 +172,7 @@ impl Scenario {
             Scenario::Fall => {}
             Scenario::Reach => {
                 config.goal.mode = GoalMode::Fixed;
-                config.goal.position = Some(REACH_GOAL);
+                config.goal.position = Some(reach_goal(model));
                 config.task.accepted_error = REACH_ACCEPTED_ERROR_M;
                 config.task.reach_target_bonus_reward = REACH_BONUS;
             }
@@ -180,26 +219,15 @@ impl Scenario {
         let mut policy: Box<dyn Policy> = match self {
             Scenario::Stand | Scenario::Fall | Scenario::Limit => Box::new(Stand),
             Scenario::Random => Box::new(RandomPolicy::new(seed)),
-            Scenario::Trot | Scenario::Reach => {
-                Box::new(Trot::new(model, TrotParams::default()).map_err(|e| {
-                    CompareError::Scenario {
-                        scenario: self.name(),
-                        reason: e.to_string(),
-                    }
-                })?)
-            }
+            Scenario::Trot | Scenario::Reach => Box::new(Trot::from_profile(model).map_err(
+                |e| CompareError::Scenario {
+                    scenario: self.name(),
+                    reason: e.to_string(),
+                },
+            )?),
         };
         let limit_joint = match self {
-            Scenario::Limit => {
-                Some(
-                    model
-                        .joint_index(LIMIT_JOINT)
-                        .ok_or_else(|| CompareError::Scenario {
-                            scenario: self.name(),
-                            reason: format!("the robot has no joint {LIMIT_JOINT}"),
-                        })?,
-                )
-            }
+            Scenario::Limit => Some(self.limit_joint(model)?),
             _ => None,
         };
         let standing = model.standing_pose();
@@ -243,6 +271,12 @@ impl FromStr for Scenario {
             .find(|sc| sc.name() == s)
             .ok_or_else(|| CompareError::UnknownScenario { name: s.to_owned() })
     }
+}
+
+/// The goal of the `reach` scenario for `model` (m, world): [`REACH_AHEAD_M`] ahead,
+/// [`REACH_LATERAL_M`] to the side, at the robot's standing height.
+pub fn reach_goal(model: &RobotModel) -> [f64; 3] {
+    [REACH_AHEAD_M, REACH_LATERAL_M, model.standing_height()]
 }
 
 /// Checks a run length: finite, > 0 and at most [`MAX_SECONDS`].

@@ -1,7 +1,7 @@
 //! Invariant: the ledger is checked when it is read. The shipped ledger parses, gives every
 //! metric a default, and every known divergence has a reason; a malformed ledger is an error that
-//! names the entry and the offending key or value; the most specific entry wins, and an engine
-//! pair matches in either order.
+//! names the entry and the offending key or value; the most specific entry wins, an engine
+//! pair matches in either order, and an entry holds only for the robot it names.
 
 #![allow(clippy::unwrap_used)]
 
@@ -29,7 +29,7 @@ one_step_trunk_angvel_max_rad_s = 1e-4
 
 fn known(scenario: &str, metric: &str, tolerance: &str, reason: &str) -> String {
     format!(
-        "\n[[known]]\nbackends = [\"rapier\", \"dart\"]\nscenario = \"{scenario}\"\nmetric = \"{metric}\"\ntolerance = {tolerance}\nreason = \"{reason}\"\n"
+        "\n[[known]]\nrobot = \"hyq\"\nbackends = [\"rapier\", \"dart\"]\nscenario = \"{scenario}\"\nmetric = \"{metric}\"\ntolerance = {tolerance}\nreason = \"{reason}\"\n"
     )
 }
 
@@ -52,7 +52,7 @@ fn the_shipped_ledger_is_complete_and_every_entry_has_a_reason() {
     }
     // Every scenario has its one-step tolerances for rapier vs DART.
     for s in Scenario::ALL {
-        let (_, source) = ledger.tolerance(["rapier", "dart"], s, Metric::OneStepQd);
+        let (_, source) = ledger.tolerance("hyq", ["rapier", "dart"], s, Metric::OneStepQd);
         assert!(matches!(source, ToleranceSource::Known { .. }), "{s}");
     }
 }
@@ -65,12 +65,35 @@ fn lookup_prefers_the_scenario_entry_and_ignores_pair_order() {
         known("trot", "return_diff", "0.7", "a reason for the trot")
     );
     let ledger = Ledger::parse(&text, "test.toml").unwrap();
-    let (t, source) = ledger.tolerance(["dart", "rapier"], Scenario::Trot, Metric::ReturnDiff);
+    let (t, source) = ledger.tolerance(
+        "hyq",
+        ["dart", "rapier"],
+        Scenario::Trot,
+        Metric::ReturnDiff,
+    );
     assert_eq!(t, 0.7);
     assert!(matches!(source, ToleranceSource::Known { ref scenario, .. } if scenario == "trot"));
-    let (t, _) = ledger.tolerance(["rapier", "dart"], Scenario::Stand, Metric::ReturnDiff);
+    let (t, _) = ledger.tolerance(
+        "hyq",
+        ["rapier", "dart"],
+        Scenario::Stand,
+        Metric::ReturnDiff,
+    );
     assert_eq!(t, 0.5);
-    let (t, source) = ledger.tolerance(["rapier", "rapier"], Scenario::Trot, Metric::ReturnDiff);
+    // Measured on HyQ: another robot gets the default.
+    let (t, source) = ledger.tolerance(
+        "anymal_c",
+        ["rapier", "dart"],
+        Scenario::Trot,
+        Metric::ReturnDiff,
+    );
+    assert_eq!((t, source), (1e-3, ToleranceSource::Default));
+    let (t, source) = ledger.tolerance(
+        "hyq",
+        ["rapier", "rapier"],
+        Scenario::Trot,
+        Metric::ReturnDiff,
+    );
     assert_eq!((t, source), (1e-3, ToleranceSource::Default));
 }
 
@@ -95,6 +118,10 @@ fn malformed_ledgers_are_errors_naming_what_is_wrong() {
         (known("moonwalk", "return_diff", "1", "r"), "moonwalk"),
         (known("trot", "return_diff", "nan", "r"), "NaN"),
         (known("trot", "return_diff", "1", "  "), "reason is empty"),
+        (
+            known("trot", "return_diff", "1", "r").replace("robot = \"hyq\"", "robot = \" \""),
+            "robot name is empty",
+        ),
     ];
     for (entry, named) in cases {
         let e = error(&format!("{DEFAULTS}{entry}"));
