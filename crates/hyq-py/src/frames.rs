@@ -6,14 +6,13 @@
 //! sub-steps, so a foot that touched the ground during the step is drawn in contact), the goal,
 //! and the overlay (simulated time, D^t, the episode's return so far).
 
-use hyq_env::Env;
-use hyq_physics::Backend;
 use hyq_physics::na::Point3;
 use hyq_render::{Overlay, RenderConfig, Renderer, RobotPose, Scene};
 use numpy::ndarray::Array3;
 use numpy::{IntoPyArray, PyArray3};
 use pyo3::prelude::*;
 
+use crate::engines::EnvView;
 use crate::errors::render_error;
 
 /// The frames of one env or of a vector env's envs (which share one robot model): the frame
@@ -48,10 +47,10 @@ impl FrameSource {
     }
 
     /// The frame of `env`'s current state; `episode_return` is printed in the overlay.
-    pub fn frame<'py, B: Backend>(
+    pub fn frame<'py>(
         &mut self,
         py: Python<'py>,
-        env: &Env<B>,
+        env: &dyn EnvView,
         episode_return: f64,
     ) -> PyResult<Bound<'py, PyArray3<u8>>> {
         let renderer = match &mut self.renderer {

@@ -1,7 +1,7 @@
 //! The extension module `hyq._core`: the Rust side of the Python package `hyq`.
 //!
-//! It holds the environment ([`hyq_env::Env`] on the rapier backend) and the vector env
-//! ([`hyq_env::VecEnv`]) and hands their results to Python as fresh NumPy arrays and dicts. The
+//! It holds the environment ([`hyq_env::Env`] of the chosen robot on the chosen backend, rapier
+//! by default; see [`engines`]) and the vector env ([`hyq_env::VecEnv`]) and hands their results to Python as fresh NumPy arrays and dicts. The
 //! Gymnasium classes users see (`hyq.HyQEnv`, `hyq.HyQVectorEnv`) are thin Python subclasses of
 //! `gymnasium.Env` and `gymnasium.vector.VectorEnv` in `python/hyq/`, because a `#[pyclass]`
 //! cannot pass the `isinstance(env, gymnasium.Env)` checks of Gymnasium's and
@@ -21,6 +21,7 @@
 //!   retires the env.
 
 mod config;
+mod engines;
 mod errors;
 mod frames;
 mod guard;
@@ -44,6 +45,12 @@ fn default_config_toml() -> String {
     hyq_env::EnvConfig::default().to_toml_string()
 }
 
+/// The backends this build has, `rapier` (the default) first.
+#[pyfunction]
+fn backends() -> Vec<&'static str> {
+    engines::built_backends()
+}
+
 /// The `hyq._core` module.
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -52,6 +59,9 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(default_max_time_steps, m)?)?;
     m.add_function(wrap_pyfunction!(default_config_toml, m)?)?;
     m.add_function(wrap_pyfunction!(spaces::observation_table, m)?)?;
+    m.add_function(wrap_pyfunction!(backends, m)?)?;
+    m.add("ROBOTS", hyq_physics::bundled::NAMES.to_vec())?;
+    m.add("DEFAULT_ROBOT", hyq_physics::bundled::DEFAULT)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     // The ranges the Python side checks arguments against, from the crates that enforce them.
     m.add("MAX_ENVS", hyq_env::MAX_ENVS)?;

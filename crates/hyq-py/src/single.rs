@@ -1,23 +1,23 @@
-//! `hyq._core.Core`: one environment on the rapier backend, for `hyq.HyQEnv`.
+//! `hyq._core.Core`: one environment of a robot on a backend, for `hyq.HyQEnv`.
 
-use hyq_env::{Env, ResetOptions};
-use hyq_rapier::RapierBackend;
+use hyq_env::ResetOptions;
 use numpy::{IntoPyArray, PyArray1, PyArray3, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::config;
+use crate::engines::{self, EnvView, Held};
 use crate::errors::env_error;
 use crate::frames::FrameSource;
 use crate::guard::{Retirable, call, call_mut};
 use crate::info::info_dict;
 use crate::spaces::{Bounds, clip_in_place, declared_bounds, table_bounds, to_f32};
 
-/// One HyQ environment (rapier backend). Built by `hyq.HyQEnv`, which adds the Gymnasium API.
+/// One environment (a robot on a backend). Built by `hyq.HyQEnv`, which adds the Gymnasium API.
 #[pyclass(module = "hyq._core")]
 pub struct Core {
-    env: Env<RapierBackend>,
+    env: Held<dyn EnvView>,
     /// The observation's declared bounds (f32) when observations are clipped to them.
     clip: Option<Bounds>,
     /// The frames of `render` (the renderer is built on the first).
@@ -48,9 +48,10 @@ impl Core {
         py: Python<'py>,
     ) -> PyResult<(Bound<'py, PyArray1<f32>>, Bound<'py, PyDict>)> {
         // The one copy: the fresh array handed to Python, clipped where it lies.
-        let mut obs = self.env.observation_f32().to_vec();
+        let env = self.env.get();
+        let mut obs = env.observation_f32().to_vec();
         let clipped = clip_in_place(&mut obs, self.clip.as_ref());
-        let info = info_dict(py, self.env.info(), self.env.model())?;
+        let info = info_dict(py, env.info(), env.model())?;
         info.set_item("observation_clipped", clipped)?;
         Ok((obs.into_pyarray(py), info))
     }
@@ -59,23 +60,26 @@ impl Core {
 #[pymethods]
 impl Core {
     /// Builds the environment from an optional TOML file and dotted `(key, TOML value)` pairs
-    /// (`("task.fall_penalty", "1.5")`); errors name the key and value.
+    /// (`("task.fall_penalty", "1.5")`); errors name the key and value. `robot` is a bundled
+    /// robot's name or a profile path (default HyQ), `backend` one this build has.
     #[new]
-    #[pyo3(signature = (pairs, config_file=None, clip_observations=true, render_width=480, render_height=360))]
+    #[pyo3(signature = (pairs, config_file=None, clip_observations=true, render_width=480, render_height=360, robot=None, backend="rapier"))]
     fn new(
         pairs: Vec<(String, String)>,
         config_file: Option<String>,
         clip_observations: bool,
         render_width: u32,
         render_height: u32,
+        robot: Option<String>,
+        backend: &str,
     ) -> PyResult<Self> {
+        let model = engines::robot(robot.as_deref())?;
         let config = config::build(config_file.as_deref(), &pairs)?;
-        let env =
-            Env::<RapierBackend>::new(hyq_physics::bundled::hyq(), config).map_err(env_error)?;
-        let clip = clip_observations.then(|| table_bounds(&env));
+        let env = engines::make_env(backend, model, config)?;
+        let clip = clip_observations.then(|| table_bounds(&*env));
         let frames = FrameSource::new(render_width, render_height)?;
         Ok(Self {
-            env,
+            env: Held::new(env),
             clip,
             frames,
             episode_return: 0.0,
@@ -98,9 +102,8 @@ impl Core {
                 goal,
                 ..ResetOptions::default()
             };
-            let env = &mut this.env;
-            py.detach(|| env.reset(seed, &options).map(|_| ()))
-                .map_err(env_error)?;
+            let env = this.env.get_mut();
+            py.detach(|| env.reset(seed, &options)).map_err(env_error)?;
             this.episode_return = 0.0;
             this.observation_and_info(py)
         })
@@ -128,13 +131,9 @@ impl Core {
                 .map_err(|e| PyValueError::new_err(format!("action: {e}")))?;
             this.action.clear();
             this.action.extend_from_slice(given);
-            let (env, action) = (&mut this.env, &this.action);
-            let (reward, terminated, truncated) = py
-                .detach(|| {
-                    env.step(action)
-                        .map(|s| (s.reward, s.terminated, s.truncated))
-                })
-                .map_err(env_error)?;
+            let (env, action) = (this.env.get_mut(), &this.action);
+            let (reward, terminated, truncated) =
+                py.detach(|| env.step(action)).map_err(env_error)?;
             this.episode_return += reward;
             let (obs, info) = this.observation_and_info(py)?;
             Ok((obs, reward, terminated, truncated, info))
@@ -154,7 +153,8 @@ impl Core {
     /// shows the robot at its spawn pose without goal or overlay.
     fn render<'py>(slf: &Bound<'py, Self>, py: Python<'py>) -> PyResult<Bound<'py, PyArray3<u8>>> {
         call_mut(slf, "render", |this| {
-            this.frames.frame(py, &this.env, this.episode_return)
+            this.frames
+                .frame(py, this.env.get_mut(), this.episode_return)
         })
     }
 
@@ -164,7 +164,7 @@ impl Core {
         py: Python<'py>,
     ) -> PyResult<Bound<'py, PyArray1<f32>>> {
         call(slf, "observation_low", |this| {
-            Ok(declared_bounds(&this.env, this.clip.is_some())
+            Ok(declared_bounds(&**this.env.get(), this.clip.is_some())
                 .0
                 .into_pyarray(py))
         })
@@ -176,7 +176,7 @@ impl Core {
         py: Python<'py>,
     ) -> PyResult<Bound<'py, PyArray1<f32>>> {
         call(slf, "observation_high", |this| {
-            Ok(declared_bounds(&this.env, this.clip.is_some())
+            Ok(declared_bounds(&**this.env.get(), this.clip.is_some())
                 .1
                 .into_pyarray(py))
         })
@@ -189,7 +189,7 @@ impl Core {
         py: Python<'py>,
     ) -> PyResult<Bound<'py, PyArray1<f32>>> {
         call(slf, "action_low", |this| {
-            Ok(to_f32(this.env.action_space().low()).into_pyarray(py))
+            Ok(to_f32(this.env.get().action_space().low()).into_pyarray(py))
         })
     }
 
@@ -199,7 +199,7 @@ impl Core {
         py: Python<'py>,
     ) -> PyResult<Bound<'py, PyArray1<f32>>> {
         call(slf, "action_high", |this| {
-            Ok(to_f32(this.env.action_space().high()).into_pyarray(py))
+            Ok(to_f32(this.env.get().action_space().high()).into_pyarray(py))
         })
     }
 
@@ -208,6 +208,7 @@ impl Core {
         call(slf, "observation_names", |this| {
             Ok(this
                 .env
+                .get()
                 .observation_layout()
                 .rows()
                 .iter()
@@ -221,6 +222,7 @@ impl Core {
         call(slf, "joint_names", |this| {
             Ok(this
                 .env
+                .get()
                 .model()
                 .joints()
                 .iter()
@@ -233,21 +235,23 @@ impl Core {
     #[getter]
     fn max_time_steps<'py>(slf: &Bound<'py, Self>) -> PyResult<u64> {
         call(slf, "max_time_steps", |this| {
-            Ok(this.env.config().task.max_time_steps)
+            Ok(this.env.get().config().task.max_time_steps)
         })
     }
 
     /// Δt_env = sub-steps × dt (s).
     #[getter]
     fn env_dt<'py>(slf: &Bound<'py, Self>) -> PyResult<f64> {
-        call(slf, "env_dt", |this| Ok(this.env.env_dt()))
+        call(slf, "env_dt", |this| Ok(this.env.get().env_dt()))
     }
 
     /// The action mode (`normalized`, `absolute` or `delta`).
     #[getter]
     fn action_mode<'py>(slf: &Bound<'py, Self>) -> PyResult<&'static str> {
         call(slf, "action_mode", |this| {
-            Ok(config::action_mode_name(this.env.config().action.mode))
+            Ok(config::action_mode_name(
+                this.env.get().config().action.mode,
+            ))
         })
     }
 
@@ -266,12 +270,20 @@ impl Core {
     /// The whole validated configuration as TOML text.
     fn config_toml<'py>(slf: &Bound<'py, Self>) -> PyResult<String> {
         call(slf, "config_toml", |this| {
-            Ok(this.env.config().to_toml_string())
+            Ok(this.env.get().config().to_toml_string())
+        })
+    }
+
+    /// The robot's name (its profile's `name`).
+    #[getter]
+    fn robot<'py>(slf: &Bound<'py, Self>) -> PyResult<String> {
+        call(slf, "robot", |this| {
+            Ok(this.env.get().model().name().to_owned())
         })
     }
 
     /// Whether the next call must be `reset` (no episode started, or it ended).
     fn needs_reset<'py>(slf: &Bound<'py, Self>) -> PyResult<bool> {
-        call(slf, "needs_reset", |this| Ok(this.env.needs_reset()))
+        call(slf, "needs_reset", |this| Ok(this.env.get().needs_reset()))
     }
 }

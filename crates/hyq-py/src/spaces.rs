@@ -12,10 +12,10 @@
 //! too low/high". The environment never emits a value outside that range (it ends the episode as
 //! `diverged` first).
 
-use hyq_env::Env;
-use hyq_physics::Backend;
 use hyq_spec::ObservationLayout;
 use pyo3::prelude::*;
+
+use crate::engines::EnvView;
 
 /// The observation's bounds (low, high) as f32, one per row.
 pub type Bounds = (Vec<f32>, Vec<f32>);
@@ -46,7 +46,7 @@ fn unit_of(layout: &ObservationLayout, i: usize) -> &'static str {
 }
 
 /// The §3 table's bounds as f32: what observations are clipped to, and the space when they are.
-pub fn table_bounds<B: Backend>(env: &Env<B>) -> Bounds {
+pub fn table_bounds(env: &dyn EnvView) -> Bounds {
     let rows = env.observation_layout().rows();
     (
         rows.iter().map(|r| r.min as f32).collect(),
@@ -56,7 +56,7 @@ pub fn table_bounds<B: Backend>(env: &Env<B>) -> Bounds {
 
 /// The declared observation space's bounds (see the module docs): the table when `clipped`,
 /// else the table on the invariant rows and the finite float32 range elsewhere.
-pub fn declared_bounds<B: Backend>(env: &Env<B>, clipped: bool) -> Bounds {
+pub fn declared_bounds(env: &dyn EnvView, clipped: bool) -> Bounds {
     let (mut low, mut high) = table_bounds(env);
     if !clipped {
         let layout = env.observation_layout();
@@ -72,12 +72,14 @@ pub fn declared_bounds<B: Backend>(env: &Env<B>, clipped: bool) -> Bounds {
 /// invariant).
 type TableRow = (usize, String, f64, f64, &'static str, bool, bool);
 
-/// The spec's §3 observation table of the bundled HyQ, one tuple per row: (index, name, low,
+/// The §3 observation table of `robot` (a bundled name or a profile path; default HyQ, the
+/// spec's table), one tuple per row: (index, name, low,
 /// high, unit, estimated, invariant). `estimated` marks the rows the spec gives only estimated
 /// bounds for (33–38); `invariant` the rows whose bounds every value respects (24–32).
 #[pyfunction]
-pub fn observation_table() -> PyResult<Vec<TableRow>> {
-    let layout = hyq_env::observation_layout_of(&hyq_physics::bundled::hyq())
+#[pyo3(signature = (robot=None))]
+pub fn observation_table(robot: Option<&str>) -> PyResult<Vec<TableRow>> {
+    let layout = hyq_env::observation_layout_of(&*crate::engines::robot(robot)?)
         .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))?;
     Ok(layout
         .rows()

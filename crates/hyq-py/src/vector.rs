@@ -5,8 +5,7 @@
 //! `same_step` (what Stable-Baselines3 expects, with the final observation and info kept until
 //! the next step) and `disabled`.
 
-use hyq_env::{AutoReset, ResetOptions, VecEnv, VecStepOut};
-use hyq_rapier::RapierBackend;
+use hyq_env::{AutoReset, ResetOptions, VecStepOut};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyArray3, PyReadonlyArray2};
 use pyo3::exceptions::{PyIndexError, PyValueError};
@@ -14,16 +13,17 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
 use crate::config;
+use crate::engines::{self, Held, VecView};
 use crate::errors::vec_env_error;
 use crate::frames::FrameSource;
 use crate::guard::{Retirable, call, call_mut};
 use crate::info::{info_dict, vector_info_dict};
 use crate::spaces::{Bounds, clip_in_place, declared_bounds, table_bounds, to_f32, would_clip};
 
-/// N HyQ environments (rapier backend) stepped in parallel.
+/// N environments (a robot on a backend) stepped in parallel.
 #[pyclass(module = "hyq._core")]
 pub struct VecCore {
-    vec: VecEnv<RapierBackend>,
+    vec: Held<dyn VecView>,
     clip: Option<Bounds>,
     /// Σ reward of each env's current episode, for the frame overlay.
     returns: Vec<f64>,
@@ -66,12 +66,12 @@ type StepArrays<'py> = (
 
 impl VecCore {
     fn check_index(&self, i: usize) -> PyResult<()> {
-        if i < self.vec.num_envs() {
+        let n = self.vec.get().num_envs();
+        if i < n {
             Ok(())
         } else {
             Err(PyIndexError::new_err(format!(
-                "env index {i} out of range: there are {} envs",
-                self.vec.num_envs()
+                "env index {i} out of range: there are {n} envs"
             )))
         }
     }
@@ -83,15 +83,16 @@ impl VecCore {
         py: Python<'py>,
         mut flat: Vec<f32>,
     ) -> PyResult<(Bound<'py, PyArray2<f32>>, Bound<'py, PyDict>)> {
+        let vec = self.vec.get();
         // Clipped where they lie: the buffer becomes the NumPy array without another copy.
         let clipped: Vec<bool> = flat
-            .chunks_mut(self.vec.observation_len())
+            .chunks_mut(vec.observation_len())
             .map(|o| clip_in_place(o, self.clip.as_ref()))
             .collect();
-        let array = Array2::from_shape_vec((self.vec.num_envs(), self.vec.observation_len()), flat)
+        let array = Array2::from_shape_vec((vec.num_envs(), vec.observation_len()), flat)
             .map_err(|e| PyValueError::new_err(format!("observations: {e}")))?;
-        let infos: Vec<_> = (0..self.vec.num_envs()).map(|i| self.vec.info(i)).collect();
-        let info = vector_info_dict(py, &infos, self.vec.env(0).model())?;
+        let infos: Vec<_> = (0..vec.num_envs()).map(|i| vec.info(i)).collect();
+        let info = vector_info_dict(py, &infos, vec.env(0).model())?;
         info.set_item("observation_clipped", clipped.into_pyarray(py))?;
         info.set_item(
             "_observation_clipped",
@@ -101,8 +102,9 @@ impl VecCore {
     }
 
     fn current_observations(&self) -> Vec<f32> {
-        (0..self.vec.num_envs())
-            .flat_map(|i| self.vec.env(i).observation_f32().iter().copied())
+        let vec = self.vec.get();
+        (0..vec.num_envs())
+            .flat_map(|i| vec.env(i).observation_f32().iter().copied())
             .collect()
     }
 }
@@ -113,7 +115,7 @@ impl VecCore {
     /// `"next_step"`, `"same_step"` or `"disabled"`, on rayon's global pool or on a pool of
     /// `threads` threads.
     #[new]
-    #[pyo3(signature = (pairs, num_envs, autoreset_mode="next_step", config_file=None, threads=None, clip_observations=true, render_width=480, render_height=360))]
+    #[pyo3(signature = (pairs, num_envs, autoreset_mode="next_step", config_file=None, threads=None, clip_observations=true, render_width=480, render_height=360, robot=None, backend="rapier"))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         pairs: Vec<(String, String)>,
@@ -124,20 +126,18 @@ impl VecCore {
         clip_observations: bool,
         render_width: u32,
         render_height: u32,
+        robot: Option<String>,
+        backend: &str,
     ) -> PyResult<Self> {
         let mode = self::autoreset_mode(autoreset_mode)?;
+        let model = engines::robot(robot.as_deref())?;
         let config = config::build(config_file.as_deref(), &pairs)?;
-        let mut vec =
-            VecEnv::<RapierBackend>::new(hyq_physics::bundled::hyq(), config, num_envs, mode)
-                .map_err(vec_env_error)?;
-        if let Some(threads) = threads {
-            vec = vec.with_threads(threads).map_err(vec_env_error)?;
-        }
+        let vec = engines::make_vec(backend, model, config, num_envs, mode, threads)?;
         let clip = clip_observations.then(|| table_bounds(vec.env(0)));
         let frames = FrameSource::new(render_width, render_height)?;
         Ok(Self {
             returns: vec![0.0; vec.num_envs()],
-            vec,
+            vec: Held::new(vec),
             clip,
             frames,
             actions: Vec::new(),
@@ -160,7 +160,7 @@ impl VecCore {
         mask: Option<Vec<bool>>,
     ) -> PyResult<(Bound<'py, PyArray2<f32>>, Bound<'py, PyDict>)> {
         call_mut(slf, "reset", |this| {
-            let n = this.vec.num_envs();
+            let n = this.vec.get_mut().num_envs();
             for (what, len) in [
                 ("seeds", seeds.as_ref().map(Vec::len)),
                 ("mask", mask.as_ref().map(Vec::len)),
@@ -174,8 +174,8 @@ impl VecCore {
                 }
             }
             if seeds.is_none() && goal.is_none() && mask.is_none() {
-                let mut flat = vec![0.0f32; n * this.vec.observation_len()];
-                let vec = &mut this.vec;
+                let vec = this.vec.get_mut();
+                let mut flat = vec![0.0f32; n * vec.observation_len()];
                 py.detach(|| vec.reset(seed, &mut flat))
                     .map_err(vec_env_error)?;
                 this.returns.fill(0.0);
@@ -194,6 +194,7 @@ impl VecCore {
                     None => seed.map(|s| s.wrapping_add(i as u64)),
                 };
                 this.vec
+                    .get_mut()
                     .reset_env(i, seed_i, &options)
                     .map_err(vec_env_error)?;
                 this.returns[i] = 0.0;
@@ -211,7 +212,8 @@ impl VecCore {
         actions: PyReadonlyArray2<'py, f64>,
     ) -> PyResult<StepArrays<'py>> {
         call_mut(slf, "step", |this| {
-            let (n, width) = (this.vec.num_envs(), this.vec.action_len());
+            let vec = this.vec.get_mut();
+            let (n, width) = (vec.num_envs(), vec.action_len());
             let shape = actions.as_array().dim();
             if shape != (n, width) {
                 return Err(PyValueError::new_err(format!(
@@ -222,11 +224,11 @@ impl VecCore {
             // the envs step.
             this.actions.clear();
             this.actions.extend(actions.as_array().iter().copied());
-            let mut observations = vec![0.0f32; n * this.vec.observation_len()];
+            let mut observations = vec![0.0f32; n * this.vec.get_mut().observation_len()];
             let mut rewards = vec![0.0f64; n];
             let mut terminated = vec![false; n];
             let mut truncated = vec![false; n];
-            let (vec, actions) = (&mut this.vec, &this.actions);
+            let (vec, actions) = (this.vec.get_mut(), &this.actions);
             py.detach(|| {
                 vec.step(
                     actions,
@@ -241,7 +243,7 @@ impl VecCore {
             .map_err(vec_env_error)?;
             for (i, r) in rewards.iter().enumerate() {
                 // t = 0: the env was reset in this step (an autoreset), so a new episode began.
-                this.returns[i] = if this.vec.info(i).t == 0 {
+                this.returns[i] = if this.vec.get_mut().info(i).t == 0 {
                     0.0
                 } else {
                     this.returns[i] + r
@@ -266,8 +268,9 @@ impl VecCore {
     ) -> PyResult<Bound<'py, PyDict>> {
         call(slf, "env_info", |this| {
             this.check_index(i)?;
-            let info = info_dict(py, this.vec.info(i), this.vec.env(i).model())?;
-            let clipped = would_clip(this.vec.env(i).observation_f32(), this.clip.as_ref());
+            let vec = this.vec.get();
+            let info = info_dict(py, vec.info(i), vec.env(i).model())?;
+            let clipped = would_clip(vec.env(i).observation_f32(), this.clip.as_ref());
             info.set_item("observation_clipped", clipped)?;
             Ok(info)
         })
@@ -282,7 +285,7 @@ impl VecCore {
     ) -> PyResult<Option<Bound<'py, PyArray1<f32>>>> {
         call(slf, "final_observation", |this| {
             this.check_index(i)?;
-            Ok(this.vec.final_observation(i).map(|o| {
+            Ok(this.vec.get().final_observation(i).map(|o| {
                 let mut o = o.to_vec();
                 clip_in_place(&mut o, this.clip.as_ref());
                 o.into_pyarray(py)
@@ -299,11 +302,11 @@ impl VecCore {
     ) -> PyResult<Option<Bound<'py, PyDict>>> {
         call(slf, "final_info", |this| {
             this.check_index(i)?;
-            let (Some(info), Some(obs)) = (this.vec.final_info(i), this.vec.final_observation(i))
-            else {
+            let vec = this.vec.get();
+            let (Some(info), Some(obs)) = (vec.final_info(i), vec.final_observation(i)) else {
                 return Ok(None);
             };
-            let info = info_dict(py, info, this.vec.env(i).model())?;
+            let info = info_dict(py, info, vec.env(i).model())?;
             info.set_item("observation_clipped", would_clip(obs, this.clip.as_ref()))?;
             Ok(Some(info))
         })
@@ -317,7 +320,8 @@ impl VecCore {
     ) -> PyResult<Bound<'py, PyArray3<u8>>> {
         call_mut(slf, "render", |this| {
             this.check_index(i)?;
-            this.frames.frame(py, this.vec.env(i), this.returns[i])
+            let vec = this.vec.get_mut();
+            this.frames.frame(py, vec.env(i), this.returns[i])
         })
     }
 
@@ -333,7 +337,7 @@ impl VecCore {
     /// N.
     #[getter]
     fn num_envs<'py>(slf: &Bound<'py, Self>) -> PyResult<usize> {
-        call(slf, "num_envs", |this| Ok(this.vec.num_envs()))
+        call(slf, "num_envs", |this| Ok(this.vec.get().num_envs()))
     }
 
     /// The observation space's lower bounds (float32; see `spaces`).
@@ -342,7 +346,7 @@ impl VecCore {
         py: Python<'py>,
     ) -> PyResult<Bound<'py, PyArray1<f32>>> {
         call(slf, "observation_low", |this| {
-            Ok(declared_bounds(this.vec.env(0), this.clip.is_some())
+            Ok(declared_bounds(this.vec.get().env(0), this.clip.is_some())
                 .0
                 .into_pyarray(py))
         })
@@ -354,7 +358,7 @@ impl VecCore {
         py: Python<'py>,
     ) -> PyResult<Bound<'py, PyArray1<f32>>> {
         call(slf, "observation_high", |this| {
-            Ok(declared_bounds(this.vec.env(0), this.clip.is_some())
+            Ok(declared_bounds(this.vec.get().env(0), this.clip.is_some())
                 .1
                 .into_pyarray(py))
         })
@@ -366,7 +370,7 @@ impl VecCore {
         py: Python<'py>,
     ) -> PyResult<Bound<'py, PyArray1<f32>>> {
         call(slf, "action_low", |this| {
-            Ok(to_f32(this.vec.env(0).action_space().low()).into_pyarray(py))
+            Ok(to_f32(this.vec.get().env(0).action_space().low()).into_pyarray(py))
         })
     }
 
@@ -376,7 +380,7 @@ impl VecCore {
         py: Python<'py>,
     ) -> PyResult<Bound<'py, PyArray1<f32>>> {
         call(slf, "action_high", |this| {
-            Ok(to_f32(this.vec.env(0).action_space().high()).into_pyarray(py))
+            Ok(to_f32(this.vec.get().env(0).action_space().high()).into_pyarray(py))
         })
     }
 
@@ -384,14 +388,14 @@ impl VecCore {
     #[getter]
     fn max_time_steps<'py>(slf: &Bound<'py, Self>) -> PyResult<u64> {
         call(slf, "max_time_steps", |this| {
-            Ok(this.vec.env(0).config().task.max_time_steps)
+            Ok(this.vec.get().env(0).config().task.max_time_steps)
         })
     }
 
     /// Δt_env (s).
     #[getter]
     fn env_dt<'py>(slf: &Bound<'py, Self>) -> PyResult<f64> {
-        call(slf, "env_dt", |this| Ok(this.vec.env(0).env_dt()))
+        call(slf, "env_dt", |this| Ok(this.vec.get().env(0).env_dt()))
     }
 
     /// The action mode.
@@ -399,8 +403,16 @@ impl VecCore {
     fn action_mode<'py>(slf: &Bound<'py, Self>) -> PyResult<&'static str> {
         call(slf, "action_mode", |this| {
             Ok(config::action_mode_name(
-                this.vec.env(0).config().action.mode,
+                this.vec.get().env(0).config().action.mode,
             ))
+        })
+    }
+
+    /// The robot's name (its profile's `name`).
+    #[getter]
+    fn robot<'py>(slf: &Bound<'py, Self>) -> PyResult<String> {
+        call(slf, "robot", |this| {
+            Ok(this.vec.get().env(0).model().name().to_owned())
         })
     }
 
@@ -408,7 +420,7 @@ impl VecCore {
     #[getter]
     fn autoreset_mode<'py>(slf: &Bound<'py, Self>) -> PyResult<&'static str> {
         call(slf, "autoreset_mode", |this| {
-            Ok(match this.vec.autoreset() {
+            Ok(match this.vec.get().autoreset() {
                 AutoReset::NextStep => "next_step",
                 AutoReset::SameStep => "same_step",
                 AutoReset::Disabled => "disabled",

@@ -7,6 +7,9 @@ Importing this package registers ``HyQ-v0``::
 
     env = gym.make("HyQ-v0")                    # or gym.make("hyq:HyQ-v0") without the import
     envs = gym.make_vec("HyQ-v0", num_envs=8)   # the Rust-batched vector env (rayon)
+    env = gym.make("HyQ-v0", robot="anymal_c", backend="mujoco")  # another robot, engine
+
+and one id per bundled robot (``ANYmalC-v0`` is ``HyQ-v0`` with ``robot="anymal_c"``).
 
 ``hyq.HyQEnv`` is the single environment, ``hyq.HyQVectorEnv`` the vector env and
 ``hyq.sb3.HyQVecEnv`` an adapter for Stable-Baselines3 (import ``hyq.sb3`` only where
@@ -18,13 +21,23 @@ import gymnasium
 from hyq import _core
 from hyq.env import HyQEnv
 from hyq.info import INFO_SCHEMA
-from hyq.observation import OBSERVATION_TABLE, ObservationRow
+from hyq.observation import OBSERVATION_TABLE, ObservationRow, observation_table
 from hyq.vector import HyQVectorEnv
 
 __version__ = _core.__version__
 
-#: The registered id.
+#: The registered id (HyQ by default; ``robot=`` picks another).
 ENV_ID = "HyQ-v0"
+
+#: The bundled robots' names, the default (``"hyq"``) first.
+ROBOTS: tuple[str, ...] = tuple(_core.ROBOTS)
+
+#: The physics backends this build has, the default (``"rapier"``) first.
+BACKENDS: tuple[str, ...] = tuple(_core.backends())
+
+#: The registered id of each bundled robot other than the default: the same env with its
+#: ``robot``.
+ROBOT_IDS = {"anymal_c": "ANYmalC-v0"}
 
 #: The registered ``max_episode_steps``: the core's default t_max (``max_time_steps``), so that
 #: ``env.spec.max_episode_steps`` is the episode length the core enforces.
@@ -37,14 +50,27 @@ if ENV_ID not in gymnasium.registry:
         vector_entry_point="hyq.vector:HyQVectorEnv",
         max_episode_steps=MAX_EPISODE_STEPS,
     )
+for _robot, _id in ROBOT_IDS.items():
+    if _id not in gymnasium.registry:
+        gymnasium.register(
+            id=_id,
+            entry_point="hyq.env:HyQEnv",
+            vector_entry_point="hyq.vector:HyQVectorEnv",
+            max_episode_steps=MAX_EPISODE_STEPS,
+            kwargs={"robot": _robot},
+        )
 
 __all__ = [
+    "BACKENDS",
     "ENV_ID",
     "INFO_SCHEMA",
     "MAX_EPISODE_STEPS",
     "OBSERVATION_TABLE",
+    "ROBOTS",
+    "ROBOT_IDS",
     "HyQEnv",
     "HyQVectorEnv",
     "ObservationRow",
     "__version__",
+    "observation_table",
 ]

@@ -9,6 +9,10 @@ The configuration mirrors the TOML file (``hyq run --config``) table for table:
   ``action={"mode": "absolute"}``, ``control={...}``, ``physics={...}``, ``reset={...}``;
 * ``config_file="hyq.toml"``: a TOML file read first, the keyword arguments applied on top.
 
+``robot`` (a bundled robot's name, ``"hyq"`` or ``"anymal_c"``, or the path to a robot profile)
+and ``backend`` (``"rapier"``, or ``"mujoco"`` / ``"dart"`` when the package was built with
+them) choose what is simulated and how; they are not configuration keys.
+
 Everything is checked by the core (one parser for TOML files, ``hyq run --set`` and Python):
 an unknown key or a bad value raises ``ValueError`` naming the key and the value.
 """
@@ -24,6 +28,8 @@ TABLES = ("task", "goal", "action", "control", "physics", "reset")
 
 #: Keyword arguments that are not configuration keys.
 ENV_KEYS = (
+    "robot",
+    "backend",
     "render_mode",
     "config_file",
     "clip_observations",

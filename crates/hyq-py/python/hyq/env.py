@@ -12,7 +12,7 @@ from gymnasium import spaces
 from hyq import _core
 from hyq._checks import RENDER_SIDES, as_actions, check_count, check_flag
 from hyq._config import config_pairs, split_options
-from hyq.observation import OBSERVATION_TABLE, ObservationRow
+from hyq.observation import ObservationRow, observation_table
 
 #: The render modes this environment implements.
 RENDER_MODES = ["rgb_array"]
@@ -47,9 +47,23 @@ def reset_goal(options: Mapping[str, Any] | None) -> list[float] | None:
     return [float(v) for v in goal]
 
 
+def check_choice(name: str, value: Any, default: str) -> str:
+    """``robot`` or ``backend``: a string (a path-like robot profile is taken as its path)."""
+    if value is None:
+        return default
+    if hasattr(value, "__fspath__"):
+        value = value.__fspath__()
+    if not isinstance(value, str):
+        raise TypeError(f"{name} = {value!r}: expected a string")
+    return value
+
+
 def core_options(env_options: Mapping[str, Any]) -> dict[str, Any]:
-    """The core's keyword arguments for clipping and frame size, checked by name."""
+    """The core's keyword arguments for the robot, the backend, clipping and frame size,
+    checked by name."""
     return {
+        "robot": check_choice("robot", env_options.get("robot"), _core.DEFAULT_ROBOT),
+        "backend": check_choice("backend", env_options.get("backend"), "rapier"),
         "clip_observations": check_flag(
             "clip_observations", env_options.get("clip_observations", False)
         ),
@@ -74,7 +88,13 @@ def check_seed(seed: int | None) -> int | None:
 
 
 class HyQEnv(gymnasium.Env):
-    """IIT's HyQ quadruped (87 kg, 12 joints) walking its trunk to a goal, on rapier physics.
+    """A legged robot walking its trunk to a goal: IIT's HyQ quadruped (87 kg, 12 joints) by
+    default, or ``robot="anymal_c"`` (registered as ``ANYmalC-v0``) or any robot profile path;
+    on rapier physics, or ``backend="mujoco"`` / ``"dart"`` in a build with those engines.
+
+    The sizes below are HyQ's; they come from the robot model, so another robot's spaces have
+    its own (``n`` joints and ``f`` feet: ``2n + f + 12`` observation rows, ``n`` actions;
+    ANYmal C's are also 39 and 12).
 
     **Observation**: ``Box(39,)`` float32, the spec's §3 table in order and units (joint angles,
     joint speeds, four foot contact flags, trunk contact flag, trunk quaternion w x y z, trunk
@@ -86,7 +106,7 @@ class HyQEnv(gymnasium.Env):
     Gymnasium's MuJoCo locomotion envs do: every observation lies in it.
     ``clip_observations=True`` declares the table as the space and clips each value to its row's
     bounds (``info["observation_clipped"]`` says when). The table itself is
-    ``hyq.OBSERVATION_TABLE`` (also ``env.observation_table``).
+    ``hyq.OBSERVATION_TABLE`` for HyQ (``env.observation_table`` for the env's robot).
 
     **Action**: ``Box(-1, 1, (12,), float32)`` joint position targets in the default
     ``normalized`` mode (−1 a joint's lower limit, +1 its upper); ``action={"mode":
@@ -103,7 +123,10 @@ class HyQEnv(gymnasium.Env):
     trunk touches the ground, or the physics diverges; ``truncated`` at ``max_time_steps``
     (default 1000 env steps = 10 s).
 
-    Arguments: ``render_mode`` (None or ``"rgb_array"``), ``env_config`` (one dict, RLlib's
+    Arguments: ``robot`` (a bundled robot's name, ``"hyq"`` (default) or ``"anymal_c"``, or the
+    path to a robot profile TOML next to its URDF), ``backend`` (``"rapier"`` (default),
+    ``"mujoco"``, ``"dart"``: those in ``hyq.BACKENDS``; another is a ``ValueError`` naming the
+    build option), ``render_mode`` (None or ``"rgb_array"``), ``env_config`` (one dict, RLlib's
     convention), ``config_file`` (a TOML file), ``clip_observations``, ``render_width`` and
     ``render_height`` (pixels, default 480 × 360), and the configuration keys (see
     ``hyq._config``): the spec's user variables by name, the other TOML tables as dicts.
@@ -140,7 +163,14 @@ class HyQEnv(gymnasium.Env):
         )
         # Simulated frames per second of an episode: one frame per env step.
         self.metadata = {**self.metadata, "render_fps": round(1.0 / self._core.env_dt)}
+        self._robot_choice = core_options(env_options)["robot"]
+        self._table: tuple[ObservationRow, ...] | None = None
         self._closed = False
+
+    @property
+    def robot(self) -> str:
+        """The robot's name (its profile's ``name``: ``"hyq"``, ``"anymal_c"``, ...)."""
+        return self._core.robot
 
     @property
     def max_time_steps(self) -> int:
@@ -149,17 +179,20 @@ class HyQEnv(gymnasium.Env):
 
     @property
     def observation_names(self) -> list[str]:
-        """The 39 observation rows' names, in order."""
+        """The observation rows' names, in order (39 for HyQ)."""
         return self._core.observation_names()
 
     @property
     def observation_table(self) -> tuple[ObservationRow, ...]:
-        """The spec's section 3 table: each row's name, bounds, unit and kind."""
-        return OBSERVATION_TABLE
+        """The robot's observation table (the spec's section 3 table for HyQ): each row's
+        name, bounds, unit and kind."""
+        if self._table is None:
+            self._table = observation_table(self._robot_choice)
+        return self._table
 
     @property
     def joint_names(self) -> list[str]:
-        """The 12 joints' names, in action order."""
+        """The joints' names, in action order (12 for HyQ)."""
         return self._core.joint_names()
 
     def config_toml(self) -> str:

@@ -1,4 +1,5 @@
-"""The spec's section 3 observation table as data: one row per observation value, with its
+"""The observation table as data (the spec's section 3 table for HyQ; for another robot, the
+same rows for its joints, feet and trunk, from its profile): one row per observation value, with its
 name, the table's bounds, its unit, whether the spec gives the bounds only as estimates (rows
 33-38) and whether every value respects them (the contact flags and the quaternion, rows 24-32).
 
@@ -36,7 +37,13 @@ class ObservationRow(NamedTuple):
     invariant: bool
 
 
-#: The 39 rows, in observation order.
-OBSERVATION_TABLE: tuple[ObservationRow, ...] = tuple(
-    ObservationRow(*row) for row in _core.observation_table()
-)
+def observation_table(robot: str | None = None) -> tuple[ObservationRow, ...]:
+    """The observation table of ``robot`` (a bundled robot's name or a robot profile's path;
+    None for HyQ): 2 rows per joint (angle, speed), one contact flag per foot, then the trunk's
+    contact flag, quaternion, acceleration and position. ``ValueError`` names an unknown robot
+    or an unusable profile."""
+    return tuple(ObservationRow(*row) for row in _core.observation_table(robot))
+
+
+#: HyQ's table (the spec's section 3: 39 rows), in observation order.
+OBSERVATION_TABLE: tuple[ObservationRow, ...] = observation_table()

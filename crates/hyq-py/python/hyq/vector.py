@@ -30,7 +30,7 @@ _MODES = {
 
 
 class HyQVectorEnv(VectorEnv):
-    """``num_envs`` HyQ environments of one configuration, stepped in one call.
+    """``num_envs`` environments of one robot, backend and configuration, stepped in one call.
 
     Arguments: ``num_envs``; ``autoreset_mode`` (``AutoresetMode.NEXT_STEP`` by default, the
     Gymnasium default: the step after an episode ends resets that env, ignoring its action and
@@ -106,6 +106,11 @@ class HyQVectorEnv(VectorEnv):
     def max_time_steps(self) -> int:
         """t_max: the env step at which the core truncates an episode."""
         return self._core.max_time_steps
+
+    @property
+    def robot(self) -> str:
+        """The robot's name (its profile's ``name``)."""
+        return self._core.robot
 
     def reset(
         self,

@@ -1,0 +1,272 @@
+//! The robot and the physics backend a Python environment runs: the choice by name
+//! (`robot="anymal_c"`, `backend="mujoco"`), and the environments behind object-safe views
+//! ([`EnvView`], [`VecView`]) so that one Python class serves every backend the package was
+//! built with. A backend is compiled in by the crate feature of its name (`mujoco`, `dart`);
+//! rapier always is.
+//!
+//! The views cost one indirect call per env step, nothing per sub-step: the physics loop
+//! inside `Env::step` is monomorphised per backend as in Rust.
+
+use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
+
+use hyq_env::{
+    ActionSpace, AutoReset, Env, EnvConfig, EnvError, ResetOptions, StepInfo, VecEnv, VecEnvError,
+    VecStepOut,
+};
+use hyq_physics::{Backend, RobotModel, TrunkState};
+use hyq_spec::ObservationLayout;
+use pyo3::PyResult;
+use pyo3::exceptions::PyValueError;
+
+use crate::errors::{env_error, vec_env_error};
+
+/// The backends this build has, the default (`rapier`) first.
+pub fn built_backends() -> Vec<&'static str> {
+    let mut names = vec!["rapier"];
+    if cfg!(feature = "mujoco") {
+        names.push("mujoco");
+    }
+    if cfg!(feature = "dart") {
+        names.push("dart");
+    }
+    names
+}
+
+/// The error for a backend this build lacks or does not know.
+fn backend_error(name: &str) -> pyo3::PyErr {
+    let built = built_backends().join(", ");
+    let (what, needs) = match name {
+        "mujoco" => (
+            "MuJoCo",
+            "MuJoCo 4.0.0's library: `cargo xtask setup mujoco` first",
+        ),
+        "dart" => (
+            "DART",
+            "DART 6.12: `apt-get install -y libdart-dev libdart-collision-bullet-dev` first",
+        ),
+        _ => {
+            return PyValueError::new_err(format!(
+                "backend={name:?}: unknown backend (this package was built with: {built}; \
+                 the project's backends are rapier, mujoco and dart)"
+            ));
+        }
+    };
+    PyValueError::new_err(format!(
+        "backend={name:?}: this hyq package was built without the {what} backend (built: \
+         {built}); rebuild it with `maturin develop --release --features {name}` in \
+         crates/hyq-py (needs {needs})"
+    ))
+}
+
+/// The robot chosen by name or profile path (`None`: the default, HyQ).
+pub fn robot(choice: Option<&str>) -> PyResult<Arc<RobotModel>> {
+    let choice = choice.unwrap_or(hyq_physics::bundled::DEFAULT);
+    hyq_physics::resolve_robot(choice).map_err(|e| {
+        let text = e.to_string();
+        let text = text.split_whitespace().collect::<Vec<_>>().join(" ");
+        PyValueError::new_err(format!("robot: {text}"))
+    })
+}
+
+/// An environment (or vector env) inside a Python object. A Python class must be `Sync`, and
+/// the MuJoCo and DART backends are `Send` but not `Sync` (their C/C++ state is used by one
+/// thread at a time), so the object holds it behind a mutex: calls that change it (`reset`,
+/// `step`, `render`) hold `&mut` and reach it without locking; the read-only getters lock it,
+/// uncontended (the guard module already keeps a second thread out of an env in use).
+pub struct Held<T: ?Sized>(Mutex<Box<T>>);
+
+impl<T: ?Sized> Held<T> {
+    /// Holds `inner`.
+    pub fn new(inner: Box<T>) -> Self {
+        Self(Mutex::new(inner))
+    }
+
+    /// Shared access (locks; one guard at a time per object).
+    pub fn get(&self) -> MutexGuard<'_, Box<T>> {
+        // A panic inside a call retires the env (see `guard`), so a poisoned lock only serves
+        // the calls that report that.
+        self.0.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+
+    /// Exclusive access, without locking.
+    pub fn get_mut(&mut self) -> &mut T {
+        self.0.get_mut().unwrap_or_else(PoisonError::into_inner)
+    }
+}
+
+/// What the Python classes read from one environment, whatever its backend.
+pub trait EnvView: Send {
+    fn model(&self) -> &Arc<RobotModel>;
+    fn observation(&self) -> &[f64];
+    fn observation_f32(&self) -> &[f32];
+    fn observation_layout(&self) -> &ObservationLayout;
+    fn action_space(&self) -> &ActionSpace;
+    fn config(&self) -> &EnvConfig;
+    fn env_dt(&self) -> f64;
+    fn info(&self) -> &StepInfo;
+    fn trunk(&self) -> &TrunkState;
+    fn joint_angles(&self) -> &[f64];
+    fn needs_reset(&self) -> bool;
+    fn reset(&mut self, seed: Option<u64>, options: &ResetOptions) -> Result<(), EnvError>;
+    /// One step: (reward, terminated, truncated).
+    fn step(&mut self, action: &[f64]) -> Result<(f64, bool, bool), EnvError>;
+}
+
+impl<B: Backend> EnvView for Env<B> {
+    fn model(&self) -> &Arc<RobotModel> {
+        Env::model(self)
+    }
+    fn observation(&self) -> &[f64] {
+        Env::observation(self)
+    }
+    fn observation_f32(&self) -> &[f32] {
+        Env::observation_f32(self)
+    }
+    fn observation_layout(&self) -> &ObservationLayout {
+        Env::observation_layout(self)
+    }
+    fn action_space(&self) -> &ActionSpace {
+        Env::action_space(self)
+    }
+    fn config(&self) -> &EnvConfig {
+        Env::config(self)
+    }
+    fn env_dt(&self) -> f64 {
+        Env::env_dt(self)
+    }
+    fn info(&self) -> &StepInfo {
+        Env::info(self)
+    }
+    fn trunk(&self) -> &TrunkState {
+        Env::trunk(self)
+    }
+    fn joint_angles(&self) -> &[f64] {
+        Env::joint_angles(self)
+    }
+    fn needs_reset(&self) -> bool {
+        Env::needs_reset(self)
+    }
+    fn reset(&mut self, seed: Option<u64>, options: &ResetOptions) -> Result<(), EnvError> {
+        Env::reset(self, seed, options).map(|_| ())
+    }
+    fn step(&mut self, action: &[f64]) -> Result<(f64, bool, bool), EnvError> {
+        Env::step(self, action).map(|s| (s.reward, s.terminated, s.truncated))
+    }
+}
+
+/// What the Python classes use of a vector env, whatever its backend.
+pub trait VecView: Send {
+    fn num_envs(&self) -> usize;
+    fn observation_len(&self) -> usize;
+    fn action_len(&self) -> usize;
+    fn autoreset(&self) -> AutoReset;
+    fn env(&self, i: usize) -> &dyn EnvView;
+    fn info(&self, i: usize) -> &StepInfo;
+    fn final_observation(&self, i: usize) -> Option<&[f32]>;
+    fn final_info(&self, i: usize) -> Option<&StepInfo>;
+    fn reset(&mut self, seed: Option<u64>, observations: &mut [f32]) -> Result<(), VecEnvError>;
+    fn reset_env(
+        &mut self,
+        i: usize,
+        seed: Option<u64>,
+        options: &ResetOptions,
+    ) -> Result<(), VecEnvError>;
+    fn step(&mut self, actions: &[f64], out: VecStepOut<'_>) -> Result<(), VecEnvError>;
+}
+
+impl<B: Backend> VecView for VecEnv<B> {
+    fn num_envs(&self) -> usize {
+        VecEnv::num_envs(self)
+    }
+    fn observation_len(&self) -> usize {
+        VecEnv::observation_len(self)
+    }
+    fn action_len(&self) -> usize {
+        VecEnv::action_len(self)
+    }
+    fn autoreset(&self) -> AutoReset {
+        VecEnv::autoreset(self)
+    }
+    fn env(&self, i: usize) -> &dyn EnvView {
+        VecEnv::env(self, i)
+    }
+    fn info(&self, i: usize) -> &StepInfo {
+        VecEnv::info(self, i)
+    }
+    fn final_observation(&self, i: usize) -> Option<&[f32]> {
+        VecEnv::final_observation(self, i)
+    }
+    fn final_info(&self, i: usize) -> Option<&StepInfo> {
+        VecEnv::final_info(self, i)
+    }
+    fn reset(&mut self, seed: Option<u64>, observations: &mut [f32]) -> Result<(), VecEnvError> {
+        VecEnv::reset(self, seed, observations)
+    }
+    fn reset_env(
+        &mut self,
+        i: usize,
+        seed: Option<u64>,
+        options: &ResetOptions,
+    ) -> Result<(), VecEnvError> {
+        VecEnv::reset_env(self, i, seed, options).map(|_| ())
+    }
+    fn step(&mut self, actions: &[f64], out: VecStepOut<'_>) -> Result<(), VecEnvError> {
+        VecEnv::step(self, actions, out)
+    }
+}
+
+/// Evaluates `$body` with the type alias `$b` bound to the backend named `$name`; a name this
+/// build lacks is a `ValueError` naming the build option.
+macro_rules! with_backend {
+    ($name:expr, $b:ident => $body:expr) => {
+        match $name {
+            "rapier" => {
+                type $b = hyq_rapier::RapierBackend;
+                $body
+            }
+            #[cfg(feature = "mujoco")]
+            "mujoco" => {
+                type $b = hyq_mujoco::MujocoBackend;
+                $body
+            }
+            #[cfg(feature = "dart")]
+            "dart" => {
+                type $b = hyq_dart::DartBackend;
+                $body
+            }
+            other => Err(backend_error(other)),
+        }
+    };
+}
+
+/// One environment of `model` on the backend named `backend`.
+pub fn make_env(
+    backend: &str,
+    model: Arc<RobotModel>,
+    config: EnvConfig,
+) -> PyResult<Box<dyn EnvView>> {
+    with_backend!(backend, B => {
+        Env::<B>::new(model, config)
+            .map(|e| Box::new(e) as Box<dyn EnvView>)
+            .map_err(env_error)
+    })
+}
+
+/// `num_envs` environments of `model` on the backend named `backend`, on a pool of `threads`
+/// threads if given.
+pub fn make_vec(
+    backend: &str,
+    model: Arc<RobotModel>,
+    config: EnvConfig,
+    num_envs: usize,
+    mode: AutoReset,
+    threads: Option<usize>,
+) -> PyResult<Box<dyn VecView>> {
+    with_backend!(backend, B => {
+        let mut vec = VecEnv::<B>::new(model, config, num_envs, mode).map_err(vec_env_error)?;
+        if let Some(threads) = threads {
+            vec = vec.with_threads(threads).map_err(vec_env_error)?;
+        }
+        Ok(Box::new(vec) as Box<dyn VecView>)
+    })
+}
