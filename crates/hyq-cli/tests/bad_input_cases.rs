@@ -1,8 +1,7 @@
-//! Invariant: the command line's bad-input cases of an outside review (a new user's mistakes and
-//! an attacker's inputs) each end as documented: a usage error (status 2) or a run-time error
-//! (status 1) printed as one line `hyq: error: …` naming what was wrong, never a panic, a hang
-//! or hundreds of digits; and the odd-but-valid inputs run. Each case keeps its review number
-//! (`#N`) so the suite, not a manual round, keeps them fixed. Cases with a file of their own:
+//! Invariant: the command line's bad inputs (a new user's mistakes and an attacker's inputs)
+//! each end as documented: a usage error (status 2) or a run-time error (status 1) printed as
+//! one line `hyq: error: …` naming what was wrong, never a panic, a hang or hundreds of digits;
+//! and the odd-but-valid inputs run. Cases with a file of their own:
 //! closed and full stdout (`closed_or_full_stdout.rs`), outputs kept on failure
 //! (`outputs_are_replaced_only_by_a_finished_run.rs`), no null in records
 //! (`records_and_summaries_hold_no_null.rs`).
@@ -56,13 +55,13 @@ fn write(name: &str, bytes: &[u8]) -> String {
 }
 
 #[test]
-fn configuration_keys_and_values_1_to_8() {
-    // #1, #2: unknown keys and tables.
+fn configuration_keys_and_values() {
+    // unknown keys and tables.
     bad_set(&["task.bogus=1"], &["bogus"]);
     bad_set(&["bogus.key=1"], &["bogus"]);
     bad_set(&["physics.bogus.x=1"], &["bogus"]);
     bad_set(&["physics.rapier.bogus=1"], &["bogus"]);
-    // #3: malformed --set.
+    // malformed --set.
     for s in [
         "task.fall_penalty",
         "=5",
@@ -72,14 +71,14 @@ fn configuration_keys_and_values_1_to_8() {
     ] {
         fails(2, &["run", "--set", s], &["--set"]);
     }
-    // #4: wrong types.
+    // wrong types.
     bad_set(&["task.fall_penalty=abc"], &["fall_penalty"]);
     bad_set(&["control.velocity_limit=maybe"], &["velocity_limit"]);
     bad_set(
         &["physics.rapier.solver_iterations=1e1"],
         &["solver_iterations"],
     );
-    // #5: NaN, infinities and negatives of every real [task] key.
+    // NaN, infinities and negatives of every real [task] key.
     for key in [
         "fall_penalty",
         "base_rew_scaling",
@@ -96,7 +95,7 @@ fn configuration_keys_and_values_1_to_8() {
             bad_set(&[&format!("task.{key}={value}")], &[key]);
         }
     }
-    // #6: zero where > 0 is required.
+    // zero where > 0 is required.
     for key in [
         "exp_rew_scaling",
         "base_rew_scaling",
@@ -105,7 +104,7 @@ fn configuration_keys_and_values_1_to_8() {
     ] {
         bad_set(&[&format!("task.{key}=0")], &[key]);
     }
-    // #7, #8: max_time_steps, and integers beyond TOML's.
+    // max_time_steps, and integers beyond TOML's.
     for value in ["0", "-1", "1.5", "1e30"] {
         bad_set(
             &[&format!("task.max_time_steps={value}")],
@@ -119,8 +118,8 @@ fn configuration_keys_and_values_1_to_8() {
 }
 
 #[test]
-fn values_that_would_emit_non_finite_numbers_or_panic_10_to_18_and_27_to_30() {
-    // #10, #13: scalings whose terms or sums overflow.
+fn values_that_would_emit_non_finite_numbers_or_panic() {
+    // scalings whose terms or sums overflow.
     bad_set(
         &["task.exp_rew_scaling=1000"],
         &["task.exp_rew_scaling", "500"],
@@ -133,7 +132,7 @@ fn values_that_would_emit_non_finite_numbers_or_panic_10_to_18_and_27_to_30() {
         &["task.norm_rew_scaling=1.5e308", "goal.distance_m=1.5"],
         &["task.norm_rew_scaling"],
     );
-    // #12, #15, #16: goals so far that D overflows, or that only reset would have found.
+    // goals so far that D overflows, or that only reset would have found.
     bad_set(
         &["goal.mode=fixed", "goal.position=[1e308, 1e308, 0]"],
         &["goal.position", "100 m"],
@@ -148,7 +147,7 @@ fn values_that_would_emit_non_finite_numbers_or_panic_10_to_18_and_27_to_30() {
         &["goal.mode=random", "goal.distance_range_m=[1e300, 1e300]"],
         &["goal.distance_range_m"],
     );
-    // #14: bad goal values.
+    // bad goal values.
     for s in [
         "goal.distance_m=nan",
         "goal.distance_m=0",
@@ -175,12 +174,12 @@ fn values_that_would_emit_non_finite_numbers_or_panic_10_to_18_and_27_to_30() {
         );
     }
     bad_set(&["goal.mode=fixed"], &["goal.position"]);
-    // #17: a goal at the start.
+    // a goal at the start.
     bad_set(
         &["goal.mode=fixed", "goal.position=[0, 0, 0.6003]"],
         &["goal"],
     );
-    // #18: a goal key the mode does not read.
+    // a goal key the mode does not read.
     bad_set(&["goal.position=[9, 9, 0.6]"], &["goal.position", "fixed"]);
     bad_set(
         &[
@@ -190,14 +189,14 @@ fn values_that_would_emit_non_finite_numbers_or_panic_10_to_18_and_27_to_30() {
         ],
         &["goal.distance_m", "ahead"],
     );
-    // #27, #28: spawn points beyond what rapier's f32 holds faithfully.
+    // spawn points beyond what rapier's f32 holds faithfully.
     for s in ["[1e39, 0]", "[1e5, 0]"] {
         bad_set(
             &[&format!("reset.spawn_xy_m={s}")],
             &["reset.spawn_xy_m", "f32"],
         );
     }
-    // #29: [reset] ranges.
+    // [reset] ranges.
     for s in [
         "reset.spawn_xy_m=[nan, 0]",
         "reset.spawn_xy_m=[inf, 0]",
@@ -214,13 +213,12 @@ fn values_that_would_emit_non_finite_numbers_or_panic_10_to_18_and_27_to_30() {
         let key = s.split('=').next().unwrap().rsplit('.').next().unwrap();
         bad_set(&[s], &[key]);
     }
-    // #30: joint noise that panicked the sampler.
+    // joint noise that panicked the sampler.
     bad_set(&["reset.joint_noise_rad=1e308"], &["reset.joint_noise_rad"]);
 }
 
 #[test]
-fn actions_control_and_physics_19_to_24() {
-    // #19.
+fn actions_control_and_physics() {
     bad_set(&["action.mode=bogus"], &["mode"]);
     bad_set(&["action.out_of_range=bogus"], &["out_of_range"]);
     for v in ["nan", "0", "-1", "inf"] {
@@ -229,14 +227,13 @@ fn actions_control_and_physics_19_to_24() {
             &["action.max_delta_rad"],
         );
     }
-    // #20.
     for v in ["0", "1001", "-1", "4294967296", "1.5"] {
         bad_set(
             &[&format!("control.sim_steps_per_env_step={v}")],
             &["sim_steps_per_env_step"],
         );
     }
-    // #21: gains, named without Rust's debug text.
+    // gains, named without Rust's debug text.
     for v in [
         "-1",
         "nan",
@@ -254,11 +251,11 @@ fn actions_control_and_physics_19_to_24() {
     for v in ["-20", "nan"] {
         bad_set(&[&format!("control.kd={v}")], &["control.kd"]);
     }
-    // #23: absurd time steps.
+    // absurd time steps.
     for v in ["0", "-0.001", "nan", "inf", "0.1001"] {
         bad_set(&[&format!("physics.dt={v}")], &["dt"]);
     }
-    // #22, #23, #24: accepted extremes run, ending as diverged where the physics blows up.
+    // accepted extremes run, ending as diverged where the physics blows up.
     let out = hyq_ok(&["run", "--json", "--set", "physics.dt=0.1"]);
     assert!(out.contains("\"diverged\""), "{out}");
     hyq_ok(&[
@@ -273,18 +270,18 @@ fn actions_control_and_physics_19_to_24() {
 }
 
 #[test]
-fn configuration_files_31_to_37() {
-    // #31: an empty file is the defaults.
+fn configuration_files() {
+    // an empty file is the defaults.
     let empty = write("empty.toml", b"");
     hyq_ok(&["run", "--config", &empty, "--set", "task.max_time_steps=2"]);
-    // #32: malformed TOML, at its line.
+    // malformed TOML, at its line.
     let malformed = write("malformed.toml", b"[task\nfall_penalty=");
     fails(
         2,
         &["run", "--config", &malformed],
         &["malformed.toml", "line 1"],
     );
-    // #33: binary garbage, NUL.
+    // binary garbage, NUL.
     let garbage: Vec<u8> = (0..4096u32)
         .map(|i| (i.wrapping_mul(2654435761) >> 13) as u8)
         .collect();
@@ -292,7 +289,7 @@ fn configuration_files_31_to_37() {
     fails(2, &["run", "--config", &garbage], &["garbage.toml"]);
     let nul = write("nul.toml", b"[task]\n\0");
     fails(2, &["run", "--config", &nul], &["nul.toml"]);
-    // #34: a directory, a missing file.
+    // a directory, a missing file.
     let dir = scratch("adir");
     let _ = std::fs::remove_file(&dir);
     std::fs::create_dir_all(&dir).unwrap();
@@ -302,7 +299,7 @@ fn configuration_files_31_to_37() {
         &["run", "--config", "/nonexistent/missing.toml"],
         &["missing.toml"],
     );
-    // #35: a NaN literal, at the key's own line.
+    // a NaN literal, at the key's own line.
     let nan = write(
         "nan.toml",
         b"[task]\nmax_time_steps = 10\nfall_penalty = nan\n",
@@ -314,7 +311,7 @@ fn configuration_files_31_to_37() {
     );
     let dup = write("dup.toml", b"[task]\nfall_penalty = 1\nfall_penalty = 2\n");
     fails(2, &["run", "--config", &dup], &["dup.toml"]);
-    // #37: endless input.
+    // endless input.
     fails(
         2,
         &["run", "--config", "/dev/zero"],
@@ -323,7 +320,7 @@ fn configuration_files_31_to_37() {
 }
 
 #[test]
-fn command_line_arguments_39_and_57() {
+fn command_line_arguments() {
     for args in [
         &["run", "--episodes", "0"][..],
         &["run", "--seed", "-1"],
@@ -358,8 +355,8 @@ fn record(name: &str, steps: u32) -> String {
 }
 
 #[test]
-fn records_and_plots_40_to_56() {
-    // #41: a record path in a missing directory, or a directory.
+fn records_and_plots() {
+    // a record path in a missing directory, or a directory.
     fails(
         2,
         &["run", "--record", "/nonexistent/sub/x.jsonl"],
@@ -378,12 +375,12 @@ fn records_and_plots_40_to_56() {
     let text = std::fs::read_to_string(&good).unwrap();
     let out_dir = scratch("plot-out");
     let out = out_dir.to_str().unwrap();
-    // #44: a torn last line is left out with a warning; the whole lines are plotted.
+    // a torn last line is left out with a warning; the whole lines are plotted.
     let torn = write("plot-torn.jsonl", &text.as_bytes()[..text.len() - 40]);
     let run = hyq(&["plot", &torn, "--out", out]);
     assert_eq!(run.status.code(), Some(0), "{}", stderr(&run));
     assert!(stderr(&run).starts_with("hyq: warning: ") && stderr(&run).contains("line 5"));
-    // #47, #48: nothing to plot (empty, blank, or only a torn line).
+    // nothing to plot (empty, blank, or only a torn line).
     for (name, bytes) in [
         ("plot-empty.jsonl", &b""[..]),
         ("plot-blank.jsonl", b"\n\n  \n"),
@@ -394,7 +391,7 @@ fn records_and_plots_40_to_56() {
         assert_eq!(run.status.code(), Some(2), "{name}: {}", stderr(&run));
         assert!(stderr(&run).contains("no step"), "{name}: {}", stderr(&run));
     }
-    // #49, #50: NaN, null, not JSON, an array, binary, missing, a directory.
+    // NaN, null, not JSON, an array, binary, missing, a directory.
     let first = text.lines().next().unwrap();
     let reward = first.find("\"reward\":").unwrap() + 9;
     let end = reward + first[reward..].find(',').unwrap();
@@ -417,9 +414,9 @@ fn records_and_plots_40_to_56() {
     fails(2, &["plot", &binary, "--out", out], &[]);
     fails(2, &["plot", "/nonexistent/x.jsonl"], &["x.jsonl"]);
     fails(2, &["plot", dir.to_str().unwrap(), "--out", out], &[]);
-    // #52: endless input.
+    // endless input.
     fails(2, &["plot", "/dev/zero", "--out", out], &["1 MiB"]);
-    // #53: values spanning more than f64 holds: the plot finishes (it used to hang).
+    // values spanning more than f64 holds: the plot finishes (it used to hang).
     let mut huge = String::new();
     for (i, line) in text.lines().enumerate() {
         let v = if i % 2 == 0 { "1e308" } else { "-1e308" };
@@ -429,7 +426,7 @@ fn records_and_plots_40_to_56() {
     }
     let huge = write("plot-huge.jsonl", huge.as_bytes());
     hyq_ok(&["plot", &huge, "--out", out]);
-    // #56: --out an existing file.
+    // --out an existing file.
     fails(2, &["plot", &good, "--out", &good], &[]);
     assert!(Path::new(&good).is_file());
 }

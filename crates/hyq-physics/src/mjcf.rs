@@ -30,6 +30,13 @@
 //!   clamped to the effort limit);
 //! - `<keyframe>`: `spawn`, the model's spawn state ([`RobotModel::spawn_state`]).
 //!
+//! Joint Coulomb friction (the URDF's `<dynamics friction>`) is not written: the joints keep
+//! MuJoCo's `frictionloss="0"`. In the project every backend leaves joint friction to the
+//! shared actuator ([`crate::actuator`]), which adds it to the joint torques it computes, so a
+//! model that also had MuJoCo apply it would count it twice. A user who simulates the written
+//! model on its own (with `<position>` or `<motor>` actuators) gets no joint friction; the
+//! bundled robots' URDFs give none (`friction="0"`).
+//!
 //! Names: bodies carry their URDF link names, joints their URDF joint names, shapes their URDF
 //! `<collision name>` when it is unique (else `<link>_collision_<i>`), the ground `ground`, and
 //! actuators the joints' profile names; [`Mjcf`] lists them all so callers can look the elements
