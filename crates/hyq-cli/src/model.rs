@@ -2,7 +2,9 @@
 //!
 //! Three formats, one file each (stdout unless `--out FILE`):
 //! - `mjcf`: MuJoCo's XML model (hyq-physics' [`mjcf`] generator) with the configuration's
-//!   time step, gravity, friction and contact distance, and the chosen actuators: `position`
+//!   time step, gravity, friction and contact distance, the MuJoCo backend's solver and contact
+//!   settings (`[physics.mujoco]`: the backend's defaults, stiff 2 ms contacts and limits and
+//!   10 no-slip iterations, unless the configuration changes them), and the chosen actuators: `position`
 //!   servos (default: MuJoCo runs kp (q* − q) − kd q̇ clamped to the effort limit inside every
 //!   step, without the shared actuator's velocity-limit rule), `motor`s (control = torque) or
 //!   `none`;
@@ -23,7 +25,7 @@ use std::path::PathBuf;
 use clap::{Args, ValueEnum};
 use hyq_env::EnvConfig;
 use hyq_physics::RobotModel;
-use hyq_physics::mjcf::{Actuators, MjcfOptions, to_mjcf};
+use hyq_physics::mjcf::{Actuators, MjcfOptions, MujocoOptions, to_mjcf};
 use hyq_physics::urdf_export::{CapsuleAs, UrdfOptions, to_urdf};
 use hyq_physics::{Shape, mjcf, urdf_export};
 use serde::Serialize;
@@ -340,8 +342,17 @@ fn render(args: &ModelArgs, model: &RobotModel, config: &EnvConfig) -> Result<St
                     ));
                 }
             }
+            // The MuJoCo backend's solver and contact settings (`[physics.mujoco]`, its
+            // defaults when absent), so that MuJoCo run on this file simulates what the
+            // backend simulates.
+            let mujoco: MujocoOptions = config
+                .physics
+                .engine_options("mujoco")
+                .map_err(|e| usage(e.to_string()))?;
+            mujoco.validate().map_err(|e| usage(e.to_string()))?;
             let options = MjcfOptions {
                 actuators,
+                solver: mujoco.solver_settings(),
                 ..MjcfOptions::from_params(&config.physics.params)
             };
             to_mjcf(model, &options)

@@ -1,5 +1,6 @@
 //! Invariant: `hyq model` writes the robot the environment simulates, under the configuration
-//! given: the MJCF has one actuator of the chosen kind per joint in action order, the URDF has
+//! given: the MJCF has one actuator of the chosen kind per joint in action order and the MuJoCo
+//! backend's solver and contact settings (`[physics.mujoco]`), the URDF has
 //! the chosen capsule form, the JSON facts hold the joints in action order with the
 //! configuration's gains, sub-steps and t_max; `--out` writes the file and prints nothing; bad
 //! input is a one-line error.
@@ -38,6 +39,38 @@ fn mjcf_has_one_actuator_of_the_chosen_kind_per_joint_in_action_order() {
     assert!(!none.contains("<actuator>"));
     let fine = hyq_ok(&["model", "--format", "mjcf", "--set", "physics.dt=0.0005"]);
     assert!(fine.contains("timestep=\"0.0005\""));
+}
+
+#[test]
+fn mjcf_carries_the_mujoco_backends_solver_settings() {
+    // The backend's defaults: 10 no-slip iterations, 2 ms contacts and limits (MuJoCo's own
+    // are 0 and 20 ms).
+    let xml = hyq_ok(&["model", "--format", "mjcf"]);
+    assert!(xml.contains("noslip_iterations=\"10\""), "{xml}");
+    assert_eq!(count(&xml, "solref=\"0.002 1\""), 1, "{xml}");
+    let xml = hyq_ok(&[
+        "model",
+        "--format",
+        "mjcf",
+        "--set",
+        "physics.mujoco.noslip_iterations=3",
+        "--set",
+        "physics.mujoco.cone=\"elliptic\"",
+    ]);
+    assert!(
+        xml.contains("noslip_iterations=\"3\"") && xml.contains("cone=\"elliptic\""),
+        "{xml}"
+    );
+    usage_error_naming(
+        &[
+            "model",
+            "--format",
+            "mjcf",
+            "--set",
+            "physics.mujoco.impratio=0",
+        ],
+        &["mujoco.impratio"],
+    );
 }
 
 #[test]
