@@ -22,28 +22,9 @@ use std::time::Instant;
 
 use cpu_time::ProcessTime;
 use hyq_mujoco::{MujocoBackend, MujocoOptions};
+use hyq_physics::conformance::fixtures::Rng;
 use hyq_physics::na::{Isometry3, Vector3};
 use hyq_physics::{Actuator, Backend, PdScratch, PhysicsParams, RobotModel, pd_substep};
-
-/// A small deterministic generator (xorshift64*).
-struct Rng(u64);
-
-impl Rng {
-    fn unit(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    fn targets(&mut self, model: &RobotModel, margin: f64) -> Vec<f64> {
-        model
-            .joints()
-            .iter()
-            .map(|j| j.lower + margin + (j.upper - j.lower - 2.0 * margin) * self.unit())
-            .collect()
-    }
-}
 
 fn build(params: &PhysicsParams, options: &MujocoOptions) -> MujocoBackend {
     MujocoBackend::build(hyq_physics::bundled::hyq(), params, options)
@@ -163,12 +144,12 @@ fn drift(options: &MujocoOptions) -> f64 {
     let v = (c1 - c0) / params.dt;
     let act = Actuator::new(&model);
     let mut scratch = PdScratch::new(model.num_joints());
-    let mut rng = Rng(17);
+    let mut rng = Rng::new(17);
     let mut targets = model.standing_pose().to_vec();
     let mut worst: f64 = 0.0;
     for n in 2..=1000 {
         if n % 50 == 0 {
-            targets = rng.targets(&model, 0.1);
+            targets = rng.joint_angles(&model, 0.1);
         }
         pd_substep(&mut b, &act, &targets, &mut scratch).unwrap_or_else(|e| panic!("{e}"));
         let t = (n - 1) as f64 * params.dt;
@@ -183,7 +164,7 @@ fn speed(options: &MujocoOptions) -> (f64, f64, usize) {
     let model = Arc::clone(b.model());
     let act = Actuator::new(&model);
     let mut scratch = PdScratch::new(model.num_joints());
-    let mut rng = Rng(37);
+    let mut rng = Rng::new(37);
     let mut targets = model.standing_pose().to_vec();
     let trunk = model.trunk_tracked_index();
     let mut flags = vec![false; model.tracked().len()];
@@ -193,7 +174,7 @@ fn speed(options: &MujocoOptions) -> (f64, f64, usize) {
     let (wall, cpu) = (Instant::now(), ProcessTime::now());
     for i in 0..steps {
         if i % 10 == 0 {
-            targets = rng.targets(&model, 0.0);
+            targets = rng.joint_angles(&model, 0.0);
         }
         pd_substep(&mut b, &act, &targets, &mut scratch).unwrap_or_else(|e| panic!("{e}"));
         b.contacts(&mut flags);

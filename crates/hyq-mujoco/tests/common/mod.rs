@@ -6,23 +6,8 @@
 use hyq_mujoco::{MujocoBackend, MujocoOptions};
 use hyq_physics::{Actuator, Backend, PdScratch, PhysicsParams, bundled, pd_substep};
 
-/// A small deterministic generator (xorshift64*), so that the tests need no dependency.
-pub struct Rng(u64);
-
-impl Rng {
-    /// A generator for `seed` (any value, zero included).
-    pub fn new(seed: u64) -> Self {
-        Self(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1)
-    }
-
-    /// Uniform in [0, 1).
-    pub fn unit(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
+/// The seeded ChaCha8 stream the conformance suite's fixtures use.
+pub use hyq_physics::conformance::fixtures::Rng;
 
 /// A MuJoCo world with the bundled HyQ at its spawn state.
 pub fn hyq() -> MujocoBackend {
