@@ -10,6 +10,7 @@ mod cli;
 mod docs;
 mod soak;
 mod stages;
+mod vendor;
 
 use std::process::ExitCode;
 
@@ -33,6 +34,11 @@ commands:
                                         repository, default /tmp/anchor-venv) interleaved R
                                         times (default 5); prints medians, min/max and ratios
                                         and writes target/bench-vs-anchors.md
+  vendor-check [--no-tests]             vendor/rapier3d is the published rapier3d plus
+                                        vendor/patches (and the notices), and rapier's
+                                        multibody tests pass on it (also a stage of `test`)
+  vendor-diff                           prints what vendor/rapier3d holds beyond the published
+                                        crate and vendor/patches, as an upstream-ready patch
   help                                  this text
 ";
 
@@ -42,6 +48,8 @@ fn main() -> ExitCode {
         Some("test") => stages::test(&args[1..]),
         Some("soak") => soak::soak(&args[1..]),
         Some("bench-vs-anchors") => bench::bench_vs_anchors(&args[1..]),
+        Some("vendor-check") => vendor::vendor_check(&args[1..]),
+        Some("vendor-diff") => vendor::vendor_diff(&args[1..]),
         Some("help") | Some("--help") | Some("-h") | None => {
             print!("{HELP}");
             Ok(())
