@@ -1,3 +1,4 @@
+// Changed by the hyq-env project (Apache-2.0 §4(b)); the changes: PATCHES.md at this crate's root.
 use super::multibody_link::{MultibodyLink, MultibodyLinkVec};
 use super::multibody_workspace::MultibodyWorkspace;
 use crate::alloc_prelude::*;
@@ -105,6 +106,12 @@ pub struct Multibody {
     pub(crate) accelerations: DVector,
 
     body_jacobians: Vec<Jacobian<Real>>,
+    // The columns of a link's body jacobian that can be non-zero are the DoFs of the link and of
+    // its ancestors. `ancestor_dofs[link_ancestor_dofs[i].0..link_ancestor_dofs[i].1]` lists them
+    // for link `i` as ranges `start..end` of generalized coordinates, merged when contiguous.
+    // Recomputed by `update_body_jacobians`.
+    ancestor_dofs: Vec<(usize, usize)>,
+    link_ancestor_dofs: Vec<(usize, usize)>,
     // NOTE: the mass matrices are dimensioned based on the non-kinematic degrees of
     //       freedoms only. The `Self::augmented_mass_permutation` sequence can be used to
     //       move dofs from/to a format that matches the augmented mass.
@@ -156,6 +163,8 @@ impl Multibody {
             frictions: DVector::zeros(0),
             accelerations: DVector::zeros(0),
             body_jacobians: Vec::new(),
+            ancestor_dofs: Vec::new(),
+            link_ancestor_dofs: Vec::new(),
             augmented_mass: DMatrix::zeros(0, 0),
             inv_augmented_mass: LU::new(DMatrix::zeros(0, 0)),
             acc_augmented_mass: DMatrix::zeros(0, 0),
@@ -599,21 +608,27 @@ impl Multibody {
                 rb.forces.force - rb_mass * acc.linvel,
                 rb.forces.torque - gyroscopic - rb_inertia * acc.angvel,
             );
-            self.accelerations.gemv_tr(
-                1.0,
-                &self.body_jacobians[i],
-                external_forces.as_vector(),
-                1.0,
-            );
-
-            if check_implicit_coriolis_divergence {
-                let applied_forces = Force::new(rb.forces.force, rb.forces.torque);
-                pos_forces.gemv_tr(
+            // Only the columns of the link's and its ancestors' DoFs can be non-zero: the
+            // others would add exact zeros.
+            let (first, last) = self.link_ancestor_dofs[i];
+            for &(start, end) in &self.ancestor_dofs[first..last] {
+                let jacobian = self.body_jacobians[i].columns(start, end - start);
+                self.accelerations.rows_mut(start, end - start).gemv_tr(
                     1.0,
-                    &self.body_jacobians[i],
-                    applied_forces.as_vector(),
+                    &jacobian,
+                    external_forces.as_vector(),
                     1.0,
                 );
+
+                if check_implicit_coriolis_divergence {
+                    let applied_forces = Force::new(rb.forces.force, rb.forces.torque);
+                    pos_forces.rows_mut(start, end - start).gemv_tr(
+                        1.0,
+                        &jacobian,
+                        applied_forces.as_vector(),
+                        1.0,
+                    );
+                }
             }
         }
 
@@ -765,7 +780,42 @@ impl Multibody {
         }
     }
 
+    /// Lists, for each link, the generalized coordinates its body jacobian depends on: the DoFs
+    /// of the link and of its ancestors (see `Self::ancestor_dofs`).
+    fn update_ancestor_dofs(&mut self) {
+        self.ancestor_dofs.clear();
+        self.link_ancestor_dofs.clear();
+
+        for i in 0..self.links.len() {
+            let link = &self.links[i];
+            let first = self.ancestor_dofs.len();
+
+            if i != 0 {
+                let (parent_first, parent_last) = self.link_ancestor_dofs[link.parent_internal_id];
+                for k in parent_first..parent_last {
+                    let range = self.ancestor_dofs[k];
+                    self.ancestor_dofs.push(range);
+                }
+            }
+
+            let (start, end) = (link.assembly_id, link.assembly_id + link.joint.ndofs());
+            if start != end {
+                match self.ancestor_dofs[first..].last_mut() {
+                    Some(last) if last.1 == start => last.1 = end,
+                    _ => self.ancestor_dofs.push((start, end)),
+                }
+            }
+
+            self.link_ancestor_dofs
+                .push((first, self.ancestor_dofs.len()));
+        }
+    }
+
     fn update_body_jacobians(&mut self) {
+        self.update_ancestor_dofs();
+
+        // Only the columns of the DoFs of a link and of its ancestors are computed: the others
+        // are zero. Each column goes through the same operations as with dense jacobians.
         for i in 0..self.links.len() {
             let link = &self.links[i];
 
@@ -782,13 +832,17 @@ impl Multibody {
                 parent_to_world = parent_link.local_to_world;
 
                 let (link_j, parent_j) = self.body_jacobians.index_mut_const(i, parent_id);
-                link_j.copy_from(parent_j);
+                link_j.fill(0.0);
 
-                {
+                let shift_tr = vect_to_na(link.shift02).gcross_matrix_tr();
+                let (first, last) = self.link_ancestor_dofs[parent_id];
+                for &(start, end) in &self.ancestor_dofs[first..last] {
+                    let mut link_j = link_j.columns_mut(start, end - start);
+                    let parent_j = parent_j.columns(start, end - start);
+                    link_j.copy_from(&parent_j);
+
                     let mut link_j_v = link_j.fixed_rows_mut::<DIM>(0);
                     let parent_j_w = parent_j.fixed_rows::<ANG_DIM>(DIM);
-
-                    let shift_tr = vect_to_na(link.shift02).gcross_matrix_tr();
                     link_j_v.gemm(1.0, &shift_tr, &parent_j_w, 1.0);
                 }
             } else {
@@ -808,10 +862,14 @@ impl Multibody {
 
             {
                 let link_j = &mut self.body_jacobians[i];
-                let (mut link_j_v, link_j_w) =
-                    link_j.rows_range_pair_mut(0..DIM, DIM..DIM + ANG_DIM);
                 let shift_tr = vect_to_na(link.shift23).gcross_matrix_tr();
-                link_j_v.gemm(1.0, &shift_tr, &link_j_w, 1.0);
+                let (first, last) = self.link_ancestor_dofs[i];
+                for &(start, end) in &self.ancestor_dofs[first..last] {
+                    let mut link_j = link_j.columns_mut(start, end - start);
+                    let (mut link_j_v, link_j_w) =
+                        link_j.rows_range_pair_mut(0..DIM, DIM..DIM + ANG_DIM);
+                    link_j_v.gemm(1.0, &shift_tr, &link_j_w, 1.0);
+                }
             }
         }
     }
@@ -887,18 +945,39 @@ impl Multibody {
             let rb_mass_matrix_wo_gyro = concat_rb_mass_matrix(rb_mass, rb_inertia.into());
             #[allow(clippy::useless_conversion)] // Needed in 3D, no-op in 2D
             let rb_mass_matrix = concat_rb_mass_matrix(rb_mass, augmented_inertia.into());
-            self.augmented_mass
-                .quadform(1.0, &rb_mass_matrix_wo_gyro, body_jacobian, 1.0);
-            self.acc_augmented_mass
-                .quadform(1.0, &rb_mass_matrix, body_jacobian, 1.0);
+            // `Jᵀ·M·J` over the columns of the link's and its ancestors' DoFs only (the others
+            // are zero), column by column as `quadform` does.
+            let (first, last) = self.link_ancestor_dofs[i];
+            let dof_ranges = &self.ancestor_dofs[first..last];
+            let mut work = SVector::<Real, SPATIAL_DIM>::zeros();
+            let mut acc_work = SVector::<Real, SPATIAL_DIM>::zeros();
+            for &(col_start, col_end) in dof_ranges {
+                for col in col_start..col_end {
+                    let body_jacobian_col = body_jacobian.column(col);
+                    work.gemv(1.0, &rb_mass_matrix_wo_gyro, &body_jacobian_col, 0.0);
+                    acc_work.gemv(1.0, &rb_mass_matrix, &body_jacobian_col, 0.0);
+                    for &(row_start, row_end) in dof_ranges {
+                        let rows = body_jacobian.columns(row_start, row_end - row_start);
+                        self.augmented_mass
+                            .column_mut(col)
+                            .rows_mut(row_start, row_end - row_start)
+                            .gemv_tr(1.0, &rows, &work, 1.0);
+                        self.acc_augmented_mass
+                            .column_mut(col)
+                            .rows_mut(row_start, row_end - row_start)
+                            .gemv_tr(1.0, &rows, &acc_work, 1.0);
+                    }
+                }
+            }
 
             /*
              *
              * Coriolis matrix.
              *
              */
+            // As the jacobians, the coriolis terms are computed on the columns of the DoFs of the
+            // link and of its ancestors only: the other columns are zero.
             let rb_j = &self.body_jacobians[i];
-            let rb_j_w = rb_j.fixed_rows::<ANG_DIM>(DIM);
 
             let ndofs = link.joint.ndofs();
 
@@ -907,45 +986,54 @@ impl Multibody {
                 let parent_link = &self.links[parent_id];
                 let parent_rb = &bodies[parent_link.rigid_body];
                 let parent_j = &self.body_jacobians[parent_id];
-                let parent_j_w = parent_j.fixed_rows::<ANG_DIM>(DIM);
                 let parent_w = SimdAngVector::<Real>::from(parent_rb.vels.angvel).gcross_matrix();
 
                 let (coriolis_v, parent_coriolis_v) = self.coriolis_v.index_mut2(i, parent_id);
                 let (coriolis_w, parent_coriolis_w) = self.coriolis_w.index_mut2(i, parent_id);
 
-                coriolis_v.copy_from(parent_coriolis_v);
-                coriolis_w.copy_from(parent_coriolis_w);
-
                 // [c1 - c0].gcross() * (JDot + JDot/u * qdot)"
                 let shift_cross_tr = vect_to_na(link.shift02).gcross_matrix_tr();
-                coriolis_v.gemm(1.0, &shift_cross_tr, parent_coriolis_w, 1.0);
-
                 // JDot (but the 2.0 originates from the sum of two identical terms in JDot and JDot/u * gdot)
                 let dvel_cross = vect_to_na(
                     rb.vels.angvel.gcross(link.shift02) + 2.0 * link.joint_velocity.linvel,
                 )
                 .gcross_matrix_tr();
-                coriolis_v.gemm(1.0, &dvel_cross, &parent_j_w, 1.0);
-
-                // JDot/u * qdot
-                coriolis_v.gemm(
-                    1.0,
-                    &vect_to_na(link.joint_velocity.linvel).gcross_matrix_tr(),
-                    &parent_j_w,
-                    1.0,
-                );
-                coriolis_v.gemm(1.0, &(parent_w * shift_cross_tr), &parent_j_w, 1.0);
-
+                let joint_vel_cross = vect_to_na(link.joint_velocity.linvel).gcross_matrix_tr();
+                let parent_w_shift_cross = parent_w * shift_cross_tr;
                 #[cfg(feature = "dim3")]
-                {
-                    let vel_wrt_joint_w = vect_to_na(link.joint_velocity.angvel).gcross_matrix();
-                    coriolis_w.gemm(-1.0, &vel_wrt_joint_w, &parent_j_w, 1.0);
+                let vel_wrt_joint_w = vect_to_na(link.joint_velocity.angvel).gcross_matrix();
+
+                let (first, last) = self.link_ancestor_dofs[parent_id];
+                for &(start, end) in &self.ancestor_dofs[first..last] {
+                    let len = end - start;
+                    let mut coriolis_v = coriolis_v.columns_mut(start, len);
+                    let mut coriolis_w = coriolis_w.columns_mut(start, len);
+                    let parent_coriolis_w = parent_coriolis_w.columns(start, len);
+                    let parent_j_cols = parent_j.columns(start, len);
+                    let parent_j_w = parent_j_cols.fixed_rows::<ANG_DIM>(DIM);
+
+                    coriolis_v.copy_from(&parent_coriolis_v.columns(start, len));
+                    coriolis_w.copy_from(&parent_coriolis_w);
+
+                    coriolis_v.gemm(1.0, &shift_cross_tr, &parent_coriolis_w, 1.0);
+                    coriolis_v.gemm(1.0, &dvel_cross, &parent_j_w, 1.0);
+                    // JDot/u * qdot
+                    coriolis_v.gemm(1.0, &joint_vel_cross, &parent_j_w, 1.0);
+                    coriolis_v.gemm(1.0, &parent_w_shift_cross, &parent_j_w, 1.0);
+
+                    #[cfg(feature = "dim3")]
+                    {
+                        coriolis_w.gemm(-1.0, &vel_wrt_joint_w, &parent_j_w, 1.0);
+                    }
                 }
+
+                // The link's own DoFs: zero in the parent's terms.
+                let mut coriolis_v_part = coriolis_v.columns_mut(link.assembly_id, ndofs);
+                coriolis_v_part.fill(0.0);
+                coriolis_w.columns_mut(link.assembly_id, ndofs).fill(0.0);
 
                 // JDot (but the 2.0 originates from the sum of two identical terms in JDot and JDot/u * gdot)
                 if !link.joint.kinematic {
-                    let mut coriolis_v_part = coriolis_v.columns_mut(link.assembly_id, ndofs);
-
                     let mut tmp1 = SMatrix::<Real, SPATIAL_DIM, SPATIAL_DIM>::zeros();
                     let mut rb_joint_j = tmp1.columns_mut(0, ndofs);
                     link.joint.jacobian(
@@ -972,53 +1060,64 @@ impl Multibody {
             let coriolis_v = &mut self.coriolis_v[i];
             let coriolis_w = &mut self.coriolis_w[i];
 
-            {
-                // [c3 - c2].gcross() * (JDot + JDot/u * qdot)
-                let shift_cross_tr = vect_to_na(link.shift23).gcross_matrix_tr();
-                coriolis_v.gemm(1.0, &shift_cross_tr, coriolis_w, 1.0);
+            // [c3 - c2].gcross() * (JDot + JDot/u * qdot)
+            let shift_cross_tr = vect_to_na(link.shift23).gcross_matrix_tr();
+            // JDot
+            let dvel_cross = vect_to_na(rb.vels.angvel.gcross(link.shift23)).gcross_matrix_tr();
+            // JDot/u * qdot
+            let w_shift_cross =
+                SimdAngVector::<Real>::from(rb.vels.angvel).gcross_matrix() * shift_cross_tr;
+            let rb_mass_dt = vect_to_na(rb_mass * dt);
 
-                // JDot
-                let dvel_cross = vect_to_na(rb.vels.angvel.gcross(link.shift23)).gcross_matrix_tr();
+            let (first, last) = self.link_ancestor_dofs[i];
+            for &(start, end) in &self.ancestor_dofs[first..last] {
+                let len = end - start;
+                let mut coriolis_v = coriolis_v.columns_mut(start, len);
+                let coriolis_w = coriolis_w.columns(start, len);
+                let rb_j_cols = rb_j.columns(start, len);
+                let rb_j_w = rb_j_cols.fixed_rows::<ANG_DIM>(DIM);
+
+                coriolis_v.gemm(1.0, &shift_cross_tr, &coriolis_w, 1.0);
                 coriolis_v.gemm(1.0, &dvel_cross, &rb_j_w, 1.0);
+                coriolis_v.gemm(1.0, &w_shift_cross, &rb_j_w, 1.0);
 
-                // JDot/u * qdot
-                coriolis_v.gemm(
-                    1.0,
-                    &(SimdAngVector::<Real>::from(rb.vels.angvel).gcross_matrix() * shift_cross_tr),
-                    &rb_j_w,
-                    1.0,
-                );
+                /*
+                 * Meld with the mass matrix.
+                 */
+                let mut i_coriolis_dt = self.i_coriolis_dt.columns_mut(start, len);
+                {
+                    let mut i_coriolis_dt_v = i_coriolis_dt.fixed_rows_mut::<DIM>(0);
+                    i_coriolis_dt_v.copy_from(&coriolis_v);
+                    i_coriolis_dt_v
+                        .column_iter_mut()
+                        .for_each(|mut c| c.component_mul_assign(&rb_mass_dt));
+                }
+
+                #[cfg(feature = "dim2")]
+                {
+                    let mut i_coriolis_dt_w = i_coriolis_dt.fixed_rows_mut::<ANG_DIM>(DIM);
+                    // NOTE: this is just an axpy, but on row columns.
+                    i_coriolis_dt_w.zip_apply(&coriolis_w, |o, x| *o = x * dt * rb_inertia);
+                }
+                #[cfg(feature = "dim3")]
+                {
+                    let mut i_coriolis_dt_w = i_coriolis_dt.fixed_rows_mut::<ANG_DIM>(DIM);
+                    i_coriolis_dt_w.gemm(dt, &mat_to_na(rb_inertia), &coriolis_w, 0.0);
+                }
             }
 
-            let coriolis_v = &mut self.coriolis_v[i];
-            let coriolis_w = &mut self.coriolis_w[i];
-
-            /*
-             * Meld with the mass matrix.
-             */
-            {
-                let mut i_coriolis_dt_v = self.i_coriolis_dt.fixed_rows_mut::<DIM>(0);
-                i_coriolis_dt_v.copy_from(coriolis_v);
-                let rb_mass_dt = vect_to_na(rb_mass * dt);
-                i_coriolis_dt_v
-                    .column_iter_mut()
-                    .for_each(|mut c| c.component_mul_assign(&rb_mass_dt));
+            for &(col_start, col_end) in &self.ancestor_dofs[first..last] {
+                let i_coriolis_dt = self.i_coriolis_dt.columns(col_start, col_end - col_start);
+                for &(row_start, row_end) in &self.ancestor_dofs[first..last] {
+                    let rows = rb_j.columns(row_start, row_end - row_start);
+                    self.acc_augmented_mass
+                        .view_mut(
+                            (row_start, col_start),
+                            (row_end - row_start, col_end - col_start),
+                        )
+                        .gemm_tr(1.0, &rows, &i_coriolis_dt, 1.0);
+                }
             }
-
-            #[cfg(feature = "dim2")]
-            {
-                let mut i_coriolis_dt_w = self.i_coriolis_dt.fixed_rows_mut::<ANG_DIM>(DIM);
-                // NOTE: this is just an axpy, but on row columns.
-                i_coriolis_dt_w.zip_apply(coriolis_w, |o, x| *o = x * dt * rb_inertia);
-            }
-            #[cfg(feature = "dim3")]
-            {
-                let mut i_coriolis_dt_w = self.i_coriolis_dt.fixed_rows_mut::<ANG_DIM>(DIM);
-                i_coriolis_dt_w.gemm(dt, &mat_to_na(rb_inertia), coriolis_w, 0.0);
-            }
-
-            self.acc_augmented_mass
-                .gemm_tr(1.0, rb_j, &self.i_coriolis_dt, 1.0);
         }
 
         /*
@@ -1632,7 +1731,14 @@ impl Multibody {
 
         let link = &self.links[link_id];
         let mut out_j = jacobians.rows_mut(*j_id, self.ndofs);
-        self.body_jacobians[link.internal_id].tr_mul_to(force.as_vector(), &mut out_j);
+        // Only the link's and its ancestors' DoFs can have non-zero entries.
+        out_j.fill(0.0);
+        let (first, last) = self.link_ancestor_dofs[link.internal_id];
+        for &(start, end) in &self.ancestor_dofs[first..last] {
+            self.body_jacobians[link.internal_id]
+                .columns(start, end - start)
+                .tr_mul_to(force.as_vector(), &mut out_j.rows_mut(start, end - start));
+        }
 
         // TODO: Optimize with a copy_nonoverlapping?
         for i in 0..self.ndofs {
