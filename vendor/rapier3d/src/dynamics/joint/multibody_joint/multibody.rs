@@ -16,7 +16,7 @@ use crate::prelude::MultibodyJoint;
 use crate::utils::mat_to_na;
 use crate::utils::{AngularInertiaOps, CrossProduct, CrossProductMatrix, IndexMut2, vect_to_na};
 use na::{
-    self, DMatrix, DVectorView, DVectorViewMut, Dyn, LU, OMatrix, SMatrix, SVector, StorageMut,
+    self, DMatrix, DVectorView, DVectorViewMut, Dyn, Matrix, OMatrix, SMatrix, SVector, StorageMut,
 };
 
 #[cfg(doc)]
@@ -61,6 +61,124 @@ fn concat_rb_mass_matrix(
         .fixed_view_mut::<ANG_DIM, ANG_DIM>(DIM, DIM)
         .copy_from(&inertia);
     result
+}
+
+/// The LU factorization, with partial (row) pivoting, of a multibody's (augmented) mass matrix.
+///
+/// It keeps its storage between factorizations, so that refactorizing a matrix of the same size
+/// allocates nothing. It performs the operations of nalgebra's [`na::LU`], in the same order, so
+/// its results are identical.
+#[cfg_attr(feature = "serde-serialize", derive(Serialize, Deserialize))]
+#[derive(Clone, Debug)]
+pub struct MultibodyLu {
+    lu: DMatrix<Real>,
+    // The row interchanges `(i, pivot)` of the factorization, in order.
+    pivots: Vec<(usize, usize)>,
+}
+
+impl Default for MultibodyLu {
+    fn default() -> Self {
+        Self {
+            lu: DMatrix::zeros(0, 0),
+            pivots: Vec::new(),
+        }
+    }
+}
+
+impl MultibodyLu {
+    /// Factorizes the top-left `dim × dim` block of `matrix`, reusing this factorization's
+    /// storage.
+    fn factorize<R: na::Dim, C: na::Dim, S: na::Storage<Real, R, C>>(
+        &mut self,
+        matrix: &Matrix<Real, R, C, S>,
+        dim: usize,
+    ) {
+        if self.lu.nrows() != dim {
+            self.lu = DMatrix::zeros(dim, dim);
+        }
+        self.lu.copy_from(&matrix.view((0, 0), (dim, dim)));
+        self.pivots.clear();
+
+        for i in 0..dim {
+            let piv = self.lu.view_range(i.., i).icamax() + i;
+            let diag = self.lu[(piv, i)];
+
+            if diag == 0.0 {
+                // No non-zero entries on this column.
+                continue;
+            }
+
+            if piv != i {
+                self.pivots.push((i, piv));
+                self.lu.columns_range_mut(..i).swap_rows(i, piv);
+                na::linalg::gauss_step_swap(&mut self.lu, diag, i, piv);
+            } else {
+                na::linalg::gauss_step(&mut self.lu, diag, i);
+            }
+        }
+    }
+
+    /// Solves `self * x = b` in place, `b` becoming `x`.
+    ///
+    /// Returns `false` if the factorized matrix is not invertible, in which case `b` may hold
+    /// garbage.
+    pub fn solve_mut<R2: na::Dim, C2: na::Dim, S2: StorageMut<Real, R2, C2>>(
+        &self,
+        b: &mut Matrix<Real, R2, C2, S2>,
+    ) -> bool
+    where
+        na::constraint::ShapeConstraint: na::constraint::SameNumberOfRows<R2, Dyn>,
+    {
+        assert_eq!(
+            self.lu.nrows(),
+            b.nrows(),
+            "LU solve matrix dimension mismatch."
+        );
+        for &(i, piv) in &self.pivots {
+            b.swap_rows(i, piv);
+        }
+        let _ = self.lu.solve_lower_triangular_with_diag_mut(b, 1.0);
+        self.lu.solve_upper_triangular_mut(b)
+    }
+
+    /// The dimension of the factorized matrix.
+    pub fn dim(&self) -> usize {
+        self.lu.nrows()
+    }
+}
+
+/// Vectors `update_acceleration` and its energy guard reuse between calls.
+#[cfg_attr(feature = "serde-serialize", derive(Serialize, Deserialize))]
+#[derive(Clone, Debug)]
+struct AccelerationWorkspace {
+    pos_forces: DVector,
+    gen_forces: DVector,
+    velocities: DVector,
+    forces: DVector,
+    accelerations: DVector,
+    mass_times: DVector,
+}
+
+impl AccelerationWorkspace {
+    fn new() -> Self {
+        Self {
+            pos_forces: DVector::zeros(0),
+            gen_forces: DVector::zeros(0),
+            velocities: DVector::zeros(0),
+            forces: DVector::zeros(0),
+            accelerations: DVector::zeros(0),
+            mass_times: DVector::zeros(0),
+        }
+    }
+}
+
+/// Sets `v` to `n` zeros, reallocating only when its length changes.
+fn zero_fill(v: &mut DVector, n: usize) {
+    if v.len() != n {
+        *v = DVector::zeros(n);
+    } else {
+        v.fill(0.0);
+    }
 }
 
 /// A holonomic coupling between two generalized coordinates of a single
@@ -117,13 +235,13 @@ pub struct Multibody {
     //       move dofs from/to a format that matches the augmented mass.
     // TODO: use sparse matrices?
     augmented_mass: DMatrix<Real>,
-    inv_augmented_mass: LU<Real, Dyn, Dyn>,
+    inv_augmented_mass: MultibodyLu,
     // The indexing sequence for moving all kinematics degrees of
     // freedoms to the end of the generalized coordinates vector.
     augmented_mass_indices: IndexSequence,
 
     acc_augmented_mass: DMatrix<Real>,
-    acc_inv_augmented_mass: LU<Real, Dyn, Dyn>,
+    acc_inv_augmented_mass: MultibodyLu,
 
     ndofs: usize,
     pub(crate) root_is_dynamic: bool,
@@ -141,6 +259,7 @@ pub struct Multibody {
     coriolis_v: Vec<OMatrix<Real, Dim, Dyn>>,
     coriolis_w: Vec<OMatrix<Real, AngDim, Dyn>>,
     i_coriolis_dt: Jacobian<Real>,
+    acceleration_workspace: AccelerationWorkspace,
 }
 impl Default for Multibody {
     fn default() -> Self {
@@ -166,9 +285,10 @@ impl Multibody {
             ancestor_dofs: Vec::new(),
             link_ancestor_dofs: Vec::new(),
             augmented_mass: DMatrix::zeros(0, 0),
-            inv_augmented_mass: LU::new(DMatrix::zeros(0, 0)),
+            inv_augmented_mass: MultibodyLu::default(),
             acc_augmented_mass: DMatrix::zeros(0, 0),
-            acc_inv_augmented_mass: LU::new(DMatrix::zeros(0, 0)),
+            acc_inv_augmented_mass: MultibodyLu::default(),
+            acceleration_workspace: AccelerationWorkspace::new(),
             augmented_mass_indices: IndexSequence::new(),
             ndofs: 0,
             solver_id: 0,
@@ -371,8 +491,8 @@ impl Multibody {
         self.self_contacts_enabled = enabled;
     }
 
-    /// The inverse augmented mass matrix of this multibody.
-    pub fn inv_augmented_mass(&self) -> &LU<Real, Dyn, Dyn> {
+    /// The inverse augmented mass matrix of this multibody, as an LU factorization.
+    pub fn inv_augmented_mass(&self) -> &MultibodyLu {
         &self.inv_augmented_mass
     }
 
@@ -548,11 +668,18 @@ impl Multibody {
         let check_implicit_coriolis_divergence = dt * self.velocities.amax() >= 1.0e-3;
         // Generalized forces that derive from positions or external inputs
         // (gravity, user forces, spring position terms).
-        let mut pos_forces = DVector::zeros(if check_implicit_coriolis_divergence {
-            self.ndofs
-        } else {
-            0
-        });
+        let mut pos_forces = core::mem::replace(
+            &mut self.acceleration_workspace.pos_forces,
+            DVector::zeros(0),
+        );
+        zero_fill(
+            &mut pos_forces,
+            if check_implicit_coriolis_divergence {
+                self.ndofs
+            } else {
+                0
+            },
+        );
 
         // Eqn 42 to 45
         for i in 0..self.links.len() {
@@ -660,11 +787,16 @@ impl Multibody {
 
         // Snapshot the full generalized forces: the energy guard may need them
         // for a re-solve with the plain mass matrix.
-        let gen_forces = if check_implicit_coriolis_divergence {
-            self.accelerations.clone()
-        } else {
-            DVector::zeros(0)
-        };
+        let mut gen_forces = core::mem::replace(
+            &mut self.acceleration_workspace.gen_forces,
+            DVector::zeros(0),
+        );
+        if check_implicit_coriolis_divergence {
+            if gen_forces.len() != self.accelerations.len() {
+                gen_forces = DVector::zeros(self.accelerations.len());
+            }
+            gen_forces.copy_from(&self.accelerations);
+        }
 
         self.augmented_mass_indices
             .with_rearranged_rows_mut(&mut self.accelerations, |accs| {
@@ -674,6 +806,8 @@ impl Multibody {
         if check_implicit_coriolis_divergence {
             self.free_velocity_energy_guard(dt, &gen_forces, &pos_forces);
         }
+        self.acceleration_workspace.pos_forces = pos_forces;
+        self.acceleration_workspace.gen_forces = gen_forces;
     }
 
     // If the semi-implicit coriolis solve introduces more energy than the external
@@ -693,36 +827,45 @@ impl Multibody {
 
         // Move all quantities to the kinematic-reduced ordering of the
         // factorized matrices (no-op when there is no kinematic dof).
-        let mut v = self.velocities.clone();
-        let mut f = gen_forces.clone();
-        let mut f_pos = pos_forces.clone();
-        self.augmented_mass_indices.rearrange_rows(&mut v, true);
-        self.augmented_mass_indices.rearrange_rows(&mut f, true);
-        self.augmented_mass_indices.rearrange_rows(&mut f_pos, true);
+        let ws = &mut self.acceleration_workspace;
+        for (dst, src) in [
+            (&mut ws.velocities, &self.velocities),
+            (&mut ws.forces, gen_forces),
+            (&mut ws.pos_forces, pos_forces),
+            (&mut ws.accelerations, &self.accelerations),
+        ] {
+            if dst.len() != src.len() {
+                *dst = DVector::zeros(src.len());
+            }
+            dst.copy_from(src);
+            self.augmented_mass_indices.rearrange_rows(dst, true);
+        }
+        zero_fill(&mut ws.mass_times, eff_dim);
 
         let m = self.augmented_mass.view((0, 0), (eff_dim, eff_dim));
-        let v = v.rows(0, eff_dim);
-        let f = f.rows(0, eff_dim);
-        let f_pos = f_pos.rows(0, eff_dim);
+        let v = ws.velocities.rows(0, eff_dim);
+        let f = ws.forces.rows(0, eff_dim);
+        let f_pos = ws.pos_forces.rows(0, eff_dim);
+        let a = ws.accelerations.rows(0, eff_dim);
 
-        let energy_delta_minus_work = |accelerations: &DVector| -> Option<Real> {
-            let mut a = accelerations.clone();
-            self.augmented_mass_indices.rearrange_rows(&mut a, true);
-            let a = a.rows(0, eff_dim).into_owned();
-            if !a.iter().all(|x| x.is_finite()) {
-                return None;
-            }
-            let m_a = m * &a;
-            let energy_delta = dt * v.dot(&m_a) + 0.5 * dt * dt * a.dot(&m_a);
+        // The energy the implicit update adds minus the forces' work: `None` when the
+        // accelerations are not finite.
+        let excess = if a.iter().all(|x| x.is_finite()) {
+            ws.mass_times.gemv(1.0, &m, &a, 0.0);
+            let m_a = &ws.mass_times;
+            let energy_delta = dt * v.dot(m_a) + 0.5 * dt * dt * a.dot(m_a);
             let work = dt * v.dot(&f) + 0.5 * dt * dt * a.dot(&f_pos);
             // Margin: a small fraction of the current kinetic energy to absorb
             // discretization error on healthy steps.
-            let kinetic_energy = 0.5 * v.dot(&(m * v));
+            ws.mass_times.gemv(1.0, &m, &v, 0.0);
+            let kinetic_energy = 0.5 * v.dot(&ws.mass_times);
             let energy_margin = 1.0e-2 * kinetic_energy + 1.0e-8;
             Some(energy_delta - work - energy_margin)
+        } else {
+            None
         };
 
-        match energy_delta_minus_work(&self.accelerations) {
+        match excess {
             Some(excess) if excess <= 0.0 => (), // Implicit update didn’t introduce too much extra energy.
             _ => {
                 // The implicit solve injected energy (or produced non-finite
@@ -1170,17 +1313,13 @@ impl Multibody {
         self.augmented_mass_indices
             .rearrange_rows(&mut self.augmented_mass, true);
 
-        // TODO: avoid allocation inside LU at each timestep.
-        self.acc_inv_augmented_mass = LU::new(
-            self.acc_augmented_mass
-                .view((0, 0), (effective_dim, effective_dim))
-                .into_owned(),
-        );
-        self.inv_augmented_mass = LU::new(
-            self.augmented_mass
-                .view((0, 0), (effective_dim, effective_dim))
-                .into_owned(),
-        );
+        // The factorizations reuse their storage: no allocation unless the size changes.
+        self.acc_inv_augmented_mass
+            .factorize(&self.acc_augmented_mass, effective_dim);
+        // Factorized at every internal substep: the multibody's own joint constraints (limits,
+        // motors, friction, couplings) are rebuilt with it at each one.
+        self.inv_augmented_mass
+            .factorize(&self.augmented_mass, effective_dim);
     }
 
     /// Per-DoF inverse joint-space inertia `diag(M⁻¹)` at the current configuration, where `M`
