@@ -2098,6 +2098,10 @@ impl IndexSequence {
 }
 
 #[cfg(test)]
+#[path = "multibody_dense_reference.rs"]
+mod dense_reference;
+
+#[cfg(test)]
 mod test {
     use super::IndexSequence;
     use crate::alloc_prelude::*;
