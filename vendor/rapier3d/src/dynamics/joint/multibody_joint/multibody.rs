@@ -1070,45 +1070,30 @@ impl Multibody {
                 }
             }
 
-            #[allow(unused_mut)] // mut is needed for 3D but not for 2D.
-            let mut augmented_inertia = rb_inertia;
-
+            // Derivative of gyroscopic forces: enters the implicit terms below, with the
+            // Coriolis terms.
             #[cfg(feature = "dim3")]
-            {
-                // Derivative of gyroscopic forces.
-                let gyroscopic_matrix = rb.vels.angvel.gcross_matrix() * rb_inertia
-                    - (rb_inertia * rb.vels.angvel).gcross_matrix();
+            let gyroscopic_matrix = rb.vels.angvel.gcross_matrix() * rb_inertia
+                - (rb_inertia * rb.vels.angvel).gcross_matrix();
 
-                augmented_inertia += gyroscopic_matrix * dt;
-            }
-
-            // TODO: optimize that (knowing the structure of the augmented inertia matrix).
             // TODO: this could be better optimized in 2D.
             #[allow(clippy::useless_conversion)] // Needed in 3D, no-op in 2D
-            let rb_mass_matrix_wo_gyro = concat_rb_mass_matrix(rb_mass, rb_inertia.into());
-            #[allow(clippy::useless_conversion)] // Needed in 3D, no-op in 2D
-            let rb_mass_matrix = concat_rb_mass_matrix(rb_mass, augmented_inertia.into());
+            let rb_mass_matrix = concat_rb_mass_matrix(rb_mass, rb_inertia.into());
             // `Jᵀ·M·J` over the columns of the link's and its ancestors' DoFs only (the others
             // are zero), column by column as `quadform` does.
             let (first, last) = self.link_ancestor_dofs[i];
             let dof_ranges = &self.ancestor_dofs[first..last];
             let mut work = SVector::<Real, SPATIAL_DIM>::zeros();
-            let mut acc_work = SVector::<Real, SPATIAL_DIM>::zeros();
             for &(col_start, col_end) in dof_ranges {
                 for col in col_start..col_end {
                     let body_jacobian_col = body_jacobian.column(col);
-                    work.gemv(1.0, &rb_mass_matrix_wo_gyro, &body_jacobian_col, 0.0);
-                    acc_work.gemv(1.0, &rb_mass_matrix, &body_jacobian_col, 0.0);
+                    work.gemv(1.0, &rb_mass_matrix, &body_jacobian_col, 0.0);
                     for &(row_start, row_end) in dof_ranges {
                         let rows = body_jacobian.columns(row_start, row_end - row_start);
                         self.augmented_mass
                             .column_mut(col)
                             .rows_mut(row_start, row_end - row_start)
                             .gemv_tr(1.0, &rows, &work, 1.0);
-                        self.acc_augmented_mass
-                            .column_mut(col)
-                            .rows_mut(row_start, row_end - row_start)
-                            .gemv_tr(1.0, &rows, &acc_work, 1.0);
                     }
                 }
             }
@@ -1244,8 +1229,11 @@ impl Multibody {
                 }
                 #[cfg(feature = "dim3")]
                 {
+                    // `dt·(I·J̇_w + G·J_w)`: the gyroscopic derivative `G` joins the Coriolis
+                    // terms, so one product with the jacobian carries both.
                     let mut i_coriolis_dt_w = i_coriolis_dt.fixed_rows_mut::<ANG_DIM>(DIM);
                     i_coriolis_dt_w.gemm(dt, &mat_to_na(rb_inertia), &coriolis_w, 0.0);
+                    i_coriolis_dt_w.gemm(dt, &mat_to_na(gyroscopic_matrix), &rb_j_w, 1.0);
                 }
             }
 
@@ -1273,7 +1261,6 @@ impl Multibody {
          */
         for i in 0..self.ndofs {
             let diag = self.damping[i] * dt + self.armature[i];
-            self.acc_augmented_mass[(i, i)] += diag;
             self.augmented_mass[(i, i)] += diag;
         }
 
@@ -1289,13 +1276,16 @@ impl Multibody {
                     let k = self.links[li].joint.spring_stiffness[a];
                     if k != 0.0 {
                         let d = k * dt2;
-                        self.acc_augmented_mass[(idx, idx)] += d;
                         self.augmented_mass[(idx, idx)] += d;
                     }
                     idx += 1;
                 }
             }
         }
+
+        // The matrix of the implicit Coriolis and gyroscopic terms holds only
+        // `dt·Σ Jᵀ·[m·J̇_v; I·J̇_w + G·J_w]` so far: the augmented mass matrix completes it.
+        self.acc_augmented_mass += &self.augmented_mass;
 
         let effective_dim = self
             .augmented_mass_indices
