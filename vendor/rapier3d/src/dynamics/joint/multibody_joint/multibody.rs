@@ -172,6 +172,23 @@ impl AccelerationWorkspace {
     }
 }
 
+/// A link's subtree taken as one rigid body, as the composite-rigid-body assembly of the mass
+/// matrix accumulates it from the leaves up.
+#[cfg(feature = "dim3")]
+#[cfg_attr(feature = "serde-serialize", derive(Serialize, Deserialize))]
+#[derive(Clone, Copy, Debug, Default)]
+struct CompositeInertia {
+    /// The point whose velocity the link's body jacobian gives (its centre of mass), relative
+    /// to the root link's.
+    point: Vector,
+    /// The subtree's mass.
+    mass: Real,
+    /// The subtree's centre of mass, relative to the root link's point.
+    com: Vector,
+    /// The subtree's angular inertia about `com`, in world axes.
+    inertia: crate::math::Matrix,
+}
+
 /// Sets `v` to `n` zeros, reallocating only when its length changes.
 fn zero_fill(v: &mut DVector, n: usize) {
     if v.len() != n {
@@ -260,6 +277,8 @@ pub struct Multibody {
     coriolis_w: Vec<OMatrix<Real, AngDim, Dyn>>,
     i_coriolis_dt: Jacobian<Real>,
     acceleration_workspace: AccelerationWorkspace,
+    #[cfg(feature = "dim3")]
+    composite_inertias: Vec<CompositeInertia>,
 }
 impl Default for Multibody {
     fn default() -> Self {
@@ -289,6 +308,8 @@ impl Multibody {
             acc_augmented_mass: DMatrix::zeros(0, 0),
             acc_inv_augmented_mass: MultibodyLu::default(),
             acceleration_workspace: AccelerationWorkspace::new(),
+            #[cfg(feature = "dim3")]
+            composite_inertias: Vec::new(),
             augmented_mass_indices: IndexSequence::new(),
             ndofs: 0,
             solver_id: 0,
@@ -1017,6 +1038,102 @@ impl Multibody {
         }
     }
 
+    /// Writes the links' mass matrix `M = Σ Jᵢᵀ·diag(mᵢ, Iᵢ)·Jᵢ` into `self.augmented_mass`
+    /// (zero on entry) with the composite-rigid-body algorithm.
+    ///
+    /// A link's own DoFs and its ancestors' move the link's whole subtree rigidly. So for `a` a
+    /// DoF of link `j` and `b` a DoF of `j` or of one of its ancestors, only the subtree of `j`
+    /// contributes to `M[a, b]`, as one rigid body: `M[a, b] = m·v_a·v_b + ω_aᵀ·I·ω_b`, with the
+    /// subtree's mass `m`, its angular inertia `I` about its centre of mass, and `v`, `ω` the
+    /// velocity of that centre of mass and the angular velocity the DoF gives (read from the
+    /// body jacobian of `j`, shifted to the subtree's centre of mass). The subtrees' masses and
+    /// inertias add up from the leaves (parallel-axis theorem). This costs a few products per
+    /// entry instead of a quadratic form per link.
+    ///
+    /// Returns `false`, having written nothing, if a link's mass differs between axes (locked
+    /// translations): a subtree is then not one rigid body, and the caller assembles `M` link by
+    /// link.
+    #[cfg(feature = "dim3")]
+    fn assemble_mass_matrix_crba(&mut self, bodies: &RigidBodySet) -> bool {
+        let num_links = self.links.len();
+        self.composite_inertias.clear();
+        for i in 0..num_links {
+            let link = &self.links[i];
+            let rb = &bodies[link.rigid_body];
+            let mass = rb.mprops.effective_mass();
+            if mass.x != mass.y || mass.x != mass.z {
+                return false;
+            }
+            // The point the body jacobian's linear rows refer to, as the jacobians are built
+            // (`update_body_jacobians`), relative to the root's.
+            let point = if i == 0 {
+                Vector::ZERO
+            } else {
+                self.composite_inertias[link.parent_internal_id].point + link.shift02 + link.shift23
+            };
+            self.composite_inertias.push(CompositeInertia {
+                point,
+                mass: mass.x,
+                com: point,
+                inertia: rb.mprops.effective_angular_inertia().into_matrix(),
+            });
+        }
+
+        // From the leaves up (a link comes after its parent).
+        for i in (1..num_links).rev() {
+            let child = self.composite_inertias[i];
+            let parent = &mut self.composite_inertias[self.links[i].parent_internal_id];
+            let total = parent.mass + child.mass;
+            parent.inertia += child.inertia;
+            if total > 0.0 {
+                // Parallel-axis theorem about the joint centre of mass, with the reduced mass.
+                let d = child.com - parent.com;
+                let ratio = child.mass / total;
+                let reduced_mass = parent.mass * ratio;
+                let shift = crate::math::Matrix::from_diagonal(Vector::splat(d.length_squared()))
+                    - crate::math::Matrix::from_cols(d * d.x, d * d.y, d * d.z);
+                parent.inertia += shift * reduced_mass;
+                parent.com += d * ratio;
+            }
+            parent.mass = total;
+        }
+
+        for j in 0..num_links {
+            let link = &self.links[j];
+            let ndofs = link.joint.ndofs();
+            if ndofs == 0 {
+                continue;
+            }
+            let composite = &self.composite_inertias[j];
+            let offset = composite.com - composite.point;
+            let jacobian = &self.body_jacobians[j];
+            // The velocity of the subtree's centre of mass and the angular velocity the DoF
+            // `col` gives.
+            let motion = |col: usize| {
+                let c = jacobian.column(col);
+                let angular = Vector::new(c[3], c[4], c[5]);
+                let linear = Vector::new(c[0], c[1], c[2]) + angular.cross(offset);
+                (linear, angular)
+            };
+            let (first, last) = self.link_ancestor_dofs[j];
+            for a in link.assembly_id..link.assembly_id + ndofs {
+                let (v_a, w_a) = motion(a);
+                let momentum_a = v_a * composite.mass;
+                let angular_momentum_a = composite.inertia * w_a;
+                // The DoFs `b ≤ a` of the link and of its ancestors (ancestors come first).
+                for &(start, end) in &self.ancestor_dofs[first..last] {
+                    for b in start..end.min(a + 1) {
+                        let (v_b, w_b) = motion(b);
+                        let entry = momentum_a.dot(v_b) + angular_momentum_a.dot(w_b);
+                        self.augmented_mass[(a, b)] = entry;
+                        self.augmented_mass[(b, a)] = entry;
+                    }
+                }
+            }
+        }
+        true
+    }
+
     pub(crate) fn update_mass_matrix(&mut self, dt: Real, bodies: &RigidBodySet) {
         if self.ndofs == 0 {
             return; // Nothing to do.
@@ -1041,6 +1158,11 @@ impl Multibody {
                 vec![OMatrix::<Real, AngDim, Dyn>::zeros(self.ndofs); self.links.len()];
             self.i_coriolis_dt = Jacobian::zeros(self.ndofs);
         }
+
+        #[cfg(feature = "dim3")]
+        let mass_matrix_assembled = self.assemble_mass_matrix_crba(bodies);
+        #[cfg(feature = "dim2")]
+        let mass_matrix_assembled = false;
 
         let mut curr_assembly_id = 0;
 
@@ -1076,24 +1198,26 @@ impl Multibody {
             let gyroscopic_matrix = rb.vels.angvel.gcross_matrix() * rb_inertia
                 - (rb_inertia * rb.vels.angvel).gcross_matrix();
 
-            // TODO: this could be better optimized in 2D.
-            #[allow(clippy::useless_conversion)] // Needed in 3D, no-op in 2D
-            let rb_mass_matrix = concat_rb_mass_matrix(rb_mass, rb_inertia.into());
-            // `Jᵀ·M·J` over the columns of the link's and its ancestors' DoFs only (the others
-            // are zero), column by column as `quadform` does.
             let (first, last) = self.link_ancestor_dofs[i];
-            let dof_ranges = &self.ancestor_dofs[first..last];
-            let mut work = SVector::<Real, SPATIAL_DIM>::zeros();
-            for &(col_start, col_end) in dof_ranges {
-                for col in col_start..col_end {
-                    let body_jacobian_col = body_jacobian.column(col);
-                    work.gemv(1.0, &rb_mass_matrix, &body_jacobian_col, 0.0);
-                    for &(row_start, row_end) in dof_ranges {
-                        let rows = body_jacobian.columns(row_start, row_end - row_start);
-                        self.augmented_mass
-                            .column_mut(col)
-                            .rows_mut(row_start, row_end - row_start)
-                            .gemv_tr(1.0, &rows, &work, 1.0);
+            if !mass_matrix_assembled {
+                // TODO: this could be better optimized in 2D.
+                #[allow(clippy::useless_conversion)] // Needed in 3D, no-op in 2D
+                let rb_mass_matrix = concat_rb_mass_matrix(rb_mass, rb_inertia.into());
+                // `Jᵀ·M·J` over the columns of the link's and its ancestors' DoFs only (the
+                // others are zero), column by column as `quadform` does.
+                let dof_ranges = &self.ancestor_dofs[first..last];
+                let mut work = SVector::<Real, SPATIAL_DIM>::zeros();
+                for &(col_start, col_end) in dof_ranges {
+                    for col in col_start..col_end {
+                        let body_jacobian_col = body_jacobian.column(col);
+                        work.gemv(1.0, &rb_mass_matrix, &body_jacobian_col, 0.0);
+                        for &(row_start, row_end) in dof_ranges {
+                            let rows = body_jacobian.columns(row_start, row_end - row_start);
+                            self.augmented_mass
+                                .column_mut(col)
+                                .rows_mut(row_start, row_end - row_start)
+                                .gemv_tr(1.0, &rows, &work, 1.0);
+                        }
                     }
                 }
             }
