@@ -189,6 +189,24 @@ struct CompositeInertia {
     inertia: crate::math::Matrix,
 }
 
+/// `y += alpha·m·x` for a small fixed-size matrix `m` and vectors given as slices, with the
+/// operations of nalgebra's `gemm` on one column (`y ← (alpha·m[:, k])·x[k] + y` for each `k` in
+/// order), so that its results are bit-identical to it without its dynamic views' overhead.
+#[inline(always)]
+fn gemm_column<const R: usize, const C: usize>(
+    y: &mut [Real],
+    alpha: Real,
+    m: &SMatrix<Real, R, C>,
+    x: &[Real],
+) {
+    for k in 0..C {
+        let x_k = x[k];
+        for r in 0..R {
+            y[r] = alpha * m[(r, k)] * x_k + y[r];
+        }
+    }
+}
+
 /// Sets `v` to `n` zeros, reallocating only when its length changes.
 fn zero_fill(v: &mut DVector, n: usize) {
     if v.len() != n {
@@ -996,21 +1014,24 @@ impl Multibody {
                 parent_to_world = parent_link.local_to_world;
 
                 let (link_j, parent_j) = self.body_jacobians.index_mut_const(i, parent_id);
+                // (On the slice: nalgebra's `fill` goes through an element iterator.)
+                let link_j = link_j.as_mut_slice();
                 link_j.fill(0.0);
 
                 let shift_tr = vect_to_na(link.shift02).gcross_matrix_tr();
+                let parent_j = parent_j.as_slice();
                 let (first, last) = self.link_ancestor_dofs[parent_id];
                 for &(start, end) in &self.ancestor_dofs[first..last] {
-                    let mut link_j = link_j.columns_mut(start, end - start);
-                    let parent_j = parent_j.columns(start, end - start);
-                    link_j.copy_from(&parent_j);
-
-                    let mut link_j_v = link_j.fixed_rows_mut::<DIM>(0);
-                    let parent_j_w = parent_j.fixed_rows::<ANG_DIM>(DIM);
-                    link_j_v.gemm(1.0, &shift_tr, &parent_j_w, 1.0);
+                    for col in start..end {
+                        let rows = col * SPATIAL_DIM..(col + 1) * SPATIAL_DIM;
+                        let link_col = &mut link_j[rows.clone()];
+                        let parent_col = &parent_j[rows];
+                        link_col.copy_from_slice(parent_col);
+                        gemm_column(&mut link_col[..DIM], 1.0, &shift_tr, &parent_col[DIM..]);
+                    }
                 }
             } else {
-                self.body_jacobians[i].fill(0.0);
+                self.body_jacobians[i].as_mut_slice().fill(0.0);
                 parent_to_world = Pose::IDENTITY;
             }
 
@@ -1025,14 +1046,15 @@ impl Multibody {
             link_j_part += link_joint_j;
 
             {
-                let link_j = &mut self.body_jacobians[i];
+                let link_j = self.body_jacobians[i].as_mut_slice();
                 let shift_tr = vect_to_na(link.shift23).gcross_matrix_tr();
                 let (first, last) = self.link_ancestor_dofs[i];
                 for &(start, end) in &self.ancestor_dofs[first..last] {
-                    let mut link_j = link_j.columns_mut(start, end - start);
-                    let (mut link_j_v, link_j_w) =
-                        link_j.rows_range_pair_mut(0..DIM, DIM..DIM + ANG_DIM);
-                    link_j_v.gemm(1.0, &shift_tr, &link_j_w, 1.0);
+                    for col in start..end {
+                        let link_col = &mut link_j[col * SPATIAL_DIM..(col + 1) * SPATIAL_DIM];
+                        let (link_col_v, link_col_w) = link_col.split_at_mut(DIM);
+                        gemm_column(link_col_v, 1.0, &shift_tr, link_col_w);
+                    }
                 }
             }
         }
