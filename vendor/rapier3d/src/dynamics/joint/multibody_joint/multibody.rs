@@ -207,12 +207,44 @@ fn gemm_column<const R: usize, const C: usize>(
     }
 }
 
+/// `y = alpha·m·x`, with the operations of nalgebra's `gemm` with `beta = 0` on one column (see
+/// [`gemm_column`]).
+#[inline(always)]
+fn gemm_column_overwrite<const R: usize, const C: usize>(
+    y: &mut [Real],
+    alpha: Real,
+    m: &SMatrix<Real, R, C>,
+    x: &[Real],
+) {
+    for r in 0..R {
+        y[r] = alpha * m[(r, 0)] * x[0];
+    }
+    for k in 1..C {
+        let x_k = x[k];
+        for r in 0..R {
+            y[r] = alpha * m[(r, k)] * x_k + y[r];
+        }
+    }
+}
+
+/// The dot product of a jacobian column and a spatial vector, summed as nalgebra's `dot` sums
+/// vectors of this length (from zero, in order).
+#[inline(always)]
+fn dot_spatial(column: &[Real], force: &SVector<Real, SPATIAL_DIM>) -> Real {
+    let mut dot: Real = 0.0;
+    for k in 0..SPATIAL_DIM {
+        dot += column[k] * force[k];
+    }
+    dot
+}
+
 /// Sets `v` to `n` zeros, reallocating only when its length changes.
 fn zero_fill(v: &mut DVector, n: usize) {
     if v.len() != n {
         *v = DVector::zeros(n);
     } else {
-        v.fill(0.0);
+        // (On the slice: nalgebra's `fill` goes through an element iterator.)
+        v.as_mut_slice().fill(0.0);
     }
 }
 
@@ -698,7 +730,7 @@ impl Multibody {
             return; // Nothing to do.
         }
 
-        self.accelerations.fill(0.0);
+        self.accelerations.as_mut_slice().fill(0.0);
 
         // If there is significant movement, the semi-implicit coriolis term
         // occasionally cause instabilities due to the matrix being near singular.
@@ -776,24 +808,20 @@ impl Multibody {
             );
             // Only the columns of the link's and its ancestors' DoFs can be non-zero: the
             // others would add exact zeros.
+            // Column by column, each a dot product summed in the order of nalgebra's `gemv_tr`.
+            let jacobian = self.body_jacobians[i].as_slice();
+            let accelerations = self.accelerations.as_mut_slice();
+            let applied_forces = Force::new(rb.forces.force, rb.forces.torque);
             let (first, last) = self.link_ancestor_dofs[i];
             for &(start, end) in &self.ancestor_dofs[first..last] {
-                let jacobian = self.body_jacobians[i].columns(start, end - start);
-                self.accelerations.rows_mut(start, end - start).gemv_tr(
-                    1.0,
-                    &jacobian,
-                    external_forces.as_vector(),
-                    1.0,
-                );
-
-                if check_implicit_coriolis_divergence {
-                    let applied_forces = Force::new(rb.forces.force, rb.forces.torque);
-                    pos_forces.rows_mut(start, end - start).gemv_tr(
-                        1.0,
-                        &jacobian,
-                        applied_forces.as_vector(),
-                        1.0,
-                    );
+                for col in start..end {
+                    let jacobian_col = &jacobian[col * SPATIAL_DIM..(col + 1) * SPATIAL_DIM];
+                    accelerations[col] =
+                        dot_spatial(jacobian_col, external_forces.as_vector()) + accelerations[col];
+                    if check_implicit_coriolis_divergence {
+                        pos_forces[col] =
+                            dot_spatial(jacobian_col, applied_forces.as_vector()) + pos_forces[col];
+                    }
                 }
             }
         }
@@ -1166,8 +1194,9 @@ impl Multibody {
             self.augmented_mass = DMatrix::zeros(self.ndofs, self.ndofs);
             self.acc_augmented_mass = DMatrix::zeros(self.ndofs, self.ndofs);
         } else {
-            self.augmented_mass.fill(0.0);
-            self.acc_augmented_mass.fill(0.0);
+            // (On the slices: nalgebra's `fill` goes through an element iterator.)
+            self.augmented_mass.as_mut_slice().fill(0.0);
+            self.acc_augmented_mass.as_mut_slice().fill(0.0);
         }
 
         self.augmented_mass_indices.clear();
@@ -1277,34 +1306,44 @@ impl Multibody {
                 #[cfg(feature = "dim3")]
                 let vel_wrt_joint_w = vect_to_na(link.joint_velocity.angvel).gcross_matrix();
 
-                let (first, last) = self.link_ancestor_dofs[parent_id];
-                for &(start, end) in &self.ancestor_dofs[first..last] {
-                    let len = end - start;
-                    let mut coriolis_v = coriolis_v.columns_mut(start, len);
-                    let mut coriolis_w = coriolis_w.columns_mut(start, len);
-                    let parent_coriolis_w = parent_coriolis_w.columns(start, len);
-                    let parent_j_cols = parent_j.columns(start, len);
-                    let parent_j_w = parent_j_cols.fixed_rows::<ANG_DIM>(DIM);
+                // Column by column, with the operations of nalgebra's `gemm` (`gemm_column`).
+                {
+                    let coriolis_v = coriolis_v.as_mut_slice();
+                    let coriolis_w = coriolis_w.as_mut_slice();
+                    let parent_coriolis_v = parent_coriolis_v.as_slice();
+                    let parent_coriolis_w = parent_coriolis_w.as_slice();
+                    let parent_j = parent_j.as_slice();
+                    let (first, last) = self.link_ancestor_dofs[parent_id];
+                    for &(start, end) in &self.ancestor_dofs[first..last] {
+                        for col in start..end {
+                            let v = col * DIM..(col + 1) * DIM;
+                            let w = col * ANG_DIM..(col + 1) * ANG_DIM;
+                            let parent_j_w =
+                                &parent_j[col * SPATIAL_DIM + DIM..(col + 1) * SPATIAL_DIM];
+                            let parent_coriolis_w = &parent_coriolis_w[w.clone()];
+                            let coriolis_v = &mut coriolis_v[v.clone()];
+                            let coriolis_w = &mut coriolis_w[w];
 
-                    coriolis_v.copy_from(&parent_coriolis_v.columns(start, len));
-                    coriolis_w.copy_from(&parent_coriolis_w);
+                            coriolis_v.copy_from_slice(&parent_coriolis_v[v]);
+                            coriolis_w.copy_from_slice(parent_coriolis_w);
 
-                    coriolis_v.gemm(1.0, &shift_cross_tr, &parent_coriolis_w, 1.0);
-                    coriolis_v.gemm(1.0, &dvel_cross, &parent_j_w, 1.0);
-                    // JDot/u * qdot
-                    coriolis_v.gemm(1.0, &joint_vel_cross, &parent_j_w, 1.0);
-                    coriolis_v.gemm(1.0, &parent_w_shift_cross, &parent_j_w, 1.0);
+                            gemm_column(coriolis_v, 1.0, &shift_cross_tr, parent_coriolis_w);
+                            gemm_column(coriolis_v, 1.0, &dvel_cross, parent_j_w);
+                            // JDot/u * qdot
+                            gemm_column(coriolis_v, 1.0, &joint_vel_cross, parent_j_w);
+                            gemm_column(coriolis_v, 1.0, &parent_w_shift_cross, parent_j_w);
 
-                    #[cfg(feature = "dim3")]
-                    {
-                        coriolis_w.gemm(-1.0, &vel_wrt_joint_w, &parent_j_w, 1.0);
+                            #[cfg(feature = "dim3")]
+                            gemm_column(coriolis_w, -1.0, &vel_wrt_joint_w, parent_j_w);
+                        }
                     }
                 }
 
                 // The link's own DoFs: zero in the parent's terms.
+                let own = link.assembly_id..link.assembly_id + ndofs;
+                coriolis_v.as_mut_slice()[own.start * DIM..own.end * DIM].fill(0.0);
+                coriolis_w.as_mut_slice()[own.start * ANG_DIM..own.end * ANG_DIM].fill(0.0);
                 let mut coriolis_v_part = coriolis_v.columns_mut(link.assembly_id, ndofs);
-                coriolis_v_part.fill(0.0);
-                coriolis_w.columns_mut(link.assembly_id, ndofs).fill(0.0);
 
                 // JDot (but the 2.0 originates from the sum of two identical terms in JDot and JDot/u * gdot)
                 if !link.joint.kinematic {
@@ -1327,12 +1366,17 @@ impl Multibody {
                     }
                 }
             } else {
-                self.coriolis_v[i].fill(0.0);
-                self.coriolis_w[i].fill(0.0);
+                self.coriolis_v[i].as_mut_slice().fill(0.0);
+                self.coriolis_w[i].as_mut_slice().fill(0.0);
             }
 
-            let coriolis_v = &mut self.coriolis_v[i];
-            let coriolis_w = &mut self.coriolis_w[i];
+            let coriolis_v = self.coriolis_v[i].as_mut_slice();
+            let coriolis_w = self.coriolis_w[i].as_slice();
+            let rb_j = rb_j.as_slice();
+            let i_coriolis_dt = self.i_coriolis_dt.as_mut_slice();
+            #[cfg(feature = "dim3")]
+            let (rb_inertia, gyroscopic_matrix) =
+                (mat_to_na(rb_inertia), mat_to_na(gyroscopic_matrix));
 
             // [c3 - c2].gcross() * (JDot + JDot/u * qdot)
             let shift_cross_tr = vect_to_na(link.shift23).gcross_matrix_tr();
@@ -1344,55 +1388,60 @@ impl Multibody {
             let rb_mass_dt = vect_to_na(rb_mass * dt);
 
             let (first, last) = self.link_ancestor_dofs[i];
-            for &(start, end) in &self.ancestor_dofs[first..last] {
-                let len = end - start;
-                let mut coriolis_v = coriolis_v.columns_mut(start, len);
-                let coriolis_w = coriolis_w.columns(start, len);
-                let rb_j_cols = rb_j.columns(start, len);
-                let rb_j_w = rb_j_cols.fixed_rows::<ANG_DIM>(DIM);
+            let dof_ranges = &self.ancestor_dofs[first..last];
+            for &(start, end) in dof_ranges {
+                for col in start..end {
+                    let coriolis_v = &mut coriolis_v[col * DIM..(col + 1) * DIM];
+                    let coriolis_w = &coriolis_w[col * ANG_DIM..(col + 1) * ANG_DIM];
+                    let rb_j_w = &rb_j[col * SPATIAL_DIM + DIM..(col + 1) * SPATIAL_DIM];
 
-                coriolis_v.gemm(1.0, &shift_cross_tr, &coriolis_w, 1.0);
-                coriolis_v.gemm(1.0, &dvel_cross, &rb_j_w, 1.0);
-                coriolis_v.gemm(1.0, &w_shift_cross, &rb_j_w, 1.0);
+                    gemm_column(coriolis_v, 1.0, &shift_cross_tr, coriolis_w);
+                    gemm_column(coriolis_v, 1.0, &dvel_cross, rb_j_w);
+                    gemm_column(coriolis_v, 1.0, &w_shift_cross, rb_j_w);
 
-                /*
-                 * Meld with the mass matrix.
-                 */
-                let mut i_coriolis_dt = self.i_coriolis_dt.columns_mut(start, len);
-                {
-                    let mut i_coriolis_dt_v = i_coriolis_dt.fixed_rows_mut::<DIM>(0);
-                    i_coriolis_dt_v.copy_from(&coriolis_v);
-                    i_coriolis_dt_v
-                        .column_iter_mut()
-                        .for_each(|mut c| c.component_mul_assign(&rb_mass_dt));
-                }
+                    /*
+                     * Meld with the mass matrix.
+                     */
+                    let (i_coriolis_dt_v, i_coriolis_dt_w) =
+                        i_coriolis_dt[col * SPATIAL_DIM..(col + 1) * SPATIAL_DIM].split_at_mut(DIM);
+                    for r in 0..DIM {
+                        i_coriolis_dt_v[r] = coriolis_v[r] * rb_mass_dt[r];
+                    }
 
-                #[cfg(feature = "dim2")]
-                {
-                    let mut i_coriolis_dt_w = i_coriolis_dt.fixed_rows_mut::<ANG_DIM>(DIM);
-                    // NOTE: this is just an axpy, but on row columns.
-                    i_coriolis_dt_w.zip_apply(&coriolis_w, |o, x| *o = x * dt * rb_inertia);
-                }
-                #[cfg(feature = "dim3")]
-                {
-                    // `dt·(I·J̇_w + G·J_w)`: the gyroscopic derivative `G` joins the Coriolis
-                    // terms, so one product with the jacobian carries both.
-                    let mut i_coriolis_dt_w = i_coriolis_dt.fixed_rows_mut::<ANG_DIM>(DIM);
-                    i_coriolis_dt_w.gemm(dt, &mat_to_na(rb_inertia), &coriolis_w, 0.0);
-                    i_coriolis_dt_w.gemm(dt, &mat_to_na(gyroscopic_matrix), &rb_j_w, 1.0);
+                    #[cfg(feature = "dim2")]
+                    {
+                        i_coriolis_dt_w[0] = coriolis_w[0] * dt * rb_inertia;
+                    }
+                    #[cfg(feature = "dim3")]
+                    {
+                        // `dt·(I·J̇_w + G·J_w)`: the gyroscopic derivative `G` joins the Coriolis
+                        // terms, so one product with the jacobian carries both.
+                        gemm_column_overwrite(i_coriolis_dt_w, dt, &rb_inertia, coriolis_w);
+                        gemm_column(i_coriolis_dt_w, dt, &gyroscopic_matrix, rb_j_w);
+                    }
                 }
             }
 
-            for &(col_start, col_end) in &self.ancestor_dofs[first..last] {
-                let i_coriolis_dt = self.i_coriolis_dt.columns(col_start, col_end - col_start);
-                for &(row_start, row_end) in &self.ancestor_dofs[first..last] {
-                    let rows = rb_j.columns(row_start, row_end - row_start);
-                    self.acc_augmented_mass
-                        .view_mut(
-                            (row_start, col_start),
-                            (row_end - row_start, col_end - col_start),
-                        )
-                        .gemm_tr(1.0, &rows, &i_coriolis_dt, 1.0);
+            // `acc_augmented_mass += Jᵀ·i_coriolis_dt` on the link's and its ancestors' DoFs,
+            // each entry a dot product summed in the order of nalgebra's `gemm_tr`.
+            let i_coriolis_dt = &*i_coriolis_dt;
+            let nrows = self.acc_augmented_mass.nrows();
+            let acc_augmented_mass = self.acc_augmented_mass.as_mut_slice();
+            for &(col_start, col_end) in dof_ranges {
+                for col in col_start..col_end {
+                    let i_coriolis_dt_col =
+                        &i_coriolis_dt[col * SPATIAL_DIM..(col + 1) * SPATIAL_DIM];
+                    for &(row_start, row_end) in dof_ranges {
+                        for row in row_start..row_end {
+                            let rb_j_col = &rb_j[row * SPATIAL_DIM..(row + 1) * SPATIAL_DIM];
+                            let mut dot: Real = 0.0;
+                            for k in 0..SPATIAL_DIM {
+                                dot += rb_j_col[k] * i_coriolis_dt_col[k];
+                            }
+                            let entry = &mut acc_augmented_mass[col * nrows + row];
+                            *entry = dot + *entry;
+                        }
+                    }
                 }
             }
         }
@@ -1431,7 +1480,14 @@ impl Multibody {
 
         // The matrix of the implicit Coriolis and gyroscopic terms holds only
         // `dt·Σ Jᵀ·[m·J̇_v; I·J̇_w + G·J_w]` so far: the augmented mass matrix completes it.
-        self.acc_augmented_mass += &self.augmented_mass;
+        for (acc, m) in self
+            .acc_augmented_mass
+            .as_mut_slice()
+            .iter_mut()
+            .zip(self.augmented_mass.as_slice())
+        {
+            *acc += *m;
+        }
 
         let effective_dim = self
             .augmented_mass_indices
