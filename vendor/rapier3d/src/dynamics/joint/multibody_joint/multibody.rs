@@ -2061,20 +2061,26 @@ impl Multibody {
         };
 
         let link = &self.links[link_id];
-        let mut out_j = jacobians.rows_mut(*j_id, self.ndofs);
-        // Only the link's and its ancestors' DoFs can have non-zero entries.
-        out_j.fill(0.0);
-        let (first, last) = self.link_ancestor_dofs[link.internal_id];
-        for &(start, end) in &self.ancestor_dofs[first..last] {
-            self.body_jacobians[link.internal_id]
-                .columns(start, end - start)
-                .tr_mul_to(force.as_vector(), &mut out_j.rows_mut(start, end - start));
+        {
+            // `Jᵀ·f` on the slices: only the link's and its ancestors' DoFs can have non-zero
+            // entries, each the dot product nalgebra's `tr_mul_to` computes, summed in order.
+            let out_j = &mut jacobians.as_mut_slice()[*j_id..*j_id + self.ndofs];
+            out_j.fill(0.0);
+            let body_jacobian = self.body_jacobians[link.internal_id].as_slice();
+            let (first, last) = self.link_ancestor_dofs[link.internal_id];
+            for &(start, end) in &self.ancestor_dofs[first..last] {
+                for col in start..end {
+                    out_j[col] = dot_spatial(
+                        &body_jacobian[col * SPATIAL_DIM..(col + 1) * SPATIAL_DIM],
+                        force.as_vector(),
+                    );
+                }
+            }
         }
 
-        // TODO: Optimize with a copy_nonoverlapping?
-        for i in 0..self.ndofs {
-            jacobians[wj_id + i] = jacobians[*j_id + i];
-        }
+        jacobians
+            .as_mut_slice()
+            .copy_within(*j_id..*j_id + self.ndofs, wj_id);
 
         {
             let mut out_invm_j = jacobians.rows_mut(wj_id, self.ndofs);
