@@ -1303,6 +1303,9 @@ impl Multibody {
                 .gcross_matrix_tr();
                 let joint_vel_cross = vect_to_na(link.joint_velocity.linvel).gcross_matrix_tr();
                 let parent_w_shift_cross = parent_w * shift_cross_tr;
+                // The three matrices that multiply the parent's angular jacobian, summed once
+                // per link instead of applied one by one to every column.
+                let parent_j_w_factor = dvel_cross + joint_vel_cross + parent_w_shift_cross;
                 #[cfg(feature = "dim3")]
                 let vel_wrt_joint_w = vect_to_na(link.joint_velocity.angvel).gcross_matrix();
 
@@ -1328,10 +1331,8 @@ impl Multibody {
                             coriolis_w.copy_from_slice(parent_coriolis_w);
 
                             gemm_column(coriolis_v, 1.0, &shift_cross_tr, parent_coriolis_w);
-                            gemm_column(coriolis_v, 1.0, &dvel_cross, parent_j_w);
-                            // JDot/u * qdot
-                            gemm_column(coriolis_v, 1.0, &joint_vel_cross, parent_j_w);
-                            gemm_column(coriolis_v, 1.0, &parent_w_shift_cross, parent_j_w);
+                            // JDot and JDot/u * qdot
+                            gemm_column(coriolis_v, 1.0, &parent_j_w_factor, parent_j_w);
 
                             #[cfg(feature = "dim3")]
                             gemm_column(coriolis_w, -1.0, &vel_wrt_joint_w, parent_j_w);
@@ -1385,6 +1386,8 @@ impl Multibody {
             // JDot/u * qdot
             let w_shift_cross =
                 SimdAngVector::<Real>::from(rb.vels.angvel).gcross_matrix() * shift_cross_tr;
+            // Both multiply the link's angular jacobian: summed once per link.
+            let rb_j_w_factor = dvel_cross + w_shift_cross;
             let rb_mass_dt = vect_to_na(rb_mass * dt);
 
             let (first, last) = self.link_ancestor_dofs[i];
@@ -1396,8 +1399,7 @@ impl Multibody {
                     let rb_j_w = &rb_j[col * SPATIAL_DIM + DIM..(col + 1) * SPATIAL_DIM];
 
                     gemm_column(coriolis_v, 1.0, &shift_cross_tr, coriolis_w);
-                    gemm_column(coriolis_v, 1.0, &dvel_cross, rb_j_w);
-                    gemm_column(coriolis_v, 1.0, &w_shift_cross, rb_j_w);
+                    gemm_column(coriolis_v, 1.0, &rb_j_w_factor, rb_j_w);
 
                     /*
                      * Meld with the mass matrix.
