@@ -3,8 +3,10 @@
 //! The tests live in `tests/spec/`, one module per spec section (`s3_observations`,
 //! `s4_rewards`, `s5_1_orientation`, …). Each module writes its test bodies once, inside
 //! [`for_each_backend!`], which instantiates them once per physics backend that is built: a
-//! `rapier` module always, and a `dart` module when this crate is built with the `dart` feature
-//! (it needs Debian's libdart), the way rustls instantiates one test module per crypto provider.
+//! `rapier` module always, a `dart` module when this crate is built with the `dart` feature
+//! (it needs Debian's libdart) and a `mujoco` module with the `mujoco` feature (it needs
+//! MuJoCo's library, `cargo xtask setup mujoco`), the way rustls instantiates one test module
+//! per crypto provider.
 //! Inside, the type alias `Engine` is the backend:
 //!
 //! ```text
@@ -20,8 +22,8 @@
 //! gives `s3_observations::rapier::standing_flags` and, with `--features dart`,
 //! `s3_observations::dart::standing_flags`.
 //!
-//! Run: `cargo test -p spec-tests` (rapier) and `cargo test -p spec-tests --features dart`
-//! (rapier and DART).
+//! Run: `cargo test -p spec-tests` (rapier), `cargo test -p spec-tests --features dart`
+//! (rapier and DART), `--features mujoco` (rapier and MuJoCo), or both features.
 //!
 //! This library holds what the sections share: building environments from `key=value`
 //! overrides, the standing action, stepping a policy (or a fixed action) while collecting its
@@ -42,11 +44,16 @@ pub mod backends {
     /// DART (built with the `dart` feature).
     #[cfg(feature = "dart")]
     pub use hyq_dart::DartBackend as Dart;
+
+    /// MuJoCo (built with the `mujoco` feature).
+    #[cfg(feature = "mujoco")]
+    pub use hyq_mujoco::MujocoBackend as Mujoco;
 }
 
 /// Instantiates the test bodies it is given once per backend that is built: in a module
-/// `rapier`, and in a module `dart` when the calling crate has the `dart` feature. In each, the
-/// type alias `Engine` is that backend and the enclosing module's items are in scope.
+/// `rapier`, in a module `dart` when the calling crate has the `dart` feature, and in a module
+/// `mujoco` with the `mujoco` feature. In each, the type alias `Engine` is that backend and the
+/// enclosing module's items are in scope.
 #[macro_export]
 macro_rules! for_each_backend {
     ($($body:tt)*) => {
@@ -68,6 +75,17 @@ macro_rules! for_each_backend {
             /// The backend these tests run on.
             #[allow(dead_code)]
             type Engine = $crate::backends::Dart;
+            $($body)*
+        }
+
+        /// These tests on the MuJoCo backend.
+        #[cfg(feature = "mujoco")]
+        mod mujoco {
+            #[allow(unused_imports)]
+            use super::*;
+            /// The backend these tests run on.
+            #[allow(dead_code)]
+            type Engine = $crate::backends::Mujoco;
             $($body)*
         }
     };

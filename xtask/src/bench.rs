@@ -1,16 +1,25 @@
-//! `cargo xtask bench-vs-anchors`: the project's benchmark and the anchor harness's, run side
-//! by side in one run, with the ratios the speed targets are stated in.
+//! `cargo xtask bench-vs-anchors`: the project's benchmark and the anchors' (the same workload
+//! in MuJoCo and in DART, driven from Python by `bench/anchors/`), run side by side in one
+//! run, with the ratios the speed targets are stated in.
 //!
 //! What it does, in order:
-//! 1. builds `hyq` in release mode, with the DART backend when DART is installed;
-//! 2. sets up (or reuses) the anchors' Python virtual environment outside the repository, with
-//!    the versions the anchor harness pins (`run_anchors.sh`): numpy, mujoco, dartpy;
-//! 3. repeats `--reps` times, in this order so that every repetition sees the same machine
-//!    load: `hyq bench` on rapier; MuJoCo from Python (`bench_mujoco.py`, cases `env_random` and
-//!    its C loop `phys_c_random`); `hyq bench` on DART; DART from Python (`bench_dart.py`,
-//!    Bullet and ODE detectors, capsule legs); the rapier vector env of 2 envs on 1 thread,
-//!    then on 2 threads;
-//! 4. prints, and writes to `target/bench-vs-anchors.md`, a Markdown report: the CPU model, the
+//! 1. sets up (or reuses) the anchors' Python virtual environment, `target/anchor-venv` unless
+//!    `--venv DIR` (relative: to the workspace root) or `$HYQ_ANCHOR_VENV` says otherwise, with
+//!    the versions pinned in `bench/anchors/requirements.txt`;
+//! 2. builds `hyq` in release mode, with every backend of [`SEQUENCE`] whose engine is
+//!    installed (DART when its headers are, MuJoCo when `cargo xtask setup mujoco` has put it
+//!    in `target/mujoco` or `$MUJOCO_DIR`);
+//! 3. writes the anchors' models afresh with that `hyq` (`hyq model`): `hyq.xml` (MJCF with
+//!    position servos), `hyq.urdf` (capsules as cylinders, for DART's loader) and `hyq.json`
+//!    (the facts the scripts read), into `target/anchor-models/`, so they are always the robot
+//!    the environment simulates;
+//! 4. repeats `--reps` times the measurements of [`SEQUENCE`], in its order, so that every
+//!    repetition sees the same machine load: `hyq bench` on rapier; MuJoCo from Python (the
+//!    env loop `env_random` and MuJoCo's own loop `c_loop`); `hyq bench` on MuJoCo; `hyq bench`
+//!    on DART; DART from Python (Bullet detector, with `world.step()` timed alone in a second
+//!    pass, and the ODE detector); the rapier vector env of 2 envs on 1 thread, then on 2
+//!    threads;
+//! 5. prints, and writes to `target/bench-vs-anchors.md`, a Markdown report: the CPU model, the
 //!    load, the median, min and max of every figure, and each ratio against its target (the
 //!    median of the per-repetition ratios, each taken within one repetition, and their min and
 //!    max). The raw JSON lines go to `target/bench-vs-anchors.jsonl`.
@@ -19,6 +28,12 @@
 //! estimate of an idle core on a shared machine; the anchors report both kinds and the same
 //! kind is compared. The vector env's scaling is a wall-clock ratio (that is what parallelism
 //! buys), so it is only meaningful when two cores are free: the load average is printed with it.
+//!
+//! # Adding a backend
+//! A new `hyq bench --backend X` row takes: two [`Series`] (its rate and its spec share) with
+//! their labels in [`Series::label`] and places in [`Series::ALL`]; a [`HyqBackend`] in
+//! [`SEQUENCE`] (with the cargo feature that builds it in); its availability in
+//! [`backend_missing`]; and, if it has one, its target in [`TARGETS`].
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -28,17 +43,19 @@ use std::process::Command;
 use serde_json::Value;
 
 use crate::cli::{positive, strings, value};
-use crate::stages::{DART_BULLET_HEADER, run_cargo, venv_python, workspace_root};
+use crate::mujoco;
+use crate::stages::{
+    DART_BULLET_HEADER, PYTHON_INSTALL, PYTHON_MIN, run_cargo, venv_python, workspace_root,
+};
 
-/// The anchor harness's pinned versions (`run_anchors.sh`).
-const PINS: [(&str, &str); 3] = [
-    ("numpy", "2.4.6"),
-    ("mujoco", "4.0.0"),
-    ("dartpy", "6.20.0"),
-];
+/// The anchor harness, relative to the workspace root.
+pub const ANCHORS_DIR: &str = "bench/anchors";
 
-/// Physics sub-steps per env step in the anchors (and in the project's default configuration).
-const SUBSTEPS: f64 = 10.0;
+/// Where the anchors' models are written, relative to the workspace root.
+pub const MODELS_DIR: &str = "target/anchor-models";
+
+/// The anchors' default virtual environment, relative to the workspace root (git-ignored).
+pub const DEFAULT_VENV: &str = "target/anchor-venv";
 
 /// The command's settings.
 #[derive(Clone, Debug, PartialEq)]
@@ -51,32 +68,39 @@ pub struct BenchArgs {
     pub vec_steps: u64,
     /// Env steps per anchor run (MuJoCo and DART from Python).
     pub anchor_steps: u64,
-    /// The anchor harness's directory (default `../shared/bench/anchors` beside the repository).
-    pub anchors: PathBuf,
-    /// The anchors' virtual environment (default `$ANCHOR_VENV` or `/tmp/anchor-venv`).
+    /// The anchors' virtual environment.
     pub venv: PathBuf,
-    /// Measure the DART backend (when DART is installed).
+    /// Measure the DART backend and DART from Python (when DART is installed).
     pub dart: bool,
+    /// Measure the MuJoCo backend (when MuJoCo is set up); MuJoCo from Python runs either way,
+    /// as the rapier targets' anchor.
+    pub mujoco: bool,
+}
+
+impl BenchArgs {
+    /// Whether `hyq bench --backend <name>` is wanted (`--no-dart`, `--no-mujoco` say no).
+    pub fn wants(&self, backend: &str) -> bool {
+        match backend {
+            "dart" => self.dart,
+            "mujoco" => self.mujoco,
+            _ => true,
+        }
+    }
 }
 
 /// Parses the command's arguments; `root` is the workspace root (for the defaults and for
-/// refusing a virtual environment inside the repository).
-pub fn parse(args: &[String], root: &Path) -> Result<BenchArgs, String> {
+/// refusing a virtual environment among the repository's files); `env_venv` is
+/// `$HYQ_ANCHOR_VENV`.
+pub fn parse(args: &[String], root: &Path, env_venv: Option<PathBuf>) -> Result<BenchArgs, String> {
     const COMMAND: &str = "bench-vs-anchors";
     let mut out = BenchArgs {
         reps: 5,
         steps: 3000,
         vec_steps: 1500,
         anchor_steps: 3000,
-        anchors: root
-            .parent()
-            .unwrap_or(root)
-            .join("shared")
-            .join("bench")
-            .join("anchors"),
-        venv: std::env::var_os("ANCHOR_VENV")
-            .map_or_else(|| PathBuf::from("/tmp/anchor-venv"), PathBuf::from),
+        venv: env_venv.unwrap_or_else(|| root.join(DEFAULT_VENV)),
         dart: true,
+        mujoco: true,
     };
     let mut it = args.iter();
     while let Some(arg) = it.next() {
@@ -85,9 +109,9 @@ pub fn parse(args: &[String], root: &Path) -> Result<BenchArgs, String> {
             "--steps" => out.steps = positive(&mut it, COMMAND, arg)?,
             "--vec-steps" => out.vec_steps = positive(&mut it, COMMAND, arg)?,
             "--anchor-steps" => out.anchor_steps = positive(&mut it, COMMAND, arg)?,
-            "--anchors" => out.anchors = PathBuf::from(value(&mut it, COMMAND, arg)?),
             "--venv" => out.venv = PathBuf::from(value(&mut it, COMMAND, arg)?),
             "--no-dart" => out.dart = false,
+            "--no-mujoco" => out.mujoco = false,
             other => {
                 return Err(format!(
                     "`cargo xtask bench-vs-anchors`: unknown argument `{other}`"
@@ -95,9 +119,13 @@ pub fn parse(args: &[String], root: &Path) -> Result<BenchArgs, String> {
             }
         }
     }
-    if out.venv.starts_with(root) {
+    if out.venv.is_relative() {
+        out.venv = root.join(&out.venv);
+    }
+    if out.venv.starts_with(root) && !out.venv.starts_with(root.join("target")) {
         return Err(format!(
-            "--venv {}: the anchors' virtual environment must be outside the repository ({})",
+            "--venv {}: the anchors' virtual environment must be under the repository's \
+             target/ or outside the repository ({}), not among its files",
             out.venv.display(),
             root.display()
         ));
@@ -114,18 +142,22 @@ pub enum Series {
     RapierSpecShare,
     /// MuJoCo from Python, `env_random`: env steps per CPU second.
     MujocoPy,
-    /// MuJoCo's C loop, `phys_c_random`: env steps per CPU second.
+    /// MuJoCo's own loop of sub-steps, `c_loop`: env steps per CPU second.
     MujocoC,
+    /// `hyq bench`, MuJoCo: env steps per CPU second.
+    Mujoco,
+    /// `hyq bench`, MuJoCo: share of the step in spec evaluation and observation assembly.
+    MujocoSpecShare,
     /// `hyq bench`, DART: env steps per CPU second.
     Dart,
     /// `hyq bench`, DART: share of the step in spec evaluation and observation assembly.
     DartSpecShare,
     /// dartpy with the Bullet detector (the backend's detector), capsule legs.
     DartPyBullet,
-    /// dartpy with the ODE detector, capsule legs (the harness's default DART row).
+    /// dartpy with the ODE detector, capsule legs.
     DartPyOde,
-    /// dartpy with Bullet: the time inside `world.step()` alone, as env steps (10 sub-steps):
-    /// the ceiling of any binding of that DART build, which can only remove the rest.
+    /// dartpy with Bullet: the time inside `world.step()` alone, as env steps: the ceiling of
+    /// any binding of that DART build, which can only remove the rest.
     DartPyStepOnly,
     /// The rapier vector env, 2 envs on 1 thread: env steps per wall second.
     Vec1,
@@ -139,10 +171,11 @@ pub enum Series {
 
 impl Series {
     /// Every series, in report order.
-    pub const ALL: [Series; 13] = [
+    pub const ALL: [Series; 15] = [
         Series::Rapier,
         Series::MujocoPy,
         Series::MujocoC,
+        Series::Mujoco,
         Series::Dart,
         Series::DartPyBullet,
         Series::DartPyOde,
@@ -153,6 +186,7 @@ impl Series {
         Series::Vec2Cpu,
         Series::RapierSpecShare,
         Series::DartSpecShare,
+        Series::MujocoSpecShare,
     ];
 
     /// The row's label and unit.
@@ -160,8 +194,12 @@ impl Series {
         match self {
             Series::Rapier => ("hyq, rapier backend, one env", "env steps/s, CPU"),
             Series::MujocoPy => ("MuJoCo 4.0 from Python (`env_random`)", "env steps/s, CPU"),
-            Series::MujocoC => ("MuJoCo 4.0, C loop (`phys_c_random`)", "env steps/s, CPU"),
+            Series::MujocoC => (
+                "MuJoCo 4.0, its own loop of sub-steps (`c_loop`)",
+                "env steps/s, CPU",
+            ),
             Series::Dart => ("hyq, DART backend, one env", "env steps/s, CPU"),
+            Series::Mujoco => ("hyq, MuJoCo backend, one env", "env steps/s, CPU"),
             Series::DartPyBullet => (
                 "DART from Python (dartpy 6.20, Bullet, capsules)",
                 "env steps/s, CPU",
@@ -171,7 +209,7 @@ impl Series {
                 "env steps/s, CPU",
             ),
             Series::DartPyStepOnly => (
-                "DART 6.20 `world.step()` alone, timed from Python (Bullet), ÷ 10 sub-steps",
+                "DART 6.20 `world.step()` alone, timed from Python (Bullet)",
                 "env steps/s, CPU",
             ),
             Series::Vec1 => (
@@ -194,17 +232,194 @@ impl Series {
                 ("spec evaluation + observation, rapier", "% of an env step")
             }
             Series::DartSpecShare => ("spec evaluation + observation, DART", "% of an env step"),
+            Series::MujocoSpecShare => {
+                ("spec evaluation + observation, MuJoCo", "% of an env step")
+            }
         }
     }
 
     /// Whether the figure is a fraction printed as a percentage.
     fn is_share(self) -> bool {
-        matches!(self, Series::RapierSpecShare | Series::DartSpecShare)
+        matches!(
+            self,
+            Series::RapierSpecShare | Series::DartSpecShare | Series::MujocoSpecShare
+        )
+    }
+}
+
+/// A `hyq bench` backend measured once per repetition (one env).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HyqBackend {
+    /// The `--backend` value.
+    pub name: &'static str,
+    /// The hyq-cli cargo feature that builds it in (`None`: always built).
+    pub feature: Option<&'static str>,
+    /// Where its env steps per CPU second go.
+    pub rate: Series,
+    /// Where its spec-evaluation share goes.
+    pub spec_share: Series,
+}
+
+/// One figure of an anchor script's output: the line with `anchor` and `case`, its number at
+/// `key`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AnchorFigure {
+    /// The line's `anchor`.
+    pub anchor: &'static str,
+    /// The line's `case`.
+    pub case: &'static str,
+    /// The key of the number.
+    pub key: &'static str,
+    /// Where it goes.
+    pub series: Series,
+}
+
+/// One run of an anchor script (`bench/anchors/<script>`) per repetition.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AnchorRun {
+    /// The script's file name.
+    pub script: &'static str,
+    /// Its arguments besides `--models`, `--env-steps` and `--runs`.
+    pub args: &'static [&'static str],
+    /// The Python module it needs (the run is skipped, with a note, when it does not import).
+    pub module: &'static str,
+    /// Whether it is a DART measurement (skipped with `--no-dart`).
+    pub dart: bool,
+    /// The figures it gives.
+    pub figures: &'static [AnchorFigure],
+}
+
+/// One step of a repetition.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Measure {
+    /// `hyq bench --backend <name>`, one env.
+    Hyq(HyqBackend),
+    /// An anchor script.
+    Anchor(AnchorRun),
+    /// The rapier vector env of 2 envs, on 1 thread then on 2.
+    VecEnv,
+}
+
+/// The measurements of one repetition, in order (interleaved so that load changes within a
+/// repetition touch both sides of a ratio alike).
+pub const SEQUENCE: [Measure; 7] = [
+    Measure::Hyq(HyqBackend {
+        name: "rapier",
+        feature: None,
+        rate: Series::Rapier,
+        spec_share: Series::RapierSpecShare,
+    }),
+    Measure::Anchor(AnchorRun {
+        script: "mujoco_anchor.py",
+        args: &["--cases", "env_random,c_loop"],
+        module: "mujoco",
+        dart: false,
+        figures: &[
+            AnchorFigure {
+                anchor: "mujoco",
+                case: "env_random",
+                key: "env_steps_per_s_cpu",
+                series: Series::MujocoPy,
+            },
+            AnchorFigure {
+                anchor: "mujoco",
+                case: "c_loop",
+                key: "env_steps_per_s_cpu",
+                series: Series::MujocoC,
+            },
+        ],
+    }),
+    Measure::Hyq(HyqBackend {
+        name: "mujoco",
+        feature: Some("mujoco"),
+        rate: Series::Mujoco,
+        spec_share: Series::MujocoSpecShare,
+    }),
+    Measure::Hyq(HyqBackend {
+        name: "dart",
+        feature: Some("dart"),
+        rate: Series::Dart,
+        spec_share: Series::DartSpecShare,
+    }),
+    Measure::Anchor(AnchorRun {
+        script: "dart_anchor.py",
+        args: &["--detector", "bullet", "--step-only"],
+        module: "dartpy",
+        dart: true,
+        figures: &[
+            AnchorFigure {
+                anchor: "dart-bullet-capsule",
+                case: "env_random",
+                key: "env_steps_per_s_cpu",
+                series: Series::DartPyBullet,
+            },
+            AnchorFigure {
+                anchor: "dart-bullet-capsule",
+                case: "env_random",
+                key: "step_only_env_steps_per_s_cpu",
+                series: Series::DartPyStepOnly,
+            },
+        ],
+    }),
+    Measure::Anchor(AnchorRun {
+        script: "dart_anchor.py",
+        args: &["--detector", "ode"],
+        module: "dartpy",
+        dart: true,
+        figures: &[AnchorFigure {
+            anchor: "dart-ode-capsule",
+            case: "env_random",
+            key: "env_steps_per_s_cpu",
+            series: Series::DartPyOde,
+        }],
+    }),
+    Measure::VecEnv,
+];
+
+/// Why backend `name` cannot be measured on this machine (`None`: it can); `root` is the
+/// workspace root (MuJoCo is looked for in `$MUJOCO_DIR`, else its `target/mujoco`).
+pub fn backend_missing(name: &str, root: &Path) -> Option<String> {
+    match name {
+        "dart" if !Path::new(DART_BULLET_HEADER).exists() => Some(format!(
+            "DART is not installed ({DART_BULLET_HEADER} missing), so the DART backend was not \
+             measured"
+        )),
+        "mujoco" => mujoco::check(&mujoco::mujoco_dir(root)).err().map(|why| {
+            format!(
+                "MuJoCo is not set up ({why}; `{}`), so the MuJoCo backend was not measured",
+                mujoco::SETUP_COMMAND
+            )
+        }),
+        _ => None,
     }
 }
 
 /// The figures of one repetition (a series is absent when its run was skipped or failed).
 pub type Rep = BTreeMap<Series, f64>;
+
+/// The pinned `name==version` lines of a requirements file (comments and blank lines skipped);
+/// any other line is an error naming it.
+pub fn parse_requirements(text: &str) -> Result<Vec<(String, String)>, String> {
+    let mut pins = Vec::new();
+    for (i, line) in text.lines().enumerate() {
+        let line = line.split('#').next().unwrap_or("").trim();
+        if line.is_empty() {
+            continue;
+        }
+        match line.split_once("==") {
+            Some((name, version)) if !name.trim().is_empty() && !version.trim().is_empty() => {
+                pins.push((name.trim().to_string(), version.trim().to_string()));
+            }
+            _ => {
+                return Err(format!(
+                    "{ANCHORS_DIR}/requirements.txt line {}: `{line}` is not a `name==version` pin",
+                    i + 1
+                ));
+            }
+        }
+    }
+    Ok(pins)
+}
 
 /// The median, min and max of `values` (`None` when empty).
 pub fn summary(values: &[f64]) -> Option<(f64, f64, f64)> {
@@ -267,7 +482,7 @@ pub struct Target {
 }
 
 /// The targets, in report order.
-pub const TARGETS: [Target; 8] = [
+pub const TARGETS: [Target; 11] = [
     Target {
         label: "rapier / MuJoCo from Python",
         goal: Goal::RatioAtLeast {
@@ -327,6 +542,29 @@ pub const TARGETS: [Target; 8] = [
         label: "spec evaluation share, DART",
         goal: Goal::AtMost {
             series: Series::DartSpecShare,
+            target: 0.01,
+        },
+    },
+    Target {
+        label: "MuJoCo backend / MuJoCo from Python",
+        goal: Goal::RatioAtLeast {
+            num: Series::Mujoco,
+            den: Series::MujocoPy,
+            target: 1.3,
+        },
+    },
+    Target {
+        label: "MuJoCo backend / MuJoCo from Python (stretch)",
+        goal: Goal::RatioAtLeast {
+            num: Series::Mujoco,
+            den: Series::MujocoPy,
+            target: 1.5,
+        },
+    },
+    Target {
+        label: "spec evaluation share, MuJoCo",
+        goal: Goal::AtMost {
+            series: Series::MujocoSpecShare,
             target: 0.01,
         },
     },
@@ -441,26 +679,22 @@ pub fn parse_hyq(stdout: &str) -> Result<HyqFigures, String> {
     })
 }
 
-/// The median CPU-time rate of the anchor line with `sim` and `case` in an anchor script's
-/// output (one JSON object a line; other lines are ignored).
-pub fn parse_anchor(stdout: &str, sim: &str, case: &str) -> Result<f64, String> {
-    parse_anchor_key(stdout, sim, case, &["cpu", "median"])
-}
-
-/// The number at `key` (a path of object keys) in the anchor line with `sim` and `case`.
-pub fn parse_anchor_key(stdout: &str, sim: &str, case: &str, key: &[&str]) -> Result<f64, String> {
+/// The number at `key` in the line of an anchor script's output (one JSON object a line;
+/// other lines are ignored) whose `anchor` and `case` are the given ones.
+pub fn parse_anchor(stdout: &str, anchor: &str, case: &str, key: &str) -> Result<f64, String> {
     for line in stdout.lines().filter(|l| l.trim_start().starts_with('{')) {
         let Ok(v) = serde_json::from_str::<Value>(line) else {
             continue;
         };
-        if v.get("sim").and_then(Value::as_str) == Some(sim)
+        if v.get("anchor").and_then(Value::as_str) == Some(anchor)
             && v.get("case").and_then(Value::as_str) == Some(case)
         {
-            return number(&v, key);
+            return number(&v, &[key]);
         }
     }
     Err(format!(
-        "no result for sim {sim:?}, case {case:?} in: {stdout}"
+        "no result for anchor {anchor:?}, case {case:?} in: {}",
+        stdout.trim()
     ))
 }
 
@@ -487,6 +721,8 @@ pub struct Host {
     pub load_start: String,
     /// The same at the end.
     pub load_end: String,
+    /// The anchors' Python and package versions.
+    pub anchors: String,
     /// The git commit (and `-dirty` with uncommitted changes).
     pub commit: String,
     /// `rustc --version`.
@@ -512,6 +748,9 @@ pub fn markdown(host: &Host, reps: &[Rep]) -> String {
         "Build: release (thin LTO), commit {}, {}  ",
         host.commit, host.rustc
     );
+    if !host.anchors.is_empty() {
+        let _ = writeln!(s, "Anchors: {}  ", host.anchors);
+    }
     let _ = writeln!(
         s,
         "Repetitions: {}, each running every row below once, in turn\n",
@@ -584,7 +823,17 @@ pub fn markdown(host: &Host, reps: &[Rep]) -> String {
     s
 }
 
-/// Runs `program args` in `dir` with `env`, returning its stdout; a failure names the command.
+/// The last non-empty line of a program's error output (a Python traceback ends with the
+/// error itself), for one-line messages.
+fn last_line(text: &str) -> &str {
+    text.lines()
+        .map(str::trim)
+        .rfind(|l| !l.is_empty())
+        .unwrap_or("")
+}
+
+/// Runs `program args` in `dir` with `env`, returning its stdout; a failure is one line naming
+/// the command and the last line of its error output.
 fn run(
     program: &Path,
     args: &[String],
@@ -602,7 +851,7 @@ fn run(
         return Err(format!(
             "`{shown}` failed ({}): {}",
             out.status,
-            String::from_utf8_lossy(&out.stderr).trim()
+            last_line(&String::from_utf8_lossy(&out.stderr))
         ));
     }
     Ok(String::from_utf8_lossy(&out.stdout).into_owned())
@@ -617,24 +866,72 @@ fn shell(line: &str) -> String {
         .unwrap_or_default()
 }
 
-/// Creates the anchors' virtual environment if needed and installs the pinned versions that
-/// are missing; returns its Python and the notes on what could not be installed.
-fn setup_venv(venv: &Path) -> Result<(PathBuf, Vec<String>), String> {
+/// The Python that creates the anchors' venv: `$HYQ_PYTHON`, else `python3`.
+fn system_python() -> String {
+    std::env::var("HYQ_PYTHON").unwrap_or_else(|_| "python3".to_string())
+}
+
+/// Creates the anchors' virtual environment if needed and installs the pins that are missing
+/// or at another version; returns its Python and notes on what could not be installed (only
+/// dartpy may be missing: its rows are then left out).
+fn setup_venv(venv: &Path, pins: &[(String, String)]) -> Result<(PathBuf, Vec<String>), String> {
     let python = venv_python(venv);
     if !python.exists() {
+        let system = system_python();
+        let check = format!(
+            "import sys, venv, ensurepip; sys.exit(0 if sys.version_info >= {PYTHON_MIN:?} else 3)"
+        );
+        match Command::new(&system).args(["-c", &check]).status() {
+            Err(e) => {
+                return Err(format!(
+                    "`{system}` cannot be run ({e}): the anchors need Python {}.{}+ with venv \
+                     and pip ({PYTHON_INSTALL}; or set HYQ_PYTHON)",
+                    PYTHON_MIN.0, PYTHON_MIN.1
+                ));
+            }
+            Ok(s) if s.code() == Some(3) => {
+                return Err(format!(
+                    "`{system}` is older than Python {}.{}, which the pinned numpy needs; set \
+                     HYQ_PYTHON to a newer interpreter",
+                    PYTHON_MIN.0, PYTHON_MIN.1
+                ));
+            }
+            Ok(s) if !s.success() => {
+                return Err(format!(
+                    "`{system}` lacks the venv or ensurepip module, which the anchors' virtual \
+                     environment needs: {PYTHON_INSTALL}"
+                ));
+            }
+            Ok(_) => {}
+        }
         println!(
             "creating the anchors' virtual environment at {}",
             venv.display()
         );
         run(
-            Path::new("python3"),
+            Path::new(&system),
             &strings(&["-m", "venv", &venv.to_string_lossy()]),
             Path::new("/"),
             &[],
-        )?;
+        )
+        .map_err(|e| format!("cannot create the anchors' virtual environment: {e}"))?;
+    }
+    if run(
+        &python,
+        &strings(&["-m", "pip", "--version"]),
+        Path::new("/"),
+        &[],
+    )
+    .is_err()
+    {
+        return Err(format!(
+            "the anchors' virtual environment {} has no pip (remove it to have it created \
+             again, or: {PYTHON_INSTALL})",
+            venv.display()
+        ));
     }
     let mut notes = Vec::new();
-    for (package, version) in PINS {
+    for (package, version) in pins {
         let check = format!(
             "import importlib.metadata as m, sys; sys.exit(0 if m.version('{package}') == '{version}' else 1)"
         );
@@ -643,26 +940,56 @@ fn setup_venv(venv: &Path) -> Result<(PathBuf, Vec<String>), String> {
         }
         println!("installing {package}=={version} into {}", venv.display());
         let pin = format!("{package}=={version}");
+        let env = [("PIP_DISABLE_PIP_VERSION_CHECK", "1")];
         if let Err(e) = run(
             &python,
             &strings(&["-m", "pip", "install", "-q", &pin]),
             Path::new("/"),
-            &[],
+            &env,
         ) {
             if package == "dartpy" {
-                notes.push(format!("dartpy {version} could not be installed, so DART from Python was not measured: {e}"));
+                notes.push(format!(
+                    "dartpy {version} could not be installed, so DART from Python was not \
+                     measured: {e}"
+                ));
             } else {
-                return Err(e);
+                return Err(format!("pip could not install {pin}: {e}"));
             }
         }
     }
     Ok((python, notes))
 }
 
+/// Writes the anchors' models with the release `hyq` into `dir`: MJCF with position servos,
+/// URDF with capsules as cylinders, and the facts.
+fn write_models(hyq: &Path, root: &Path, dir: &Path) -> Result<(), String> {
+    std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+    for (file, args) in [
+        (
+            "hyq.xml",
+            &["--format", "mjcf", "--actuators", "position"][..],
+        ),
+        ("hyq.urdf", &["--format", "urdf", "--capsules", "cylinder"]),
+        ("hyq.json", &["--format", "json"]),
+    ] {
+        let out = dir.join(file);
+        let mut a = strings(&["model"]);
+        a.extend(strings(args));
+        a.extend(strings(&["--out", &out.to_string_lossy()]));
+        run(hyq, &a, root, &[])?;
+    }
+    println!("wrote the anchors' models into {}", dir.display());
+    Ok(())
+}
+
 /// `cargo xtask bench-vs-anchors`.
 pub fn bench_vs_anchors(args: &[String]) -> Result<(), String> {
     let root = workspace_root();
-    let args = parse(args, &root)?;
+    let args = parse(
+        args,
+        &root,
+        std::env::var_os("HYQ_ANCHOR_VENV").map(PathBuf::from),
+    )?;
     let command = std::iter::once("cargo xtask bench-vs-anchors".to_string())
         .chain(std::env::args().skip(2))
         .collect::<Vec<_>>()
@@ -678,43 +1005,99 @@ pub fn bench_vs_anchors(args: &[String]) -> Result<(), String> {
         rustc: shell("rustc --version"),
         ..Host::default()
     };
-    if !args.anchors.join("bench_mujoco.py").exists() {
-        return Err(format!(
-            "no anchor harness at {} (bench_mujoco.py); pass --anchors DIR",
-            args.anchors.display()
-        ));
-    }
-    let dart = args.dart && Path::new(DART_BULLET_HEADER).exists();
-    if args.dart && !dart {
-        host.notes.push(format!(
-            "DART is not installed ({DART_BULLET_HEADER} missing), so the DART backend was not measured"
-        ));
-    }
+    let anchors = root.join(ANCHORS_DIR);
+    let requirements = anchors.join("requirements.txt");
+    let pins = parse_requirements(
+        &std::fs::read_to_string(&requirements)
+            .map_err(|e| format!("cannot read {}: {e}", requirements.display()))?,
+    )?;
 
+    // Python first: a missing interpreter or pip fails before the long build.
+    let (python, venv_notes) = setup_venv(&args.venv, &pins)?;
+    host.notes.extend(venv_notes);
+
+    // The backends this machine can measure, and the features that build them in.
+    let mut features = Vec::new();
+    let mut backends = Vec::new();
+    for measure in SEQUENCE {
+        let Measure::Hyq(b) = measure else { continue };
+        if !args.wants(b.name) {
+            if b.name == "mujoco" {
+                host.notes
+                    .push("--no-mujoco: the MuJoCo backend was not measured".into());
+            }
+            continue;
+        }
+        match backend_missing(b.name, &root) {
+            Some(why) => host.notes.push(why),
+            None => {
+                backends.push(b.name);
+                features.extend(b.feature);
+            }
+        }
+    }
     let mut build = strings(&["build", "--release", "--locked", "-p", "hyq-cli"]);
-    if dart {
-        build.extend(strings(&["--features", "dart"]));
+    if !features.is_empty() {
+        build.extend(strings(&["--features", &features.join(",")]));
     }
     let status = run_cargo(&root, &build)?;
     if !status.success() {
         return Err(format!("the release build of hyq failed ({status})"));
     }
     let hyq = root.join("target").join("release").join("hyq");
+    let models = root.join(MODELS_DIR);
+    write_models(&hyq, &root, &models)?;
 
-    let (python, venv_notes) = setup_venv(&args.venv)?;
-    host.notes.extend(venv_notes);
-    let dartpy = run(
-        &python,
-        &strings(&["-c", "import dartpy"]),
-        &args.anchors,
-        &[],
-    )
-    .is_ok();
-    let single = [
+    let importable = |module: &str| {
+        run(
+            &python,
+            &strings(&["-c", &format!("import {module}")]),
+            &anchors,
+            &[],
+        )
+        .is_ok()
+    };
+    let mut modules = BTreeMap::new();
+    for measure in SEQUENCE {
+        if let Measure::Anchor(a) = measure {
+            let ok = *modules
+                .entry(a.module)
+                .or_insert_with(|| importable(a.module));
+            if !ok && !a.dart {
+                return Err(format!(
+                    "`import {}` fails in the anchors' virtual environment {}",
+                    a.module,
+                    args.venv.display()
+                ));
+            }
+        }
+    }
+    if !args.dart {
+        host.notes
+            .push("--no-dart: the DART backend and DART from Python were not measured".into());
+    } else if modules.get("dartpy") == Some(&false)
+        && !host.notes.iter().any(|n| n.contains("dartpy"))
+    {
+        host.notes.push(
+            "dartpy does not import in the anchors' venv: DART from Python was not measured".into(),
+        );
+    }
+    let versions = format!(
+        "import sys, importlib.metadata as m\nout = ['Python ' + sys.version.split()[0]]\n\
+         for p in {:?}:\n    try: out.append(p + ' ' + m.version(p))\n    \
+         except m.PackageNotFoundError: pass\nprint(', '.join(out))",
+        pins.iter().map(|(p, _)| p.as_str()).collect::<Vec<_>>()
+    );
+    host.anchors = run(&python, &strings(&["-c", &versions]), &anchors, &[])
+        .map(|s| s.trim().to_string())
+        .unwrap_or_default();
+    // One thread for every numerical library; no bytecode written into the repository.
+    let python_env = [
         ("OMP_NUM_THREADS", "1"),
         ("OPENBLAS_NUM_THREADS", "1"),
         ("MKL_NUM_THREADS", "1"),
         ("NUMEXPR_NUM_THREADS", "1"),
+        ("PYTHONDONTWRITEBYTECODE", "1"),
     ];
 
     let mut raw = String::new();
@@ -724,6 +1107,7 @@ pub fn bench_vs_anchors(args: &[String]) -> Result<(), String> {
         args.vec_steps.to_string(),
         args.anchor_steps.to_string(),
     );
+    let models_arg = models.to_string_lossy().into_owned();
     for rep in 1..=args.reps {
         println!("repetition {rep}/{}", args.reps);
         let mut r = Rep::new();
@@ -734,82 +1118,60 @@ pub fn bench_vs_anchors(args: &[String]) -> Result<(), String> {
             raw.push_str(&out);
             parse_hyq(&out)
         };
-        let rapier = hyq_bench("rapier", &["--steps", &steps], &mut raw)?;
-        r.insert(Series::Rapier, rapier.cpu);
-        if let Some(share) = rapier.spec_share {
-            r.insert(Series::RapierSpecShare, share);
-        }
-        let a = strings(&[
-            "bench_mujoco.py",
-            "--runs",
-            "1",
-            "--cases",
-            "env_random,phys_c_random",
-            "--env-steps",
-            &anchor_steps,
-        ]);
-        let out = run(&python, &a, &args.anchors, &single)?;
-        raw.push_str(&out);
-        r.insert(
-            Series::MujocoPy,
-            parse_anchor(&out, "mujoco", "env_random")?,
-        );
-        r.insert(
-            Series::MujocoC,
-            parse_anchor(&out, "mujoco", "phys_c_random")?,
-        );
-        if dart {
-            let d = hyq_bench("dart", &["--steps", &steps], &mut raw)?;
-            r.insert(Series::Dart, d.cpu);
-            if let Some(share) = d.spec_share {
-                r.insert(Series::DartSpecShare, share);
-            }
-        }
-        if dartpy {
-            for (detector, series) in [("bullet", Series::DartPyBullet), ("ode", Series::DartPyOde)]
-            {
-                let a = strings(&[
-                    "bench_dart.py",
-                    "--runs",
-                    "1",
-                    "--cases",
-                    "env_random",
-                    "--detector",
-                    detector,
-                    "--shape",
-                    "capsule",
-                    "--env-steps",
-                    &anchor_steps,
-                ]);
-                let out = run(&python, &a, &args.anchors, &single)?;
-                raw.push_str(&out);
-                let sim = format!("dart-{detector}-capsule");
-                r.insert(series, parse_anchor(&out, &sim, "env_random")?);
-                if series == Series::DartPyBullet {
-                    let key = ["world_step_only_physics_steps_per_s_cpu_median"];
-                    let physics = parse_anchor_key(&out, &sim, "env_random", &key)?;
-                    r.insert(Series::DartPyStepOnly, physics / SUBSTEPS);
+        for measure in SEQUENCE {
+            match measure {
+                Measure::Hyq(b) => {
+                    if !backends.contains(&b.name) {
+                        continue;
+                    }
+                    let f = hyq_bench(b.name, &["--steps", &steps], &mut raw)?;
+                    r.insert(b.rate, f.cpu);
+                    if let Some(share) = f.spec_share {
+                        r.insert(b.spec_share, share);
+                    }
+                }
+                Measure::Anchor(a) => {
+                    if (a.dart && !args.dart) || modules.get(a.module) != Some(&true) {
+                        continue;
+                    }
+                    let mut argv = strings(&[
+                        a.script,
+                        "--models",
+                        &models_arg,
+                        "--env-steps",
+                        &anchor_steps,
+                        "--runs",
+                        "1",
+                    ]);
+                    argv.extend(strings(a.args));
+                    let out = run(&python, &argv, &anchors, &python_env)?;
+                    raw.push_str(&out);
+                    for f in a.figures {
+                        r.insert(f.series, parse_anchor(&out, f.anchor, f.case, f.key)?);
+                    }
+                }
+                Measure::VecEnv => {
+                    for (threads, series, cpu) in [
+                        ("1", Series::Vec1, Series::Vec1Cpu),
+                        ("2", Series::Vec2, Series::Vec2Cpu),
+                    ] {
+                        let v = hyq_bench(
+                            "rapier",
+                            &[
+                                "--num-envs",
+                                "2",
+                                "--threads",
+                                threads,
+                                "--steps",
+                                &vec_steps,
+                            ],
+                            &mut raw,
+                        )?;
+                        r.insert(series, v.wall);
+                        r.insert(cpu, v.cpu);
+                    }
                 }
             }
-        }
-        for (threads, series, cpu) in [
-            ("1", Series::Vec1, Series::Vec1Cpu),
-            ("2", Series::Vec2, Series::Vec2Cpu),
-        ] {
-            let v = hyq_bench(
-                "rapier",
-                &[
-                    "--num-envs",
-                    "2",
-                    "--threads",
-                    threads,
-                    "--steps",
-                    &vec_steps,
-                ],
-                &mut raw,
-            )?;
-            r.insert(series, v.wall);
-            r.insert(cpu, v.cpu);
         }
         let line: Vec<String> = r
             .iter()
@@ -819,11 +1181,6 @@ pub fn bench_vs_anchors(args: &[String]) -> Result<(), String> {
         reps.push(r);
     }
     host.load_end = shell("cut -d' ' -f1-3 /proc/loadavg");
-    if !dartpy {
-        host.notes.push(
-            "dartpy does not import in the anchors' venv: DART from Python was not measured".into(),
-        );
-    }
 
     let report = markdown(&host, &reps);
     println!("\n{report}");
@@ -847,11 +1204,17 @@ mod tests {
 
     #[test]
     fn defaults_and_arguments_parse_and_bad_ones_are_named() {
-        let root = Path::new("/work/main");
-        let d = parse(&[], root).unwrap_or_else(|e| panic!("{e}"));
+        let root = Path::new("/nonexistent/repo");
+        let d = parse(&[], root, None).unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(d.reps, 5);
-        assert_eq!(d.anchors, PathBuf::from("/work/shared/bench/anchors"));
-        assert!(d.dart);
+        assert_eq!(
+            d.venv,
+            PathBuf::from("/nonexistent/repo/target/anchor-venv")
+        );
+        assert!(d.dart && d.mujoco);
+        let from_env = parse(&[], root, Some("/nonexistent/cache/venv".into()))
+            .unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(from_env.venv, PathBuf::from("/nonexistent/cache/venv"));
         let p = parse(
             &strings(&[
                 "--reps",
@@ -863,12 +1226,12 @@ mod tests {
                 "--anchor-steps",
                 "70",
                 "--venv",
-                "/tmp/v",
-                "--anchors",
-                "/a",
+                "/nonexistent/venv",
                 "--no-dart",
+                "--no-mujoco",
             ]),
             root,
+            Some("/nonexistent/overridden".into()),
         )
         .unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(
@@ -876,19 +1239,108 @@ mod tests {
             (3, 100, 50, 70)
         );
         assert_eq!(
-            (p.venv, p.anchors, p.dart),
-            ("/tmp/v".into(), "/a".into(), false)
+            (&p.venv, p.dart, p.mujoco),
+            (&PathBuf::from("/nonexistent/venv"), false, false)
         );
+        // Each switch turns off its backend alone.
+        assert!(!p.wants("dart") && !p.wants("mujoco") && p.wants("rapier"));
+        assert!(d.wants("dart") && d.wants("mujoco") && d.wants("rapier"));
+        let no_mujoco =
+            parse(&strings(&["--no-mujoco"]), root, None).unwrap_or_else(|e| panic!("{e}"));
+        assert!(no_mujoco.wants("dart") && !no_mujoco.wants("mujoco"));
+        // A relative --venv is taken from the workspace root; under target/ is allowed.
+        let rel =
+            parse(&strings(&["--venv", "target/v"]), root, None).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(rel.venv, PathBuf::from("/nonexistent/repo/target/v"));
         for (bad, named) in [
             (&["--reps", "0"][..], "--reps 0"),
             (&["--steps", "x"], "--steps x"),
             (&["--venv"], "--venv"),
             (&["--fast"], "--fast"),
-            (&["--venv", "/work/main/.venv"], "outside the repository"),
+            // The anchor harness is part of the repository now: no option points elsewhere.
+            (&["--anchors", "/nonexistent/anchors"], "--anchors"),
+            (
+                &["--venv", "/nonexistent/repo/.venv"],
+                "not among its files",
+            ),
+            (&["--venv", "bench/venv"], "not among its files"),
         ] {
-            let err = parse(&strings(bad), root).err().unwrap_or_default();
+            let err = parse(&strings(bad), root, None).err().unwrap_or_default();
             assert!(err.contains(named), "{bad:?}: {err}");
         }
+    }
+
+    #[test]
+    fn the_pinned_requirements_are_read_and_bad_lines_named() {
+        let pins = parse_requirements("# pins\nnumpy==2.4.6\n\nmujoco == 4.0.0  # MuJoCo\n")
+            .unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(
+            pins,
+            vec![
+                ("numpy".to_string(), "2.4.6".to_string()),
+                ("mujoco".to_string(), "4.0.0".to_string())
+            ]
+        );
+        for bad in ["numpy>=2", "==1.0", "mujoco"] {
+            let err = parse_requirements(bad).err().unwrap_or_default();
+            assert!(err.contains("line 1") && err.contains(bad), "{err}");
+        }
+        // The repository's own file pins exactly what the report's labels name.
+        let text =
+            std::fs::read_to_string(workspace_root().join(ANCHORS_DIR).join("requirements.txt"))
+                .unwrap_or_else(|e| panic!("{e}"));
+        let pins = parse_requirements(&text).unwrap_or_else(|e| panic!("{e}"));
+        let version = |name: &str| {
+            pins.iter()
+                .find(|(p, _)| p == name)
+                .map(|(_, v)| v.as_str())
+                .unwrap_or_default()
+        };
+        assert_eq!(version("mujoco"), "4.0.0");
+        assert_eq!(version("dartpy"), "6.20.0");
+        assert!(!version("numpy").is_empty());
+        assert!(Series::MujocoPy.label().0.contains("MuJoCo 4.0"));
+        assert!(Series::DartPyBullet.label().0.contains("dartpy 6.20"));
+    }
+
+    #[test]
+    fn every_series_is_measured_by_the_sequence_and_every_script_exists() {
+        let mut produced = Vec::new();
+        for measure in SEQUENCE {
+            match measure {
+                Measure::Hyq(b) => produced.extend([b.rate, b.spec_share]),
+                Measure::Anchor(a) => {
+                    let script = workspace_root().join(ANCHORS_DIR).join(a.script);
+                    assert!(script.is_file(), "{} is missing", script.display());
+                    produced.extend(a.figures.iter().map(|f| f.series));
+                }
+                Measure::VecEnv => {
+                    produced.extend([Series::Vec1, Series::Vec2, Series::Vec1Cpu, Series::Vec2Cpu])
+                }
+            }
+        }
+        for series in Series::ALL {
+            assert_eq!(
+                produced.iter().filter(|s| **s == series).count(),
+                1,
+                "{series:?} must come from exactly one measurement"
+            );
+        }
+        assert_eq!(produced.len(), Series::ALL.len());
+        let root = Path::new("/nonexistent/repo");
+        assert_eq!(backend_missing("rapier", root), None);
+        // Without MuJoCo in the (missing) workspace, its row is skipped with the setup command.
+        if std::env::var_os("MUJOCO_DIR").is_none() {
+            let why = backend_missing("mujoco", root).unwrap_or_default();
+            assert!(why.contains("cargo xtask setup mujoco"), "{why}");
+        }
+    }
+
+    #[test]
+    fn failures_are_reported_by_their_last_line() {
+        let traceback = "Traceback (most recent call last):\n  File \"x.py\", line 1\nSystemExit: no robot facts\n\n";
+        assert_eq!(last_line(traceback), "SystemExit: no robot facts");
+        assert_eq!(last_line(""), "");
     }
 
     #[test]
@@ -920,22 +1372,33 @@ mod tests {
     }
 
     #[test]
-    fn anchor_lines_are_found_by_sim_and_case() {
+    fn anchor_lines_are_found_by_anchor_and_case() {
         let out = concat!(
-            "{\"sim\": \"mujoco\", \"case\": \"env_random\", \"cpu\": {\"min\": 1, \"median\": 4500.5, \"max\": 9}}\n",
+            "{\"anchor\": \"mujoco\", \"case\": \"env_random\", \"env_steps_per_s_cpu\": 4500.5}\n",
             "warning: not json\n",
-            "{\"sim\": \"mujoco\", \"case\": \"phys_c_random\", \"cpu\": {\"median\": 6000}}\n",
+            "{\"anchor\": \"mujoco\", \"case\": \"c_loop\", \"env_steps_per_s_cpu\": 6000}\n",
+            "{\"anchor\": \"dart-bullet-capsule\", \"case\": \"env_random\", \"step_only_env_steps_per_s_cpu\": 3100}\n",
         );
-        assert_eq!(parse_anchor(out, "mujoco", "env_random"), Ok(4500.5));
-        assert_eq!(parse_anchor(out, "mujoco", "phys_c_random"), Ok(6000.0));
+        let cpu = "env_steps_per_s_cpu";
+        assert_eq!(parse_anchor(out, "mujoco", "env_random", cpu), Ok(4500.5));
+        assert_eq!(parse_anchor(out, "mujoco", "c_loop", cpu), Ok(6000.0));
         assert_eq!(
-            parse_anchor_key(out, "mujoco", "env_random", &["cpu", "min"]),
-            Ok(1.0)
+            parse_anchor(
+                out,
+                "dart-bullet-capsule",
+                "env_random",
+                "step_only_env_steps_per_s_cpu"
+            ),
+            Ok(3100.0)
         );
-        let err = parse_anchor(out, "dart-bullet-capsule", "env_random")
+        let err = parse_anchor(out, "dart-ode-capsule", "env_random", cpu)
             .err()
             .unwrap_or_default();
-        assert!(err.contains("dart-bullet-capsule"), "{err}");
+        assert!(err.contains("dart-ode-capsule"), "{err}");
+        let err = parse_anchor(out, "dart-bullet-capsule", "env_random", cpu)
+            .err()
+            .unwrap_or_default();
+        assert!(err.contains(cpu), "{err}");
     }
 
     fn rep(pairs: &[(Series, f64)]) -> Rep {
@@ -970,6 +1433,22 @@ mod tests {
         assert_eq!(evaluate(&shares, TARGETS[6].goal).met, Some(true));
         let none = evaluate(&shares, TARGETS[2].goal);
         assert_eq!((none.met, none.text.as_str()), (None, "not measured"));
+        // The MuJoCo backend against MuJoCo from Python: 1.3× is the target, 1.5× the stretch.
+        let target = |label: &str| {
+            TARGETS
+                .iter()
+                .find(|t| t.label == label)
+                .map(|t| t.goal)
+                .unwrap_or_else(|| panic!("no target {label:?}"))
+        };
+        let mujoco = vec![rep(&[(Series::Mujoco, 1400.0), (Series::MujocoPy, 1000.0)])];
+        let v = evaluate(&mujoco, target("MuJoCo backend / MuJoCo from Python"));
+        assert_eq!((v.summary, v.met), (Some((1.4, 1.4, 1.4)), Some(true)));
+        let v = evaluate(
+            &mujoco,
+            target("MuJoCo backend / MuJoCo from Python (stretch)"),
+        );
+        assert_eq!(v.met, Some(false), "{}", v.text);
     }
 
     #[test]

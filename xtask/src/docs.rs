@@ -1,6 +1,8 @@
 //! Checks that the project's documents stay true to the code: every workspace member has its
-//! heading in ARCHITECTURE.md's code map, CI runs the test command the README gives, and the
-//! README's observation table is hyq-spec's `SPEC_TABLE` row for row.
+//! heading in ARCHITECTURE.md's code map, CI runs the test command the README gives, the
+//! observation tables of the README and of docs/spec.md are hyq-spec's `SPEC_TABLE` row for row,
+//! and docs/spec.md has a heading for every section of the original spec, marks its three
+//! deviations, and names only tests that exist.
 
 #[cfg(test)]
 mod tests {
@@ -74,6 +76,145 @@ mod tests {
         assert_eq!(
             rows, spec,
             "README.md's observation table differs from SPEC_TABLE"
+        );
+    }
+
+    #[test]
+    fn spec_page_observation_table_is_the_spec_table() {
+        let rows = readme_observation_rows(&read("docs/spec.md"));
+        let spec: Vec<(usize, String, f64, f64, bool)> = hyq_spec::SPEC_TABLE
+            .iter()
+            .map(|r| (r.index, r.name.to_string(), r.min, r.max, r.estimated))
+            .collect();
+        assert_eq!(
+            rows, spec,
+            "docs/spec.md's observation table differs from SPEC_TABLE"
+        );
+    }
+
+    /// The sections of the original spec, each of which docs/spec.md must have as a heading.
+    const ORIGINAL_SECTIONS: [&str; 20] = [
+        "1", "2", "3", "4", "4.1", "4.2", "4.3", "4.4", "5", "5.1", "5.1.1", "5.1.2", "5.2", "5.3",
+        "5.4", "6", "6.1", "6.2", "6.3", "6.4",
+    ];
+
+    /// The sections whose printed formula the project changes.
+    const DEVIATIONS: [&str; 3] = ["4.1", "4.3", "6.2"];
+
+    /// The text of docs/spec.md from the heading of section `number` to the next `## ` heading.
+    fn spec_section<'a>(page: &'a str, number: &str) -> &'a str {
+        let heading = format!("\n## §{number} ");
+        let start = page
+            .find(&heading)
+            .unwrap_or_else(|| panic!("docs/spec.md has no `## §{number} ...` heading"));
+        let body = &page[start + 1..];
+        let end = body[1..].find("\n## ").map_or(body.len(), |i| i + 1);
+        &body[..end]
+    }
+
+    #[test]
+    fn spec_page_has_a_heading_for_every_section_of_the_original() {
+        let page = read("docs/spec.md");
+        let missing: Vec<&str> = ORIGINAL_SECTIONS
+            .into_iter()
+            .filter(|s| !page.lines().any(|l| l.starts_with(&format!("## §{s} "))))
+            .collect();
+        assert!(
+            missing.is_empty(),
+            "docs/spec.md lacks a `## §N <title>` heading for the original's section(s) {missing:?}"
+        );
+    }
+
+    #[test]
+    fn spec_page_marks_exactly_the_three_deviations() {
+        let page = read("docs/spec.md");
+        for number in DEVIATIONS {
+            assert!(
+                spec_section(&page, number).contains("**Deviation.**"),
+                "docs/spec.md's §{number} changes a printed formula but is not marked \
+                 `**Deviation.**`"
+            );
+        }
+        assert_eq!(
+            page.matches("**Deviation.**").count(),
+            DEVIATIONS.len(),
+            "docs/spec.md marks `**Deviation.**` outside §4.1, §4.3 and §6.2"
+        );
+    }
+
+    /// The backticked spans of `text`, in order.
+    fn backticked(text: &str) -> Vec<&str> {
+        text.split('`').skip(1).step_by(2).collect()
+    }
+
+    /// Whether the file at `path` (from the repository root) defines a function `name`, Rust or
+    /// Python; panics naming the page's reference when the file is missing.
+    fn check_test_exists(file: &str, name: &str) {
+        let path = crate::stages::workspace_root().join(file);
+        let source = std::fs::read_to_string(&path).unwrap_or_else(|e| {
+            panic!("docs/spec.md names `{file}::{name}`, but {file} cannot be read ({e}); paths are from the repository root")
+        });
+        let defined = [
+            format!("fn {name}("),
+            format!("fn {name}<"),
+            format!("def {name}("),
+        ]
+        .iter()
+        .any(|d| source.contains(d.as_str()));
+        assert!(
+            defined,
+            "docs/spec.md names `{file}::{name}`, which {file} does not define"
+        );
+    }
+
+    /// Checks the tests named by one run of backticked spans: a span naming a `.rs` or `.py`
+    /// file sets the current file (and names a test after `::`); a later bare identifier names a
+    /// test in the current file. Returns how many were checked.
+    fn check_spans(spans: &[&str]) -> usize {
+        let mut file: Option<&str> = None;
+        let mut checked = 0;
+        for span in spans {
+            let source = [".rs", ".py"].iter().find_map(|ext| {
+                span.find(ext)
+                    .map(|i| (&span[..i + ext.len()], &span[i + ext.len()..]))
+            });
+            if let Some((f, rest)) = source {
+                file = Some(f);
+                if let Some(name) = rest.strip_prefix("::") {
+                    check_test_exists(f, name);
+                    checked += 1;
+                }
+            } else if let Some(f) = file
+                && span
+                    .chars()
+                    .all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_')
+            {
+                check_test_exists(f, span);
+                checked += 1;
+            }
+        }
+        checked
+    }
+
+    #[test]
+    fn every_test_the_spec_page_names_exists() {
+        let page = read("docs/spec.md");
+        let mut checked = 0;
+        for segment in page.split("**Shown by:**").skip(1) {
+            let end = segment
+                .find("\n- **")
+                .into_iter()
+                .chain(segment.find("\n#"))
+                .min()
+                .unwrap_or(segment.len());
+            checked += check_spans(&backticked(&segment[..end]));
+        }
+        for line in page.lines().filter(|l| l.starts_with("| §")) {
+            checked += check_spans(&backticked(line));
+        }
+        assert!(
+            checked >= 100,
+            "only {checked} test references found in docs/spec.md: has its format changed?"
         );
     }
 

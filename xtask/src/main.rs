@@ -3,13 +3,18 @@
 //!
 //! `cargo xtask test` is the project's one test command: the README names it and `.ci/run` runs
 //! it. It runs every test the machine can run, says loudly what it could not run and why, and
-//! fails when a part that was required (`--require dart`, `--require python`) cannot run.
+//! fails when a part that was required (`--require dart`, `--require mujoco`, `--require
+//! python`) cannot run.
 
 mod bench;
 mod cli;
 mod docs;
+mod mujoco;
+mod rllib;
 mod soak;
 mod stages;
+#[cfg(test)]
+mod standalone;
 mod vendor;
 
 use std::process::ExitCode;
@@ -18,21 +23,30 @@ const HELP: &str = "\
 cargo xtask <command>
 
 commands:
-  test [--require dart|python|all]...   run every test of the workspace: the Rust crates (rapier
+  test [--require dart|mujoco|python|all]... [--with rllib]
+                                        run every test of the workspace: the Rust crates (rapier
                                         backend), the DART backend when DART is installed, the
-                                        Python package when its tools are installed; --require
-                                        makes a part that cannot run a failure (CI uses it)
-  soak [--steps N] [--backend rapier|dart] [--seed S]
+                                        MuJoCo backend when MuJoCo is set up, the Python package
+                                        when its tools are installed; --require makes a part
+                                        that cannot run a failure (CI uses it); --with rllib
+                                        adds a two-iteration RLlib run of
+                                        examples/rllib_scale_out.py (a 6.1 GB venv of its own)
+  setup mujoco                          download MuJoCo 4.0.0's C library and headers from the
+                                        package index (pip, pinned sha256) into target/mujoco
+                                        (or $MUJOCO_DIR), for the MuJoCo backend
+  soak [--steps N] [--backend rapier|dart|mujoco] [--seed S]
                                         random actions for N env steps (default 10^6) in a
                                         release build of `hyq`: no panic, no NaN in any output;
                                         prints the episodes and the observed range of each row
   bench-vs-anchors [--reps R] [--steps N] [--vec-steps N] [--anchor-steps N]
-                   [--anchors DIR] [--venv DIR] [--no-dart]
+                   [--venv DIR] [--no-dart] [--no-mujoco]
                                         the speed targets: hyq bench (rapier, DART when
-                                        installed, the vector env on 1 and 2 threads) and the
-                                        anchors (MuJoCo, DART from Python; venv outside the
-                                        repository, default /tmp/anchor-venv) interleaved R
-                                        times (default 5); prints medians, min/max and ratios
+                                        installed, MuJoCo when set up, the vector env on 1 and
+                                        2 threads) and the anchors in bench/anchors (MuJoCo,
+                                        DART from Python, on models `hyq model` writes into
+                                        target/anchor-models) interleaved R times (default 5);
+                                        the anchors' venv is target/anchor-venv (or --venv DIR,
+                                        $HYQ_ANCHOR_VENV); prints medians, min/max and ratios
                                         and writes target/bench-vs-anchors.md
   vendor-check [--no-tests]             vendor/rapier3d is the published rapier3d plus
                                         vendor/patches (and the notices), and rapier's
@@ -46,6 +60,7 @@ fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let result = match args.first().map(String::as_str) {
         Some("test") => stages::test(&args[1..]),
+        Some("setup") => mujoco::setup(&args[1..]),
         Some("soak") => soak::soak(&args[1..]),
         Some("bench-vs-anchors") => bench::bench_vs_anchors(&args[1..]),
         Some("vendor-check") => vendor::vendor_check(&args[1..]),

@@ -1,4 +1,4 @@
-//! `cargo xtask soak [--steps N] [--backend rapier|dart] [--seed S]`: the long random-action
+//! `cargo xtask soak [--steps N] [--backend rapier|dart|mujoco] [--seed S]`: the long random-action
 //! soak. It builds the `hyq` command in release mode and runs `hyq soak`, which takes N env
 //! steps (10⁶ by default) of uniformly random actions, resetting whenever an episode ends, and
 //! fails on a panic or on the first non-finite number in any observation, reward term or info
@@ -10,6 +10,7 @@
 use std::path::Path;
 
 use crate::cli::{positive, value};
+use crate::mujoco;
 use crate::stages::{DART_BULLET_HEADER, DART_INSTALL, run_cargo, workspace_root};
 
 /// The soak's settings.
@@ -17,13 +18,13 @@ use crate::stages::{DART_BULLET_HEADER, DART_INSTALL, run_cargo, workspace_root}
 pub struct SoakArgs {
     /// Env steps in all.
     pub steps: u64,
-    /// `rapier` or `dart`.
+    /// `rapier`, `dart` or `mujoco`.
     pub backend: String,
     /// The seed of the random actions and of the first reset.
     pub seed: u64,
 }
 
-/// Parses `--steps N`, `--backend rapier|dart` and `--seed S`.
+/// Parses `--steps N`, `--backend rapier|dart|mujoco` and `--seed S`.
 pub fn parse(args: &[String]) -> Result<SoakArgs, String> {
     let mut out = SoakArgs {
         steps: 1_000_000,
@@ -42,8 +43,8 @@ pub fn parse(args: &[String]) -> Result<SoakArgs, String> {
             }
             "--backend" => {
                 let v = value(&mut it, "soak", arg)?;
-                if v != "rapier" && v != "dart" {
-                    return Err(format!("`--backend {v}`: expected rapier or dart"));
+                if !["rapier", "dart", "mujoco"].contains(&v.as_str()) {
+                    return Err(format!("`--backend {v}`: expected rapier, dart or mujoco"));
                 }
                 out.backend = v.clone();
             }
@@ -58,8 +59,8 @@ pub fn cargo_args(args: &SoakArgs) -> Vec<String> {
     let mut cargo: Vec<String> = ["run", "--release", "--locked", "-p", "hyq-cli"]
         .map(String::from)
         .to_vec();
-    if args.backend == "dart" {
-        cargo.extend(["--features".into(), "dart".into()]);
+    if args.backend != "rapier" {
+        cargo.extend(["--features".into(), args.backend.clone()]);
     }
     cargo.extend(
         [
@@ -85,6 +86,15 @@ pub fn soak(args: &[String]) -> Result<(), String> {
         return Err(format!(
             "the DART backend needs DART installed: {DART_INSTALL}"
         ));
+    }
+    if args.backend == "mujoco" {
+        mujoco::check(&mujoco::mujoco_dir(&workspace_root())).map_err(|why| {
+            format!(
+                "the MuJoCo backend needs MuJoCo {} ({why}): {}",
+                mujoco::VERSION,
+                mujoco::SETUP_COMMAND
+            )
+        })?;
     }
     let status = run_cargo(&workspace_root(), &cargo_args(&args))?;
     if status.success() {
@@ -130,6 +140,11 @@ mod tests {
         assert_eq!(
             cargo_args(&parsed).join(" "),
             "run --release --locked -p hyq-cli --features dart -- soak --backend dart --steps 5000 --seed 3"
+        );
+        let parsed = parse(&strings(&["--backend", "mujoco"])).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(
+            cargo_args(&parsed).join(" "),
+            "run --release --locked -p hyq-cli --features mujoco -- soak --backend mujoco --steps 1000000 --seed 0"
         );
         for (bad, named) in [
             (&["--steps", "0"][..], "--steps 0"),

@@ -6,11 +6,15 @@ use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitStatus, Stdio};
 
+use crate::mujoco;
+
 /// A part of the test run that needs something a fresh machine may lack.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 pub enum Part {
     /// The DART backend: needs Debian's libdart.
     Dart,
+    /// The MuJoCo backend: needs MuJoCo's library (`cargo xtask setup mujoco`).
+    Mujoco,
     /// The Python package: needs maturin, gymnasium and pytest.
     Python,
 }
@@ -19,6 +23,7 @@ impl Part {
     fn name(self) -> &'static str {
         match self {
             Part::Dart => "dart",
+            Part::Mujoco => "mujoco",
             Part::Python => "python",
         }
     }
@@ -31,7 +36,7 @@ pub const DART_INSTALL: &str = "sudo apt-get install -y libdart-dev libdart-coll
 pub const PYTHON_INSTALL: &str = "sudo apt-get install -y python3 python3-venv python3-pip";
 
 /// The oldest CPython the pinned test requirements install on (numpy 2.4 needs 3.11).
-const PYTHON_MIN: (u32, u32) = (3, 11);
+pub const PYTHON_MIN: (u32, u32) = (3, 11);
 
 /// What happened to one stage.
 enum Outcome {
@@ -39,7 +44,7 @@ enum Outcome {
     Skipped { why: String },
 }
 
-/// Parses `--require dart|python|all` flags.
+/// Parses `--require dart|mujoco|python|all` flags.
 fn parse_required(args: &[String]) -> Result<Vec<Part>, String> {
     let mut required = Vec::new();
     let mut it = args.iter();
@@ -48,14 +53,16 @@ fn parse_required(args: &[String]) -> Result<Vec<Part>, String> {
             "--require" => {
                 let value = it
                     .next()
-                    .ok_or("`--require` needs a value: dart, python or all")?;
+                    .ok_or("`--require` needs a value: dart, mujoco, python or all")?;
                 match value.as_str() {
                     "dart" => required.push(Part::Dart),
+                    "mujoco" => required.push(Part::Mujoco),
                     "python" => required.push(Part::Python),
-                    "all" => required.extend([Part::Dart, Part::Python]),
+                    "all" => required.extend([Part::Dart, Part::Mujoco, Part::Python]),
                     other => {
                         return Err(format!(
-                            "`--require {other}`: unknown part (expected dart, python or all)"
+                            "`--require {other}`: unknown part (expected dart, mujoco, python \
+                             or all)"
                         ));
                     }
                 }
@@ -188,7 +195,8 @@ pub fn passed_count(line: &str) -> u64 {
 
 /// `cargo xtask test`.
 pub fn test(args: &[String]) -> Result<(), String> {
-    let required = parse_required(args)?;
+    let (with, args) = crate::rllib::split_with(args)?;
+    let required = parse_required(&args)?;
     let root = workspace_root();
     let members = workspace_members(&root)?;
     let has = |name: &str| members.iter().any(|m| m == name);
@@ -196,7 +204,7 @@ pub fn test(args: &[String]) -> Result<(), String> {
 
     // Stage 1: every Rust crate that needs nothing but a Rust toolchain (rapier is the backend).
     let mut args: Vec<&str> = vec!["test", "--workspace", "--locked"];
-    for optional in ["hyq-dart", "hyq-py"] {
+    for optional in ["hyq-dart", "hyq-mujoco", "hyq-py"] {
         if has(optional) {
             args.extend(["--exclude", optional]);
         }
@@ -230,7 +238,29 @@ pub fn test(args: &[String]) -> Result<(), String> {
     };
     results.push((Part::Dart.name(), dart));
 
-    // Stage 3: the Python package.
+    // Stage 3: the MuJoCo backend and everything that runs on it.
+    let mujoco = if !has("hyq-mujoco") {
+        Outcome::Skipped {
+            why: "the hyq-mujoco crate is not in the workspace yet".into(),
+        }
+    } else if let Err(why) = mujoco::check(&mujoco::mujoco_dir(&root)) {
+        Outcome::Skipped {
+            why: format!(
+                "MuJoCo {} is not set up ({why}); to run these tests: {}",
+                mujoco::VERSION,
+                mujoco::SETUP_COMMAND
+            ),
+        }
+    } else {
+        let mut tests = 0;
+        for args in mujoco_stage_args(&members) {
+            tests += cargo_test(&root, &args.iter().map(String::as_str).collect::<Vec<_>>())?;
+        }
+        Outcome::Passed { tests }
+    };
+    results.push((Part::Mujoco.name(), mujoco));
+
+    // Stage 4: the Python package.
     let python = if !has("hyq-py") {
         Outcome::Skipped {
             why: "the hyq-py crate is not in the workspace yet".into(),
@@ -244,6 +274,12 @@ pub fn test(args: &[String]) -> Result<(), String> {
         }
     };
     results.push((Part::Python.name(), python));
+
+    // Optional stages, run only when asked for (`--with rllib`).
+    if with.iter().any(|w| w == "rllib") {
+        let tests = crate::rllib::stage(&root)?;
+        results.push(("rllib (--with rllib)", Outcome::Passed { tests }));
+    }
 
     summarize(&results, &required)
 }
@@ -331,7 +367,7 @@ fn run_in_venv(venv: &Path, dir: &Path, program: &Path, args: &[&str]) -> Result
 
 /// A command run in `dir` as if the venv were activated (maturin finds the venv through
 /// `VIRTUAL_ENV`).
-fn venv_command(venv: &Path, dir: &Path, program: &Path) -> Command {
+pub(crate) fn venv_command(venv: &Path, dir: &Path, program: &Path) -> Command {
     let mut command = Command::new(program);
     let path = std::env::var_os("PATH").unwrap_or_default();
     let mut paths = vec![venv.join("bin")];
@@ -344,7 +380,8 @@ fn venv_command(venv: &Path, dir: &Path, program: &Path) -> Command {
     command
 }
 
-/// Stage 3: installs the pinned requirements into the venv, builds the extension with the dev
+/// Stage 3: installs the pinned requirements into the venv (and Stable-Baselines3 without its
+/// dependencies), builds the extension with the dev
 /// profile and installs the package (`maturin develop`: fast to build; users get release
 /// builds from `maturin build --release` or `pip install`), builds the `hyq` command the CLI
 /// parity test runs, then runs pytest and returns how many tests passed.
@@ -356,6 +393,21 @@ fn python_stage(root: &Path, venv: &Path) -> Result<u64, String> {
         &crate_dir,
         &python,
         &["-m", "pip", "install", "-q", "-r", "requirements-test.txt"],
+    )?;
+    // Stable-Baselines3 alone, without PyTorch (see the file's header).
+    run_in_venv(
+        venv,
+        &crate_dir,
+        &python,
+        &[
+            "-m",
+            "pip",
+            "install",
+            "-q",
+            "--no-deps",
+            "-r",
+            "requirements-test-nodeps.txt",
+        ],
     )?;
     run_in_venv(
         venv,
@@ -419,17 +471,62 @@ fn pytest_passed_count(line: &str) -> Option<u64> {
 /// section, the env, the command line, the comparison runs).
 const DART_FEATURE_CRATES: [&str; 4] = ["spec-tests", "hyq-env", "hyq-cli", "hyq-compare"];
 
+/// The crates whose `mujoco` feature runs their tests on the MuJoCo backend too (the command
+/// line's MuJoCo tests run on their own, see [`mujoco_stage_args`]).
+const MUJOCO_FEATURE_CRATES: [&str; 3] = ["spec-tests", "hyq-env", "hyq-compare"];
+
+/// The MuJoCo stage's `cargo test` commands: the backend's own tests and every crate of
+/// [`MUJOCO_FEATURE_CRATES`] with its `mujoco` feature; then, to keep the stage short, only the
+/// command line's MuJoCo test file (`hyq-cli/tests/mujoco_backend.rs`) rather than all of its
+/// tests again, which the first stage ran on rapier.
+fn mujoco_stage_args(members: &[String]) -> Vec<Vec<String>> {
+    let mut commands = vec![feature_stage_args(
+        "hyq-mujoco",
+        "mujoco",
+        &MUJOCO_FEATURE_CRATES,
+        members,
+    )];
+    if members.iter().any(|m| m == "hyq-cli") {
+        commands.push(
+            [
+                "test",
+                "--locked",
+                "-p",
+                "hyq-cli",
+                "--features",
+                "hyq-cli/mujoco",
+                "--test",
+                "mujoco_backend",
+            ]
+            .map(String::from)
+            .to_vec(),
+        );
+    }
+    commands
+}
+
 /// The DART stage's `cargo test` arguments: the backend's own tests plus every member crate that
 /// has a `dart` feature, built with it (members not in the workspace yet are left out).
 fn dart_stage_args(members: &[String]) -> Vec<String> {
-    let mut args: Vec<String> = ["test", "--locked", "-p", "hyq-dart"]
+    feature_stage_args("hyq-dart", "dart", &DART_FEATURE_CRATES, members)
+}
+
+/// A backend stage's `cargo test` arguments: the backend crate's own tests plus each of
+/// `crates` that is a workspace member, built with its `feature`.
+fn feature_stage_args(
+    backend: &str,
+    feature: &str,
+    crates: &[&str],
+    members: &[String],
+) -> Vec<String> {
+    let mut args: Vec<String> = ["test", "--locked", "-p", backend]
         .map(String::from)
         .to_vec();
     let mut features = Vec::new();
-    for name in DART_FEATURE_CRATES {
+    for &name in crates {
         if members.iter().any(|m| m == name) {
             args.extend(["-p".to_string(), name.to_string()]);
-            features.push(format!("{name}/dart"));
+            features.push(format!("{name}/{feature}"));
         }
     }
     if !features.is_empty() {
@@ -526,7 +623,7 @@ mod tests {
     fn require_flags_parse_and_reject_unknown_parts() {
         assert_eq!(
             parse_required(&strings(&["--require", "all"])),
-            Ok(vec![Part::Dart, Part::Python])
+            Ok(vec![Part::Dart, Part::Mujoco, Part::Python])
         );
         let err = parse_required(&strings(&["--require", "matlab"]))
             .expect_err("an unknown part must be refused");
@@ -542,6 +639,25 @@ mod tests {
         assert_eq!(
             dart_stage_args(&members).join(" "),
             "test --locked -p hyq-dart -p spec-tests -p hyq-env --features spec-tests/dart,hyq-env/dart"
+        );
+    }
+
+    #[test]
+    fn the_mujoco_stage_runs_every_mujoco_feature_crate_and_the_clis_mujoco_tests() {
+        let members: Vec<String> = ["hyq-mujoco", "spec-tests", "hyq-env", "hyq-cli", "xtask"]
+            .map(String::from)
+            .to_vec();
+        let commands: Vec<String> = mujoco_stage_args(&members)
+            .iter()
+            .map(|c| c.join(" "))
+            .collect();
+        assert_eq!(
+            commands,
+            [
+                "test --locked -p hyq-mujoco -p spec-tests -p hyq-env --features \
+                 spec-tests/mujoco,hyq-env/mujoco",
+                "test --locked -p hyq-cli --features hyq-cli/mujoco --test mujoco_backend",
+            ]
         );
     }
 

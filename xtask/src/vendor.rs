@@ -138,7 +138,7 @@ struct Expected {
     patches: usize,
 }
 
-/// Where the check unpacks and builds: `<target>/vendor-check`.
+/// Where the check unpacks and builds: `vendor-check` in the target directory.
 fn work_dir(root: &Path) -> PathBuf {
     target_dir(root).join("vendor-check")
 }

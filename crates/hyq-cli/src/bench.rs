@@ -2,7 +2,7 @@
 //! and the share of the step's time in each part.
 //!
 //! # Workload
-//! The anchor harness's `env_random` case (`shared/bench/anchors/bench_mujoco.py`): one env, one
+//! The anchors' `env_random` case (`bench/anchors/`, docs/benchmarks.md): one env, one
 //! thread; every env step takes a fresh action drawn uniformly from the action space (with the
 //! default `normalized` actions: joint targets uniform within the joint limits), drawn before
 //! the timed region in blocks of [`BLOCK`] so the policy is not timed; an episode that ends is
@@ -31,6 +31,8 @@
 
 use std::time::{Duration, Instant};
 
+use std::fmt::Write as _;
+
 use clap::Args;
 use cpu_time::ProcessTime;
 use hyq_env::{
@@ -42,7 +44,7 @@ use serde::Serialize;
 use crate::Failure;
 use crate::backend::with_backend;
 use crate::options::{EnvArgs, make_env, robot, usage};
-use crate::output::print_json_line;
+use crate::output::{print, print_json_line};
 
 /// Actions drawn ahead of the timed region at a time.
 pub const BLOCK: usize = 1000;
@@ -63,11 +65,11 @@ pub struct BenchArgs {
     json: bool,
     /// Envs stepped together in a vector env (batched mode when ≥ 2); `--steps` then counts
     /// vector steps, each of N env steps.
-    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..=4096))]
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..=hyq_env::MAX_ENVS as u64))]
     num_envs: u64,
     /// Threads of the vector env's pool (batched mode only; default: N, at most the number of
     /// cores).
-    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=4096))]
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..=hyq_env::MAX_THREADS as u64))]
     threads: Option<u64>,
 }
 
@@ -129,7 +131,7 @@ pub struct TimedPass {
 pub struct BenchReport {
     /// 1.
     pub schema_version: u32,
-    /// `"env_random"`: the anchor harness's case this reproduces.
+    /// `"env_random"`: the anchors' case this reproduces.
     pub workload: &'static str,
     /// The backend's name (`"rapier"`, `"dart"`).
     pub backend: &'static str,
@@ -226,8 +228,7 @@ pub fn execute(args: BenchArgs) -> Result<(), Failure> {
                 .with_threads(t)
                 .map_err(|e| failure(format!("vector env: {e}")))?;
             let report = bench_vec(&mut vec, args.steps, args.seed, threads)?;
-            print_vec_report(&report, args.json);
-            Ok(())
+            print_vec_report(&report, args.json)
         });
     }
     if args.threads.is_some() {
@@ -236,8 +237,7 @@ pub fn execute(args: BenchArgs) -> Result<(), Failure> {
     with_backend!(args.env.backend, B => {
         let mut env = make_env::<B>(robot(), config)?;
         let report = bench(&mut env, args.steps, args.seed)?;
-        print_report(&report, args.json);
-        Ok(())
+        print_report(&report, args.json)
     })
 }
 
@@ -330,23 +330,27 @@ pub fn bench_vec<B: Backend>(
     })
 }
 
-fn print_vec_report(r: &VecBenchReport, json: bool) {
+fn print_vec_report(r: &VecBenchReport, json: bool) -> Result<(), Failure> {
     if json {
-        print_json_line(r, "a bench report");
-        return;
+        return print_json_line(r, "a bench report");
     }
-    println!(
+    let mut t = String::new();
+    let _ = writeln!(
+        t,
         "hyq bench: {} backend, {} build, workload {} ({} envs, {} pool threads, {} sub-steps each)",
         r.backend, r.profile, r.workload, r.num_envs, r.threads, r.substeps_per_env_step
     );
-    println!(
+    let _ = writeln!(
+        t,
         "  {} vector steps ({} env steps) in {:.3} s wall, {:.3} s CPU, {} resets",
         r.steps, r.env_steps, r.seconds, r.cpu_seconds, r.resets
     );
-    println!(
+    let _ = writeln!(
+        t,
         "  {:.0} env steps/s (wall), {:.0} env steps/s (CPU)",
         r.env_steps_per_s, r.env_steps_per_s_cpu
     );
+    print(&t)
 }
 
 fn failure(message: String) -> Failure {
@@ -469,30 +473,35 @@ fn pass<B: Backend>(
     Ok(result)
 }
 
-fn print_report(r: &BenchReport, json: bool) {
+fn print_report(r: &BenchReport, json: bool) -> Result<(), Failure> {
     if json {
-        print_json_line(r, "a bench report");
-        return;
+        return print_json_line(r, "a bench report");
     }
+    let mut t = String::new();
     let s = &r.shares;
     let e = &r.episodes_ended;
-    println!(
+    let _ = writeln!(
+        t,
         "hyq bench: {} backend, {} build, workload {} ({} actions, {} x {} s sub-steps)",
         r.backend, r.profile, r.workload, r.action_mode, r.substeps_per_env_step, r.dt
     );
-    println!(
+    let _ = writeln!(
+        t,
         "  {} env steps in {:.3} s wall, {:.3} s CPU",
         r.steps, r.seconds, r.cpu_seconds
     );
-    println!(
+    let _ = writeln!(
+        t,
         "  {:.0} env steps/s (wall), {:.0} env steps/s (CPU), {:.0} physics steps/s (wall)",
         r.env_steps_per_s, r.env_steps_per_s_cpu, r.physics_steps_per_s
     );
-    println!(
+    let _ = writeln!(
+        t,
         "  {} resets: fell {}, joint_limit {}, timeout {}, reached {}, diverged {}",
         r.resets, e.fell, e.joint_limit, e.timeout, e.reached, e.diverged
     );
-    println!(
+    let _ = writeln!(
+        t,
         "  time shares: physics {:.1}%, actuator {:.1}%, observation {:.1}%, spec {:.1}%, \
          other {:.1}%  (timed pass: {:.0} env steps/s wall)",
         100.0 * s.physics,
@@ -503,6 +512,10 @@ fn print_report(r: &BenchReport, json: bool) {
         r.timed_pass.env_steps_per_s
     );
     if r.profile == "debug" {
-        println!("  note: a debug build; measure with `cargo run --release -p hyq-cli -- bench`");
+        let _ = writeln!(
+            t,
+            "  note: a debug build; measure with `cargo run --release -p hyq-cli -- bench`"
+        );
     }
+    print(&t)
 }

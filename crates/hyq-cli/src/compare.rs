@@ -18,14 +18,14 @@ use hyq_compare::{
 };
 
 use crate::Failure;
-use crate::backend::{BackendChoice, dart_not_built, with_backend};
+use crate::backend::{BackendChoice, not_built, with_backend};
 use crate::options::{robot, usage};
 
 /// `hyq compare` arguments.
 #[derive(Debug, Args)]
 pub struct CompareArgs {
-    /// The two backends, comma-separated: rapier,dart (the point of the command), or
-    /// rapier,rapier / dart,dart (a self-check: exact agreement, or the effect of --set-b).
+    /// The two backends, comma-separated: rapier,dart or rapier,mujoco (the point of the
+    /// command), or the same one twice (a self-check: exact agreement, or the effect of --set-b).
     #[arg(long, value_name = "A,B", default_value = "rapier,dart", value_parser = parse_backends)]
     backends: BackendPair,
     /// The scenario (see `docs/backend-comparison.md`): stand (hold the pose), fall (a pushed
@@ -78,8 +78,9 @@ fn parse_backends(s: &str) -> Result<BackendPair, String> {
         ));
     }
     let pick = |name: &str| {
-        BackendChoice::from_str(name, false)
-            .map_err(|_| format!("unknown backend {name:?} (possible backends: rapier, dart)"))
+        BackendChoice::from_str(name, false).map_err(|_| {
+            format!("unknown backend {name:?} (possible backends: rapier, dart, mujoco)")
+        })
     };
     Ok(BackendPair(pick(names[0])?, pick(names[1])?))
 }
@@ -109,12 +110,11 @@ fn command_line() -> String {
 /// Runs `hyq compare`.
 pub fn execute(args: CompareArgs) -> Result<(), Failure> {
     let BackendPair(a, b) = args.backends;
-    if !cfg!(feature = "dart") && (a == BackendChoice::Dart || b == BackendChoice::Dart) {
-        return Err(dart_not_built(&format!(
-            "--backends {},{}",
-            a.name(),
-            b.name()
-        )));
+    if let Some(missing) = [a, b].into_iter().find(|c| !c.built()) {
+        return Err(not_built(
+            missing,
+            &format!("--backends {},{}", a.name(), b.name()),
+        ));
     }
     let ledger = match &args.ledger {
         Some(path) => Ledger::from_file(path),

@@ -1,17 +1,20 @@
 //! `hyq`: the command-line front of the HyQ walk-to-goal environment.
 //!
-//! One module per subcommand (`run`, `bench`, `soak`, `render`, `plot`, `compare`), each with its
+//! One module per subcommand (`run`, `bench`, `soak`, `render`, `plot`, `compare`, `model`), each with its
 //! clap arguments and an `execute` function; the environment options every subcommand shares
 //! (backend, configuration file, `--set` overrides, policy and seed) live in [`options`], the
 //! choice of physics backend in [`backend`], and the JSON line and progress bar several of them
 //! print in [`output`].
 //!
 //! Errors never panic and never print more than one line: `hyq: error: <what was wrong>` on
-//! stderr and exit status 2 for a usage error (bad option, bad value), 1 for anything else.
+//! stderr and exit status 2 for a usage error (bad option, bad value), 1 for anything else. A
+//! closed stdout (`hyq run | head -1`) ends a command quietly with status 0; output files are
+//! replaced only by a command that finished (see [`output`]).
 
 mod backend;
 mod bench;
 mod compare;
+mod model;
 mod options;
 mod output;
 mod plot;
@@ -20,6 +23,7 @@ mod run;
 mod soak;
 mod table;
 
+use std::io::Write;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
@@ -58,6 +62,9 @@ enum Command {
     /// configuration, and k_exp (for the R_e curve) and the env step (for the time axis) are
     /// read from them.
     Plot(plot::PlotArgs),
+    /// Write the simulated robot for other tools: MuJoCo's MJCF, URDF, or the facts a simulator
+    /// loop needs (JSON).
+    Model(model::ModelArgs),
 }
 
 /// A failure of the command, already worded for the user, with its exit status.
@@ -67,6 +74,17 @@ pub struct Failure {
     pub status: u8,
     /// The message (one line).
     pub message: String,
+}
+
+impl Failure {
+    /// stdout was closed by its reader (`hyq run | head -1`): the command stops, quietly and
+    /// successfully, as if the reader had read everything; nothing is printed.
+    pub fn closed_stdout() -> Self {
+        Failure {
+            status: 0,
+            message: String::new(),
+        }
+    }
 }
 
 impl From<anyhow::Error> for Failure {
@@ -86,7 +104,8 @@ fn print_error(message: &str) {
         .filter(|l| !l.is_empty())
         .collect::<Vec<_>>()
         .join(" ");
-    eprintln!("hyq: error: {one_line}");
+    // Nothing is left to do if stderr is closed too.
+    let _ = writeln!(std::io::stderr().lock(), "hyq: error: {one_line}");
 }
 
 fn main() -> ExitCode {
@@ -101,11 +120,14 @@ fn main() -> ExitCode {
         Command::Compare(args) => compare::execute(args),
         Command::Render(args) => render::execute(args),
         Command::Plot(args) => plot::execute(args),
+        Command::Model(args) => model::execute(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(failure) => {
-            print_error(&failure.message);
+            if !failure.message.is_empty() {
+                print_error(&failure.message);
+            }
             ExitCode::from(failure.status)
         }
     }

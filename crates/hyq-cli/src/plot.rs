@@ -21,6 +21,7 @@ use hyq_render::{EpisodeSeries, PlotError, PlotOptions, RewardTerms, StepRecord}
 
 use crate::Failure;
 use crate::options::{ConfigArgs, usage};
+use crate::output::{StagedDir, print_line, warn};
 
 /// `hyq plot` arguments.
 #[derive(Debug, Args)]
@@ -80,19 +81,47 @@ pub fn execute(args: PlotArgs) -> Result<(), Failure> {
             .map_or_else(String::new, |n| n.to_string_lossy().into_owned())
     });
     let options = plot_options(&config, title);
-    let plots = hyq_render::plot_jsonl(&args.file, &options, &out).map_err(plot_failure)?;
+    // The whole record is read before anything is written.
+    let read = hyq_render::read_jsonl(&args.file).map_err(plot_failure)?;
+    if let Some(line) = read.torn_last_line {
+        warn(&format!(
+            "{}: line {line} is incomplete (the run that wrote it was cut short?); plotted the \
+             whole lines before it",
+            args.file.display()
+        ));
+    }
+    let staged = StagedDir::create(&out).map_err(|e| {
+        usage(format!(
+            "--out {}: cannot create the directory: {e}",
+            out.display()
+        ))
+    })?;
+    let origin = args.file.display().to_string();
+    let plots = hyq_render::plot_records(&read.records, &origin, &options, staged.path())
+        .map_err(plot_failure)?;
+    staged.publish().map_err(|e| published_failure(&out, &e))?;
     for p in &plots {
-        println!("{}", p.rewards.display());
-        println!("{}", p.distance.display());
+        for path in [&p.rewards, &p.distance] {
+            let name = path.file_name().unwrap_or_default();
+            print_line(&out.join(name).display().to_string())?;
+        }
     }
     Ok(())
 }
 
+/// Moving finished plots into their directory failed.
+fn published_failure(dir: &Path, e: &std::io::Error) -> Failure {
+    Failure {
+        status: 1,
+        message: format!("{}: cannot put the plots in place: {e}", dir.display()),
+    }
+}
+
 /// Collects the steps of each episode of a live run and plots it when it ends
-/// (`hyq run --plot DIR`).
-#[derive(Debug)]
+/// (`hyq run --plot DIR`); the plots are put in the directory when the run has finished.
 pub struct LivePlots {
     dir: PathBuf,
+    staged: StagedDir,
     options: PlotOptions,
     series: EpisodeSeries,
     written: usize,
@@ -101,7 +130,7 @@ pub struct LivePlots {
 impl LivePlots {
     /// Plots into `dir`, created now so that an unwritable directory fails before the run.
     pub fn new(dir: &Path, config: &EnvConfig, title: String) -> Result<Self, Failure> {
-        std::fs::create_dir_all(dir).map_err(|e| {
+        let staged = StagedDir::create(dir).map_err(|e| {
             usage(format!(
                 "--plot {}: cannot create the directory: {e}",
                 dir.display()
@@ -109,6 +138,7 @@ impl LivePlots {
         })?;
         Ok(Self {
             dir: dir.to_owned(),
+            staged,
             options: plot_options(config, title),
             series: EpisodeSeries::new(),
             written: 0,
@@ -123,14 +153,13 @@ impl LivePlots {
             episode: Some(info.episode),
             reward: info.reward.total,
             terms: RewardTerms::from(info.reward),
-            d_n: info.d_n,
+            d_n: Some(info.d_n),
             distance_to_goal: info.distance_to_goal,
         });
     }
 
-    /// Plots the episode collected so far as episode number `episode` and starts the next one;
-    /// returns the two files written.
-    pub fn finish_episode(&mut self, episode: u64) -> Result<[PathBuf; 2], Failure> {
+    /// Plots the episode collected so far as episode number `episode` and starts the next one.
+    pub fn finish_episode(&mut self, episode: u64) -> Result<(), Failure> {
         self.written += 1;
         let options = PlotOptions {
             title: if self.options.title.is_empty() {
@@ -141,13 +170,22 @@ impl LivePlots {
             ..self.options.clone()
         };
         let stem = format!("episode_{:03}", self.written);
-        let plots =
-            hyq_render::plot_episode(&self.series, &options, &self.dir, &stem).map_err(|e| {
+        hyq_render::plot_episode(&self.series, &options, self.staged.path(), &stem).map_err(
+            |e| {
                 let mut failure = plot_failure(e);
                 failure.message = format!("--plot {}: {}", self.dir.display(), failure.message);
                 failure
-            })?;
+            },
+        )?;
         self.series = EpisodeSeries::new();
-        Ok([plots.rewards, plots.distance])
+        Ok(())
+    }
+
+    /// Puts every plot in the directory; returns how many there are.
+    pub fn publish(self) -> Result<usize, Failure> {
+        self.staged
+            .publish()
+            .map(|files| files.len())
+            .map_err(|e| published_failure(&self.dir, &e))
     }
 }

@@ -12,8 +12,6 @@
 //! touches the ground), the goal marker, and an overlay with the simulated time, D^t and the
 //! return so far. The camera follows the trunk.
 
-use std::fs::File;
-use std::io::BufWriter;
 use std::path::{MAIN_SEPARATOR, Path, PathBuf};
 
 use clap::Args;
@@ -28,7 +26,7 @@ use hyq_render::{
 use crate::Failure;
 use crate::backend::with_backend;
 use crate::options::{EnvArgs, PolicyArgs, make_env, robot, usage};
-use crate::output::progress_bar;
+use crate::output::{OutputFile, StagedDir, print_line, progress_bar};
 
 /// `hyq render` arguments.
 #[derive(Debug, Args)]
@@ -84,24 +82,30 @@ fn out_kind(out: &Path) -> Result<OutKind, Failure> {
     }
 }
 
-/// The frame writer `--out` names.
+/// The frame writer `--out` names: writing beside the target (a hidden file or directory),
+/// which the finished render replaces (see `crate::output`).
 enum Output {
-    Gif(GifWriter<BufWriter<File>>),
-    Pngs(PngSequence),
+    Gif(GifWriter<OutputFile>),
+    Pngs(PngSequence, StagedDir),
 }
 
 impl Output {
     fn push(&mut self, frame: &Frame) -> Result<(), WriteError> {
         match self {
             Output::Gif(gif) => gif.push(frame),
-            Output::Pngs(seq) => seq.push(frame).map(|_| ()),
+            Output::Pngs(seq, _) => seq.push(frame).map(|_| ()),
         }
     }
 
-    fn finish(self) -> Result<(), WriteError> {
+    /// Finishes the frames and puts them in place of the target.
+    fn finish(self, out: &Path) -> Result<(), WriteError> {
+        let io = |source| WriteError::Io {
+            path: out.to_owned(),
+            source,
+        };
         match self {
-            Output::Gif(gif) => gif.finish().map(|_| ()),
-            Output::Pngs(_) => Ok(()),
+            Output::Gif(gif) => gif.finish()?.finish().map_err(io),
+            Output::Pngs(_, staged) => staged.publish().map(|_| ()).map_err(io),
         }
     }
 }
@@ -159,16 +163,24 @@ fn plan(args: &RenderArgs, env_dt: f64, t_max: u64) -> Result<Plan, Failure> {
     })
 }
 
-/// Opens the writer (creating the GIF file or the directory) before anything is simulated, so
-/// that an unwritable path fails at once.
+/// Opens the writer (the temporary GIF file beside the target, or the directory and its
+/// temporary one) before anything is simulated, so that an unwritable path fails at once.
 fn open_output(args: &RenderArgs, plan: &Plan) -> Result<Output, Failure> {
     let out = &args.out;
     let failed = |e: WriteError| usage(format!("--out {}: {e}", out.display()));
+    let io = |e: std::io::Error| usage(format!("--out {}: {e}", out.display()));
     Ok(match plan.kind {
         OutKind::Gif => {
-            Output::Gif(GifWriter::create(out, args.width, args.height, plan.fps).map_err(failed)?)
+            // The GIF's own checks (size, frame rate) before the file is created.
+            gif_delay_cs(plan.fps).map_err(failed)?;
+            let file = OutputFile::create(out).map_err(io)?;
+            Output::Gif(GifWriter::new(file, args.width, args.height, plan.fps).map_err(failed)?)
         }
-        OutKind::PngDir => Output::Pngs(PngSequence::create(out).map_err(failed)?),
+        OutKind::PngDir => {
+            let staged = StagedDir::create(out).map_err(io)?;
+            let seq = PngSequence::create(staged.path()).map_err(failed)?;
+            Output::Pngs(seq, staged)
+        }
     })
 }
 
@@ -264,10 +276,10 @@ fn render_episode<B: Backend>(mut env: Env<B>, args: &RenderArgs) -> Result<(), 
         ret += step.reward;
         bar.set_position(env.info().t);
     };
-    output.finish().map_err(write_failed)?;
+    output.finish(&args.out).map_err(write_failed)?;
     bar.finish_and_clear();
     let t = env.info().t;
-    println!(
+    print_line(&format!(
         "wrote {frames} frames ({:.2} s simulated, {} env steps, {:.2} fps, {}x{}) to {}; \
          stopped by {ended}; return {ret:.3}, distance to goal {:.3} m",
         t as f64 * env.env_dt(),
@@ -277,6 +289,5 @@ fn render_episode<B: Backend>(mut env: Env<B>, args: &RenderArgs) -> Result<(), 
         args.height,
         args.out.display(),
         env.info().distance_to_goal,
-    );
-    Ok(())
+    ))
 }

@@ -8,8 +8,7 @@
 //! unseeded, continuing its random streams (Gymnasium's semantics), so a run of N episodes is
 //! reproducible from S alone. The random policy draws from its own stream seeded with S.
 
-use std::fs::File;
-use std::io::{BufWriter, Write};
+use std::io::Write;
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
@@ -20,7 +19,7 @@ use serde::Serialize;
 use crate::Failure;
 use crate::backend::with_backend;
 use crate::options::{EnvArgs, PolicyArgs, make_env, robot, usage};
-use crate::output::{print_json_line, progress_bar};
+use crate::output::{OutputFile, print, print_json_line, print_line, progress_bar};
 use crate::plot::LivePlots;
 use crate::table::Table;
 
@@ -108,15 +107,8 @@ pub fn execute(args: RunArgs) -> Result<(), Failure> {
 
 fn run_episodes<B: Backend>(mut env: Env<B>, args: &RunArgs) -> Result<(), Failure> {
     let mut policy = args.policy.make(&env)?;
-    let mut record = match &args.record {
-        None => None,
-        Some(path) => Some(BufWriter::new(File::create(path).map_err(|e| {
-            usage(format!(
-                "--record {}: cannot create the file: {e}",
-                path.display()
-            ))
-        })?)),
-    };
+    // Every check first; the outputs are written beside their targets and put in place only
+    // when the run has finished.
     let mut plots = match &args.plot {
         None => None,
         Some(dir) => {
@@ -124,7 +116,15 @@ fn run_episodes<B: Backend>(mut env: Env<B>, args: &RunArgs) -> Result<(), Failu
             Some(LivePlots::new(dir, env.config(), title)?)
         }
     };
-    let mut plots_written = 0;
+    let mut record = match &args.record {
+        None => None,
+        Some(path) => Some(OutputFile::create(path).map_err(|e| {
+            usage(format!(
+                "--record {}: cannot create the file: {e}",
+                path.display()
+            ))
+        })?),
+    };
     let t_max = env.config().task.max_time_steps;
     let bar = progress_bar(args.episodes.saturating_mul(t_max));
     let mut action = vec![0.0; env.action_space().len()];
@@ -197,7 +197,7 @@ fn run_episodes<B: Backend>(mut env: Env<B>, args: &RunArgs) -> Result<(), Failu
             }
         }
         if let Some(plots) = plots.as_mut() {
-            plots_written += plots.finish_episode(summary.episode)?.len();
+            plots.finish_episode(summary.episode)?;
         }
         let n = summary.steps.max(1) as f64;
         summary.mean_m_yaw /= n;
@@ -205,18 +205,22 @@ fn run_episodes<B: Backend>(mut env: Env<B>, args: &RunArgs) -> Result<(), Failu
         summary.simulated_s = summary.steps as f64 * env.env_dt();
         bar.set_position((episode + 1) * t_max);
         if args.json {
-            bar.suspend(|| print_json_line(&summary, "an episode summary"));
+            bar.suspend(|| print_json_line(&summary, "an episode summary"))?;
         }
         summaries.push(summary);
     }
-    if let Some(mut out) = record {
-        out.flush().map_err(|e| record_error(args, e))?;
+    if let Some(out) = record {
+        out.finish().map_err(|e| record_error(args, e))?;
     }
+    let plots_written = match plots {
+        Some(plots) => plots.publish()?,
+        None => 0,
+    };
     bar.finish_and_clear();
     if !args.json {
-        print!("{}", summary_table(&summaries));
+        print(&summary_table(&summaries))?;
         if let Some(dir) = &args.plot {
-            println!("wrote {plots_written} plots to {}", dir.display());
+            print_line(&format!("wrote {plots_written} plots to {}", dir.display()))?;
         }
     }
     Ok(())
@@ -231,6 +235,16 @@ fn record_error(args: &RunArgs, e: std::io::Error) -> Failure {
     Failure {
         status: 1,
         message: format!("--record {path}: cannot write: {e}"),
+    }
+}
+
+/// A number for a table cell: three decimals, or in scientific form (`1.234e11`) from a
+/// million up, where the decimals would say nothing and the digits would be many.
+pub fn compact(v: f64) -> String {
+    if v.abs() >= 1e6 {
+        format!("{v:.3e}")
+    } else {
+        format!("{v:.3}")
     }
 }
 
@@ -251,7 +265,7 @@ pub fn summary_table(summaries: &[EpisodeSummary]) -> String {
         "distance_m",
         "dx_m",
     ]);
-    let num = |v: f64| format!("{v:.3}");
+    let num = compact;
     for s in summaries {
         let end: Vec<&str> = s.reasons.iter().map(|r| r.as_str()).collect();
         table.row(vec![

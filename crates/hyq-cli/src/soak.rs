@@ -12,6 +12,8 @@
 //!
 //! `cargo xtask soak` runs this in a release build; the test suite runs a short soak.
 
+use std::fmt::Write as _;
+
 use clap::Args;
 use hyq_env::{Env, Policy, RandomPolicy, ResetOptions, StepInfo};
 use hyq_physics::Backend;
@@ -22,7 +24,7 @@ use crate::Failure;
 use crate::backend::with_backend;
 use crate::bench::Ended;
 use crate::options::{EnvArgs, make_env, robot};
-use crate::output::{print_json_line, progress_bar};
+use crate::output::{print, print_json_line, progress_bar};
 use crate::table::Table;
 
 /// `hyq soak` arguments.
@@ -87,8 +89,7 @@ pub fn execute(args: SoakArgs) -> Result<(), Failure> {
     with_backend!(args.env.backend, B => {
         let mut env = make_env::<B>(robot(), config)?;
         let report = soak(&mut env, args.steps, args.seed, true)?;
-        print_report(&report, args.json);
-        Ok(())
+        print_report(&report, args.json)
     })
 }
 
@@ -113,7 +114,7 @@ fn first_non_finite(obs: &[f64], obs_f32: &[f32], info: &StepInfo) -> Option<(St
         ("reward.joint_penalty", r.joint_penalty),
         ("reward.fall_penalty", r.fall_penalty),
         ("distance_to_goal", info.distance_to_goal),
-        ("d_n", info.d_n.unwrap_or(0.0)),
+        ("d_n", info.d_n),
         ("roll", info.roll),
         ("pitch", info.pitch),
         ("yaw", info.yaw),
@@ -241,17 +242,19 @@ pub fn soak<B: Backend>(
     })
 }
 
-fn print_report(r: &SoakReport, json: bool) {
+fn print_report(r: &SoakReport, json: bool) -> Result<(), Failure> {
     if json {
-        print_json_line(r, "a soak report");
-        return;
+        return print_json_line(r, "a soak report");
     }
+    let mut t = String::new();
     let e = &r.episodes_ended;
-    println!(
+    let _ = writeln!(
+        t,
         "hyq soak: {} backend, seed {}: {} env steps, {} episodes, no panic, no non-finite value",
         r.backend, r.seed, r.steps, r.episodes
     );
-    println!(
+    let _ = writeln!(
+        t,
         "  episodes ended: fell {}, joint_limit {}, timeout {}, reached {}, diverged {}",
         e.fell, e.joint_limit, e.timeout, e.reached, e.diverged
     );
@@ -271,7 +274,8 @@ fn print_report(r: &SoakReport, json: bool) {
             ),
         ]);
     }
-    print!("{}", table.render());
+    t.push_str(&table.render());
+    print(&t)
 }
 
 #[cfg(test)]

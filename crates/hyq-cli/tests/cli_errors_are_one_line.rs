@@ -148,3 +148,21 @@ fn dart_backend_not_built_says_how_to_build_it() {
         assert_names(&line, &["dart", "--features dart", "cargo build"]);
     }
 }
+
+#[cfg(not(feature = "mujoco"))]
+#[test]
+fn mujoco_backend_not_built_says_how_to_build_it() {
+    for sub in [
+        &["run"][..],
+        &["bench", "--steps", "1"],
+        &["soak", "--steps", "1"],
+    ] {
+        let mut args = sub.to_vec();
+        args.extend(["--backend", "mujoco"]);
+        let line = one_line_error(&args);
+        assert_names(
+            &line,
+            &["mujoco", "--features mujoco", "cargo xtask setup mujoco"],
+        );
+    }
+}

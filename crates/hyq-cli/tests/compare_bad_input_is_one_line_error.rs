@@ -9,6 +9,9 @@ mod common;
 
 use common::{hyq, scratch, stderr, stdout};
 
+/// The `--out` of the calls refused before any output: a path that exists on no machine.
+const OUT: &str = "/nonexistent/out";
+
 fn usage_error(args: &[&str]) -> String {
     let out = hyq(args);
     let err = stderr(&out);
@@ -46,7 +49,7 @@ fn usage_error_of(extra: &[&str]) -> String {
 
 #[test]
 fn unknown_scenario_and_backend_are_named() {
-    let e = usage_error(&["compare", "--scenario", "moonwalk", "--out", "/tmp/x"]);
+    let e = usage_error(&["compare", "--scenario", "moonwalk", "--out", OUT]);
     assert!(
         e.contains("moonwalk") && e.contains("stand") && e.contains("reach"),
         "{e}"
@@ -54,13 +57,16 @@ fn unknown_scenario_and_backend_are_named() {
     let e = usage_error(&[
         "compare",
         "--backends",
-        "rapier,mujoco",
+        "rapier,bullet",
         "--scenario",
         "stand",
         "--out",
-        "/tmp/x",
+        OUT,
     ]);
-    assert!(e.contains("mujoco") && e.contains("rapier, dart"), "{e}");
+    assert!(
+        e.contains("bullet") && e.contains("rapier, dart, mujoco"),
+        "{e}"
+    );
     let e = usage_error(&[
         "compare",
         "--backends",
@@ -68,7 +74,7 @@ fn unknown_scenario_and_backend_are_named() {
         "--scenario",
         "stand",
         "--out",
-        "/tmp/x",
+        OUT,
     ]);
     assert!(e.contains("two backends"), "{e}");
 }
@@ -77,7 +83,7 @@ fn unknown_scenario_and_backend_are_named() {
 fn seconds_must_be_a_positive_number() {
     for bad in ["0", "-1", "nan", "abc", "1e9"] {
         let arg = format!("--seconds={bad}");
-        let e = usage_error(&["compare", "--scenario", "stand", &arg, "--out", "/tmp/x"]);
+        let e = usage_error(&["compare", "--scenario", "stand", &arg, "--out", OUT]);
         assert!(e.contains(bad) || e.contains("NaN"), "{bad}: {e}");
         assert!(e.contains("--seconds"), "{e}");
     }
@@ -131,9 +137,26 @@ fn dart_without_the_feature_says_how_to_build_it() {
         "--scenario",
         "trot",
         "--out",
-        "/tmp/x",
+        OUT,
     ]);
     assert!(e.contains("--backends rapier,dart"), "{e}");
     assert!(e.contains("--features dart"), "{e}");
     assert!(e.contains("apt-get install"), "{e}");
+}
+
+#[cfg(not(feature = "mujoco"))]
+#[test]
+fn mujoco_without_the_feature_says_how_to_build_it() {
+    let e = usage_error(&[
+        "compare",
+        "--backends",
+        "rapier,mujoco",
+        "--scenario",
+        "trot",
+        "--out",
+        "/nonexistent/x",
+    ]);
+    assert!(e.contains("--backends rapier,mujoco"), "{e}");
+    assert!(e.contains("--features mujoco"), "{e}");
+    assert!(e.contains("cargo xtask setup mujoco"), "{e}");
 }

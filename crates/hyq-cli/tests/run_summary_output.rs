@@ -93,7 +93,7 @@ fn json_lines_carry_the_same_summary_per_episode() {
         ] {
             assert!(terms[key].is_f64(), "terms.{key}: {terms}");
         }
-        // Σ r_n telescopes to k_norm (D^0 − D^T) / K (RULINGS §4.1).
+        // Σ r_n telescopes to k_norm (D^0 − D^T) / K (spec §4.2).
         let d0 = e["initial_distance_to_goal"].as_f64().unwrap();
         let dt = e["final_distance_to_goal"].as_f64().unwrap();
         let r_n = terms["r_n"].as_f64().unwrap();
@@ -140,5 +140,33 @@ fn the_dart_backend_runs_when_built_in() {
     assert!(
         dx > 0.2,
         "the trot walks forward on DART too ({dx} m in 2 s)"
+    );
+}
+
+#[test]
+fn large_sums_are_printed_in_short_scientific_form_small_ones_with_three_decimals() {
+    // The largest accepted scalings give sums of order 1e11 to 1e12, which used to be printed
+    // with all their digits.
+    let out = hyq_ok(&[
+        "run",
+        "--set",
+        "task.max_time_steps=100",
+        "--set",
+        "task.base_rew_scaling=1e12",
+        "--set",
+        "task.norm_rew_scaling=1e12",
+    ]);
+    let row: Vec<&str> = out.lines().nth(2).unwrap().split_whitespace().collect();
+    // return, r_b, r_n: large, in the form 1.234e11; r_e: small, with three decimals.
+    for cell in &row[3..6] {
+        let (mantissa, exponent) = cell.split_once('e').unwrap_or_else(|| panic!("{out}"));
+        assert!(
+            mantissa.len() <= 6 && exponent.parse::<i32>().is_ok(),
+            "{cell}: {out}"
+        );
+    }
+    assert!(
+        !row[6].contains('e') && row[6].split_once('.').unwrap().1.len() == 3,
+        "{out}"
     );
 }

@@ -2,7 +2,7 @@
 //! exactly. Every divergence is 0.0 (not merely small), every contact flag agrees, both end on
 //! the same step for the same reasons, and the one-step comparison from shared states finds no
 //! difference at all: the comparator adds no noise of its own, so whatever it reports between two
-//! engines comes from the engines.
+//! engines comes from the engines. Checked on rapier, and on MuJoCo with `--features mujoco`.
 
 #![allow(clippy::unwrap_used)]
 
@@ -13,12 +13,22 @@ use hyq_rapier::RapierBackend;
 
 #[test]
 fn rapier_against_itself_agrees_bit_for_bit() {
+    agrees_with_itself::<RapierBackend>("rapier (B)");
+}
+
+#[cfg(feature = "mujoco")]
+#[test]
+fn mujoco_against_itself_agrees_bit_for_bit() {
+    agrees_with_itself::<hyq_mujoco::MujocoBackend>("mujoco (B)");
+}
+
+fn agrees_with_itself<B: hyq_physics::Backend>(label: &str) {
     let ledger = Ledger::built_in().unwrap();
     // random: the most varied inputs (contacts making and breaking, joints near limits);
     // fall: a start state other than the spawn state.
     for (scenario, seconds) in [(Scenario::Random, 1.5), (Scenario::Fall, 1.2)] {
         let spec = common::spec(scenario, seconds, 12, &[]);
-        let r = common::run::<RapierBackend, RapierBackend>(&spec, "rapier (B)", &ledger);
+        let r = common::run::<B, B>(&spec, label, &ledger);
         let t = &r.trajectory;
         assert!(t.samples > 50, "{scenario}: only {} samples", t.samples);
         for (what, d) in [

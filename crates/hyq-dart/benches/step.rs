@@ -8,6 +8,7 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use hyq_dart::{DartBackend, DartOptions};
+use hyq_physics::conformance::fixtures::Rng;
 use hyq_physics::{Actuator, Backend, PdScratch, PhysicsParams, bundled, pd_substep};
 
 fn hyq() -> DartBackend {
@@ -17,14 +18,6 @@ fn hyq() -> DartBackend {
         &DartOptions::default(),
     )
     .expect("the bundled HyQ builds on DART")
-}
-
-/// xorshift64*, uniform in [0, 1).
-fn unit(state: &mut u64) -> f64 {
-    *state ^= *state >> 12;
-    *state ^= *state << 25;
-    *state ^= *state >> 27;
-    (state.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
 }
 
 fn step(c: &mut Criterion) {
@@ -49,14 +42,12 @@ fn step(c: &mut Criterion) {
 
     let mut b = hyq();
     let mut targets = standing.clone();
-    let mut rng = 0x9E37_79B9_7F4A_7C15_u64;
+    let mut rng = Rng::new(0);
     let mut k = 0_u64;
     group.bench_function("random_targets", |bench| {
         bench.iter(|| {
             if k.is_multiple_of(10) {
-                for (t, j) in targets.iter_mut().zip(model.joints()) {
-                    *t = j.lower + unit(&mut rng) * (j.upper - j.lower);
-                }
+                rng.fill_joint_angles(&model, 0.0, &mut targets);
             }
             k += 1;
             pd_substep(&mut b, &act, &targets, &mut scratch).expect("random targets stay finite");

@@ -1,4 +1,15 @@
-//! The DART backend passes the shared backend conformance suite of `hyq-physics`, unchanged:
-//! every invariant the rapier backend is held to holds for DART too.
+//! The DART backend passes the shared backend conformance suite of `hyq-physics`, unchanged,
+//! on every bundled robot: every invariant the rapier backend is held to holds for DART too,
+//! on HyQ (the default) and on ANYmal C.
 
 hyq_physics::conformance_tests!(hyq_dart::DartBackend);
+
+mod anymal_c {
+    use hyq_physics::conformance::fixtures::Robot;
+
+    hyq_physics::conformance_tests!(
+        hyq_dart::DartBackend,
+        hyq_dart::DartOptions::default(),
+        Robot::bundled("anymal_c")
+    );
+}

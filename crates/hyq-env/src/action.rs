@@ -1,4 +1,4 @@
-//! Actions to joint targets (not in the spec; RULINGS "Not in the spec": the system the spec
+//! Actions to joint targets (spec §7.1, beyond the original spec: the system the original
 //! describes drove 12 joint position targets through a joint PD law).
 //!
 //! For joint i with limits [lo_i, hi_i] and action value a_i:

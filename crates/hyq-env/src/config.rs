@@ -24,6 +24,9 @@
 //!
 //! [physics.dart]     # the DART backend's options, read when a DART env is built
 //!
+//! [physics.mujoco]   # the MuJoCo backend's options, read when a MuJoCo env is built
+//! noslip_iterations = 10
+//!
 //! [reset]         # spawn placement and reset noise (see ResetConfig)
 //! joint_noise_rad = 0.0
 //! ```
@@ -44,17 +47,63 @@ use serde::ser::Serializer;
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
+/// Half the side (m) of the cube, centred on the world origin, in which every position must lie
+/// on each axis: the spawn point, the goal, and the trunk during an episode (a trunk that leaves
+/// it ends the episode as `diverged`). The reason is rapier's f32 positions: at 100 m they step
+/// by 7.6 µm, under 1 % of the trunk's motion in a 1 ms sub-step at 1 m/s, and a 3 s trot from
+/// x = 100 m moves 1.0061 m against 1.0086 m from the origin (the spread seen between origins 0
+/// and 10 m too); from 1 km it moves 1.9 % less, from 10 km it cannot move at all. One bound
+/// for every engine keeps runs on different engines comparable. It also bounds every distance,
+/// which with the bounds below keeps every reward term and every sum over an episode finite.
+pub const WORLD_HALF_EXTENT_M: f64 = 100.0;
+
+/// The largest k_exp (`task.exp_rew_scaling`): R_e(0) = (e^k − 1)/k is then about 2.8e214, so a
+/// step's r_e and any sum of them over the longest episode (2^63 steps) stay finite. (e^k
+/// itself overflows f64 above k ≈ 709.78.)
+pub const EXP_REW_SCALING_MAX: f64 = 500.0;
+
+/// The largest `base_rew_scaling`, `norm_rew_scaling`, `reach_target_bonus_reward`,
+/// `reach_bounds_penalty` and `fall_penalty`. With every distance bounded by the world
+/// ([`WORLD_HALF_EXTENT_M`]) and K ≥ 10⁻⁶ m, r_b, r_n, the bonus and the penalties then stay
+/// below 4·10²⁰ per step, and every sum over an episode finite.
+pub const REWARD_SCALE_MAX: f64 = 1e12;
+
+/// The widest reset joint noise (rad, `reset.joint_noise_rad`): a full turn. Wider noise only
+/// piles the angles up at the joint limits, where they are clipped.
+pub const JOINT_NOISE_MAX_RAD: f64 = std::f64::consts::TAU;
+
+/// The reason given when a position is outside the world (see [`WORLD_HALF_EXTENT_M`]).
+pub(crate) fn outside_world_reason() -> String {
+    format!(
+        "must lie within ±{WORLD_HALF_EXTENT_M} m of the origin on each axis (m), the world of \
+         every engine: beyond it rapier's f32 positions are too coarse for faithful physics"
+    )
+}
+
+/// Whether `v` is a coordinate inside the world (finite, |v| ≤ [`WORLD_HALF_EXTENT_M`]).
+pub(crate) fn in_world(v: f64) -> bool {
+    v.is_finite() && v.abs() <= WORLD_HALF_EXTENT_M
+}
+
+/// The largest configuration file read (bytes): 1 MiB, hundreds of times any real
+/// configuration, so that a wrong path (`/dev/zero`, a log file) is refused at once rather than
+/// read until memory runs out.
+pub const CONFIG_FILE_MAX_BYTES: usize = 1 << 20;
+
 /// The names of the engine tables `[physics.<name>]` a configuration may hold, one per backend
-/// crate (`hyq-rapier`, `hyq-dart`). A table is read only by the backend of that name; the
-/// list exists so that a misspelt engine table is an error rather than silently ignored.
-pub const ENGINE_TABLES: [&str; 2] = ["rapier", "dart"];
+/// crate (`hyq-rapier`, `hyq-dart`, `hyq-mujoco`). A table is read only by the backend of that
+/// name; the list exists so that a misspelt engine table is an error rather than silently
+/// ignored.
+pub const ENGINE_TABLES: [&str; 3] = ["rapier", "dart", "mujoco"];
 
 /// The whole configuration of an environment (see the module docs for the file layout).
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct EnvConfig {
     /// The spec's user variables (rewards, penalties, tolerances, t_max), hyq-spec's
-    /// [`TaskConfig`] with the spec's names. (default: the spec's §2 table)
+    /// [`TaskConfig`] with the spec's names and ranges, plus upper bounds that keep every reward
+    /// finite: k_exp at most [`EXP_REW_SCALING_MAX`], the other scalings, the bonus and the
+    /// penalties at most [`REWARD_SCALE_MAX`]. (default: the spec's §2 table)
     pub task: TaskConfig,
     /// Where the goal is. (default: 5 m ahead along +x at the nominal standing height)
     pub goal: GoalConfig,
@@ -78,22 +127,24 @@ pub struct GoalConfig {
     /// `"random"`: a seeded draw from `distance_range_m` and `heading_range_deg`.
     /// (default: `"ahead"`)
     pub mode: GoalMode,
-    /// Distance (m) of the goal along +x from the spawn point in `"ahead"` mode. Finite, > 0.
-    /// (default: 5.0)
+    /// Distance (m) of the goal along +x from the spawn point in `"ahead"` mode. > 0, and the
+    /// goal within the world ([`WORLD_HALF_EXTENT_M`]). (default: 5.0)
     pub distance_m: f64,
-    /// The goal's world coordinates [x, y, z] (m) in `"fixed"` mode, where it is required.
-    /// (default: unset)
+    /// The goal's world coordinates [x, y, z] (m) in `"fixed"` mode, where it is required; each
+    /// within ±[`WORLD_HALF_EXTENT_M`]. (default: unset)
     #[serde(skip_serializing_if = "Option::is_none")]
     pub position: Option<[f64; 3]>,
     /// [min, max] distance (m) from the spawn point, drawn uniformly, in `"random"` mode.
-    /// Finite, 0 < min ≤ max. (default: [3.0, 7.0])
+    /// 0 < min ≤ max, and a goal max away in any direction within the world
+    /// ([`WORLD_HALF_EXTENT_M`]). (default: [3.0, 7.0])
     pub distance_range_m: [f64; 2],
     /// [min, max] heading (degrees, about +z from +x, positive to the left), drawn uniformly,
     /// in `"random"` mode. Within [−180, 180], min ≤ max. (default: [0.0, 0.0], straight
     /// ahead: the spec's yaw multiplier (§5.1) penalises any heading away from +x, so goals off
     /// the x axis are opt-in)
     pub heading_range_deg: [f64; 2],
-    /// The goal's height z (m) in `"ahead"` and `"random"` modes. (default: unset, meaning the
+    /// The goal's height z (m) in `"ahead"` and `"random"` modes, within ±[`WORLD_HALF_EXTENT_M`].
+    /// (default: unset, meaning the
     /// robot's nominal standing height from its profile, `spawn.standing_height`: 0.5895 m for
     /// HyQ)
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -123,6 +174,17 @@ pub enum GoalMode {
     Fixed,
     /// A seeded random distance and heading from the spawn point.
     Random,
+}
+
+impl GoalMode {
+    /// The mode as written in TOML (`"ahead"`, `"fixed"`, `"random"`).
+    pub const fn as_str(self) -> &'static str {
+        match self {
+            GoalMode::Ahead => "ahead",
+            GoalMode::Fixed => "fixed",
+            GoalMode::Random => "random",
+        }
+    }
 }
 
 /// How an action becomes the 12 joint targets of the PD actuator (`[action]`).
@@ -229,6 +291,17 @@ impl Gains {
     }
 }
 
+/// As written in TOML: `"profile"`, a number, or an array of numbers.
+impl fmt::Display for Gains {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Gains::Profile => f.write_str("\"profile\""),
+            Gains::All(g) => write!(f, "{g:?}"),
+            Gains::PerJoint(v) => write!(f, "{v:?}"),
+        }
+    }
+}
+
 impl Serialize for Gains {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         match self {
@@ -276,7 +349,7 @@ impl<'de> Deserialize<'de> for Gains {
 }
 
 /// `[physics]`: hyq-physics' engine-independent [`PhysicsParams`] as plain keys, plus one
-/// optional sub-table per engine (`[physics.rapier]`, `[physics.dart]`, see
+/// optional sub-table per engine (`[physics.rapier]`, `[physics.dart]`, `[physics.mujoco]`, see
 /// [`ENGINE_TABLES`]) that is deserialised into that backend's `Options` when an environment
 /// on it is built, so one file serves every engine.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -354,7 +427,8 @@ impl<'de> Deserialize<'de> for PhysicsConfig {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct ResetConfig {
-    /// The spawn point's [x, y] (m, world). Finite. (default: [0.0, 0.0])
+    /// The spawn point's [x, y] (m, world), each within ±[`WORLD_HALF_EXTENT_M`]. (default:
+    /// [0.0, 0.0])
     pub spawn_xy_m: [f64; 2],
     /// The trunk's yaw at spawn (degrees, about +z, positive to the left). In [−180, 180].
     /// (default: 0.0, facing +x)
@@ -363,7 +437,7 @@ pub struct ResetConfig {
     /// (default: 0.0, off)
     pub yaw_noise_deg: f64,
     /// Uniform noise added to each standing joint angle at each reset: ± this many radians,
-    /// then clipped to the joint's limits. Finite, ≥ 0. (default: 0.0, off)
+    /// then clipped to the joint's limits. In [0, [`JOINT_NOISE_MAX_RAD`]]. (default: 0.0, off)
     pub joint_noise_rad: f64,
 }
 
@@ -442,29 +516,68 @@ fn gains_ok(key: &str, g: &Gains) -> Result<(), ConfigError> {
         Gains::Profile => Ok(()),
         Gains::All(v) if ok(v) => Ok(()),
         Gains::PerJoint(v) if v.iter().all(ok) => Ok(()),
-        other => Err(invalid(key, other, "gains must be finite and >= 0")),
+        other => Err(ConfigError::Invalid {
+            key: key.to_owned(),
+            value: other.to_string(),
+            expected: "gains must be finite and >= 0".to_owned(),
+        }),
     }
 }
 
 impl EnvConfig {
     /// Parses and validates a configuration from TOML text; `origin` (a path, or "text")
     /// appears in errors.
+    ///
+    /// Errors give the line of the offending key where the text has it: the parser's position for
+    /// syntax, unknown keys and wrong types; for a value out of its range, the line of that key
+    /// (the checks of `[task]` run when the whole table is read, where the parser would point at
+    /// the table instead).
     pub fn from_toml_str(text: &str, origin: &str) -> Result<Self, ConfigError> {
-        let config: EnvConfig = toml::from_str(text).map_err(|e| ConfigError::Parse {
+        let at = |key: &str, message: String| ConfigError::Parse {
             origin: origin.to_owned(),
-            message: one_line(&e.to_string()),
+            message: match line_of(text, key) {
+                Some(line) => format!("line {line}: {message}"),
+                None => message,
+            },
+        };
+        let config: EnvConfig =
+            toml::from_str(text).map_err(|e| match task_check(e.message()) {
+                Some((key, message)) => at(&key, message),
+                None => ConfigError::Parse {
+                    origin: origin.to_owned(),
+                    message: one_line(&e.to_string()),
+                },
+            })?;
+        config.validate().map_err(|e| match &e {
+            ConfigError::Invalid { key, .. } => at(key, e.to_string()),
+            _ => e,
         })?;
-        config.validate()?;
         Ok(config)
     }
 
-    /// Reads, parses and validates a configuration file.
+    /// Reads, parses and validates a configuration file of at most
+    /// [`CONFIG_FILE_MAX_BYTES`].
     pub fn from_file(path: impl AsRef<Path>) -> Result<Self, ConfigError> {
+        use std::io::Read;
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|e| ConfigError::Io {
+        let io = |message: String| ConfigError::Io {
             path: path.display().to_string(),
-            message: e.to_string(),
-        })?;
+            message,
+        };
+        let mut bytes = Vec::new();
+        std::fs::File::open(path)
+            .and_then(|f| {
+                f.take(CONFIG_FILE_MAX_BYTES as u64 + 1)
+                    .read_to_end(&mut bytes)
+            })
+            .map_err(|e| io(e.to_string()))?;
+        if bytes.len() > CONFIG_FILE_MAX_BYTES {
+            return Err(io(format!(
+                "larger than {} MiB, which no configuration is (is it the right file?)",
+                CONFIG_FILE_MAX_BYTES >> 20
+            )));
+        }
+        let text = String::from_utf8(bytes).map_err(|e| io(format!("not UTF-8 text: {e}")))?;
         Self::from_toml_str(&text, &path.display().to_string())
     }
 
@@ -514,10 +627,19 @@ impl EnvConfig {
                         .into(),
                 ));
             }
-            let parsed = toml::from_str::<toml::Table>(&format!("v = {value}"))
-                .ok()
-                .and_then(|mut t| t.remove("v"))
-                .unwrap_or_else(|| toml::Value::String((*value).to_owned()));
+            let parsed = match toml::from_str::<toml::Table>(&format!("v = {value}")) {
+                Ok(mut t) => t.remove("v"),
+                // An integer TOML cannot hold: say so, rather than read it as a bare string.
+                Err(_) if is_integer_literal(value) => {
+                    return Err(fail(
+                        "not an integer a configuration can hold: TOML's integers are 64-bit \
+                         signed, from -9223372036854775808 to 9223372036854775807"
+                            .into(),
+                    ));
+                }
+                Err(_) => None,
+            }
+            .unwrap_or_else(|| toml::Value::String((*value).to_owned()));
             let mut table = &mut doc;
             for part in &path[..path.len() - 1] {
                 let entry = table
@@ -531,8 +653,10 @@ impl EnvConfig {
             table.insert(path[path.len() - 1].to_owned(), parsed);
             // Deserialised after every pair, so an unknown key or a wrong type is blamed on the
             // pair that brought it.
-            config = EnvConfig::deserialize(toml::Value::Table(doc.clone()))
-                .map_err(|e| fail(e.to_string()))?;
+            config = EnvConfig::deserialize(toml::Value::Table(doc.clone())).map_err(|e| {
+                let message = e.to_string();
+                fail(task_check(&message).map_or(message, |(_, checked)| checked))
+            })?;
         }
         config.validate()?;
         *self = config;
@@ -543,13 +667,123 @@ impl EnvConfig {
     /// named by its dotted key. (The engine tables are checked when an environment on that
     /// engine is built, by the backend.)
     pub fn validate(&self) -> Result<(), ConfigError> {
-        self.task.validate().map_err(|e| ConfigError::Invalid {
-            key: format!("task.{}", task_field(&e)),
-            value: task_value(&e),
-            expected: e.to_string(),
+        self.task.validate().map_err(|e| match e {
+            hyq_spec::ConfigError::Real {
+                field,
+                value,
+                expected,
+            } => invalid(
+                &format!("task.{field}"),
+                value,
+                &format!("must be {expected}"),
+            ),
+            hyq_spec::ConfigError::Integer {
+                field,
+                value,
+                expected,
+            } => invalid(
+                &format!("task.{field}"),
+                value,
+                &format!("must be {expected}"),
+            ),
         })?;
 
+        let t = &self.task;
+        if let Some(k) = t.exp_rew_scaling
+            && k > EXP_REW_SCALING_MAX
+        {
+            return Err(invalid(
+                "task.exp_rew_scaling",
+                k,
+                &format!(
+                    "must be at most {EXP_REW_SCALING_MAX}, so that R_e(0) = (e^k - 1)/k and \
+                     every sum of rewards over an episode stay finite"
+                ),
+            ));
+        }
+        for (key, value) in [
+            ("task.base_rew_scaling", t.base_rew_scaling),
+            ("task.norm_rew_scaling", t.norm_rew_scaling),
+            (
+                "task.reach_target_bonus_reward",
+                Some(t.reach_target_bonus_reward),
+            ),
+            ("task.reach_bounds_penalty", Some(t.reach_bounds_penalty)),
+            ("task.fall_penalty", Some(t.fall_penalty)),
+        ] {
+            if let Some(v) = value
+                && v > REWARD_SCALE_MAX
+            {
+                return Err(invalid(
+                    key,
+                    v,
+                    &format!(
+                        "must be at most {REWARD_SCALE_MAX:e}, so that every reward term and \
+                         every sum of rewards over an episode stay finite"
+                    ),
+                ));
+            }
+        }
+
+        let r = &self.reset;
+        if !r.spawn_xy_m.iter().all(|v| in_world(*v)) {
+            return Err(invalid(
+                "reset.spawn_xy_m",
+                r.spawn_xy_m,
+                &outside_world_reason(),
+            ));
+        }
+
         let g = &self.goal;
+        // A key of another mode would be silently ignored: it is an error, unless it holds its
+        // default (as a written-out configuration holds it).
+        let d = GoalConfig::default();
+        let (ahead, fixed, random) = (
+            g.mode == GoalMode::Ahead,
+            g.mode == GoalMode::Fixed,
+            g.mode == GoalMode::Random,
+        );
+        let misplaced = [
+            ("goal.position", !fixed && g.position.is_some(), "\"fixed\""),
+            (
+                "goal.distance_m",
+                !ahead && g.distance_m != d.distance_m,
+                "\"ahead\"",
+            ),
+            (
+                "goal.distance_range_m",
+                !random && g.distance_range_m != d.distance_range_m,
+                "\"random\"",
+            ),
+            (
+                "goal.heading_range_deg",
+                !random && g.heading_range_deg != d.heading_range_deg,
+                "\"random\"",
+            ),
+            (
+                "goal.height_m",
+                fixed && g.height_m.is_some(),
+                "\"ahead\" or \"random\"",
+            ),
+        ];
+        if let Some((key, _, modes)) = misplaced.iter().find(|(_, wrong, _)| *wrong) {
+            let value = match *key {
+                "goal.position" => format!("{:?}", g.position.unwrap_or_default()),
+                "goal.distance_m" => format!("{:?}", g.distance_m),
+                "goal.distance_range_m" => format!("{:?}", g.distance_range_m),
+                "goal.heading_range_deg" => format!("{:?}", g.heading_range_deg),
+                _ => format!("{:?}", g.height_m.unwrap_or_default()),
+            };
+            return Err(ConfigError::Invalid {
+                key: (*key).to_owned(),
+                value,
+                expected: format!(
+                    "is only read when goal.mode = {modes}, and the mode is \"{}\": set \
+                     goal.mode, or remove the key",
+                    g.mode.as_str()
+                ),
+            });
+        }
         finite_positive("goal.distance_m", g.distance_m)?;
         match (g.mode, g.position) {
             (GoalMode::Fixed, None) => {
@@ -581,9 +815,35 @@ impl EnvConfig {
             ));
         }
         if let Some(h) = g.height_m
-            && !h.is_finite()
+            && !in_world(h)
         {
-            return Err(invalid("goal.height_m", h, "must be finite (m)"));
+            return Err(invalid("goal.height_m", h, &outside_world_reason()));
+        }
+        // Every goal the mode can give lies in the world.
+        let [x, y] = r.spawn_xy_m;
+        let outside = match g.mode {
+            GoalMode::Ahead => (!in_world(x + g.distance_m))
+                .then(|| invalid("goal.distance_m", g.distance_m, &outside_world_reason())),
+            GoalMode::Fixed => g
+                .position
+                .filter(|p| !p.iter().all(|v| in_world(*v)))
+                .map(|p| invalid("goal.position", p, &outside_world_reason())),
+            GoalMode::Random => {
+                (!(in_world(x.abs() + dmax) && in_world(y.abs() + dmax))).then(|| {
+                    invalid(
+                        "goal.distance_range_m",
+                        g.distance_range_m,
+                        &format!(
+                            "{} (from the spawn point [{x:?}, {y:?}], a goal {dmax:?} m away \
+                             can leave it)",
+                            outside_world_reason()
+                        ),
+                    )
+                })
+            }
+        };
+        if let Some(e) = outside {
+            return Err(e);
         }
 
         finite_positive("action.max_delta_rad", self.action.max_delta_rad)?;
@@ -616,14 +876,6 @@ impl EnvConfig {
             },
         })?;
 
-        let r = &self.reset;
-        if !r.spawn_xy_m.iter().all(|v| v.is_finite()) {
-            return Err(invalid(
-                "reset.spawn_xy_m",
-                r.spawn_xy_m,
-                "must be finite (m)",
-            ));
-        }
         if !(-180.0..=180.0).contains(&r.yaw_deg) {
             return Err(invalid(
                 "reset.yaw_deg",
@@ -638,11 +890,14 @@ impl EnvConfig {
                 "must be in [0, 180] degrees",
             ));
         }
-        if !(r.joint_noise_rad.is_finite() && r.joint_noise_rad >= 0.0) {
+        if !(0.0..=JOINT_NOISE_MAX_RAD).contains(&r.joint_noise_rad) {
             return Err(invalid(
                 "reset.joint_noise_rad",
                 r.joint_noise_rad,
-                "must be finite and >= 0 (rad)",
+                &format!(
+                    "must be in [0, {JOINT_NOISE_MAX_RAD}] rad (a full turn; wider noise only \
+                     piles the angles up at the joint limits)"
+                ),
             ));
         }
         Ok(())
@@ -654,22 +909,88 @@ impl EnvConfig {
     }
 }
 
-fn task_field(e: &hyq_spec::ConfigError) -> &'static str {
-    match e {
-        hyq_spec::ConfigError::Real { field, .. }
-        | hyq_spec::ConfigError::Integer { field, .. } => field,
+/// A `[task]` range check's message as the parser reports it (`invalid <field> = <value>: must
+/// be …`, with the key path the parser may append, `: in `task``), rewritten as the other
+/// checks word theirs: the field's whole dotted key, and the value in its shortest form
+/// (`-1e308`, not 309 digits). Returns the key and the message; `None` for other messages.
+fn task_check(message: &str) -> Option<(String, String)> {
+    let rest = message.trim().strip_prefix("invalid ")?;
+    let (field, rest) = rest.split_once(" = ")?;
+    let known = field
+        .split('.')
+        .all(|part| !part.is_empty() && part.chars().all(|c| c.is_ascii_lowercase() || c == '_'));
+    let (value, rest) = rest.split_once(": ")?;
+    if !known {
+        return None;
     }
+    // Integers as written; reals in their shortest form.
+    let value = match (value.parse::<i128>(), value.parse::<f64>()) {
+        (Err(_), Ok(v)) => format!("{v:?}"),
+        _ => value.to_owned(),
+    };
+    let rest = rest
+        .lines()
+        .next()
+        .and_then(|l| l.split(": in `").next())
+        .unwrap_or(rest)
+        .trim_end();
+    let key = format!("task.{field}");
+    let message = format!("invalid {key} = {value}: {rest}");
+    Some((key, message))
 }
 
-fn task_value(e: &hyq_spec::ConfigError) -> String {
-    match e {
-        hyq_spec::ConfigError::Real { value, .. } => value.to_string(),
-        hyq_spec::ConfigError::Integer { value, .. } => value.to_string(),
+/// The line (1 first) of the dotted `key` in the TOML `text`, if the text holds it.
+fn line_of(text: &str, key: &str) -> Option<usize> {
+    let doc = toml::de::DeTable::parse(text).ok()?;
+    let mut table = doc.get_ref();
+    let mut span = None;
+    let mut parts = key.split('.').peekable();
+    while let Some(part) = parts.next() {
+        let (k, v) = table.get_key_value(part)?;
+        span = Some(k.span());
+        if parts.peek().is_some() {
+            match v.get_ref() {
+                toml::de::DeValue::Table(t) => table = t,
+                _ => return None,
+            }
+        }
     }
+    span.map(|s| text.get(..s.start).map_or(0, |t| t.matches('\n').count()) + 1)
+}
+
+/// Whether `value` is written as a TOML integer (sign, digits, underscores).
+fn is_integer_literal(value: &str) -> bool {
+    let digits = value.trim().trim_start_matches(['+', '-']);
+    !digits.is_empty() && digits.chars().all(|c| c.is_ascii_digit() || c == '_')
+}
+
+/// `message` with every number of more than 24 digits (a float the parser or serde printed in
+/// full, e.g. `1000000000000000000000000000000.0` for 1e30) in its shortest form (`1e30`). Up to
+/// 24 digits stay as written, so integers such as 2^64 − 1 read as given.
+fn compact_numbers(message: &str) -> String {
+    let mut out = String::with_capacity(message.len());
+    let mut rest = message;
+    while let Some(start) = rest.find(|c: char| c.is_ascii_digit()) {
+        out.push_str(&rest[..start]);
+        let tail = &rest[start..];
+        let end = tail
+            .find(|c: char| !(c.is_ascii_digit() || c == '.'))
+            .unwrap_or(tail.len());
+        let number = &tail[..end];
+        let digits = number.chars().filter(char::is_ascii_digit).count();
+        match number.parse::<f64>() {
+            Ok(v) if digits > 24 => out.push_str(&format!("{v:?}")),
+            _ => out.push_str(number),
+        }
+        rest = &tail[end..];
+    }
+    out.push_str(rest);
+    out
 }
 
 /// A parser message on one line (the CLI prints errors on one line): TOML's "at line L, column
-/// C" header and its explanation, without the source excerpt drawn between them.
+/// C" header and its explanation, without the source excerpt drawn between them, and numbers
+/// in their short form ([`compact_numbers`]).
 fn one_line(message: &str) -> String {
     let lines: Vec<&str> = message
         .lines()
@@ -680,5 +1001,5 @@ fn one_line(message: &str) -> String {
                 && !l.chars().next().is_some_and(|c| c.is_ascii_digit())
         })
         .collect();
-    lines.join(": ")
+    compact_numbers(&lines.join(": "))
 }

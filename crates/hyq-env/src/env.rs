@@ -1,6 +1,6 @@
 //! The environment: the spec's rules (hyq-spec) joined to a physics backend (hyq-physics).
 //!
-//! One env step (spec §6.3, RULINGS §3):
+//! One env step (spec §3, §6.3):
 //!
 //! 1. the action is checked (length, finiteness, range) before anything changes, then mapped to
 //!    joint targets q* ([`crate::action`]);
@@ -34,17 +34,20 @@ use hyq_physics::{
     Actuator, Backend, PdScratch, PhysicsError, RobotModel, RobotState, TrunkState, apply_pd,
     pd_substep,
 };
+use hyq_spec::distance::{MIN_START_GOAL_DISTANCE, StartGoalDistance};
 use hyq_spec::observation::trunk_acceleration;
+use hyq_spec::robot::Bounds;
 use hyq_spec::{
     Clipping, EpisodeError, EpisodeRules, JointDescription, JointRange, Observation,
-    ObservationLayout, RobotDescription, StepSnapshot, TrunkDescription, roll_pitch_yaw,
+    ObservationLayout, RobotDescription, StepSnapshot, TaskConfig, TrunkDescription,
+    roll_pitch_yaw,
 };
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use thiserror::Error;
 
 use crate::action::{ActionError, ActionScalar, ActionSpace};
-use crate::config::{ConfigError, EnvConfig};
+use crate::config::{ConfigError, EnvConfig, in_world, outside_world_reason};
 use crate::goal::{GoalSampler, sample_reset_state};
 use crate::info::{Reason, Reasons, StepInfo, ZERO_REWARD};
 
@@ -151,6 +154,8 @@ impl StepTiming {
 #[derive(Clone, Debug)]
 struct Episode {
     rules: EpisodeRules,
+    /// K, which [`episode_rules`] guarantees.
+    k: StartGoalDistance,
     done: bool,
 }
 
@@ -190,6 +195,41 @@ pub struct Env<B: Backend> {
     timing: StepTiming,
 }
 
+/// The rules of an episode from `initial` to `goal`, which must be at least
+/// [`MIN_START_GOAL_DISTANCE`] apart even when r_n and r_e, which divide by K, are off: the
+/// environment reports D_n = D / K on every step (in the info and the record), so K must be a
+/// usable divisor. Returns the rules and K.
+pub(crate) fn episode_rules(
+    task: &TaskConfig,
+    initial: Point3<f64>,
+    goal: Point3<f64>,
+) -> Result<(EpisodeRules, StartGoalDistance), EnvError> {
+    let rules = EpisodeRules::new(task, initial, goal)?;
+    match rules.start_goal_distance() {
+        Some(k) => Ok((rules, k)),
+        None => Err(ConfigError::Invalid {
+            key: "goal".into(),
+            value: format!("{:?}", [goal.x, goal.y, goal.z]),
+            expected: format!(
+                "is {:?} m from the initial position {:?}: D_n = D / K is reported every step, \
+                 so K must be at least {MIN_START_GOAL_DISTANCE:e} m (move the goal)",
+                (goal - initial).norm(),
+                [initial.x, initial.y, initial.z]
+            ),
+        }
+        .into()),
+    }
+}
+
+/// The error for a reset option (`what`) at `point`, outside the world.
+fn outside_world(what: &str, point: Point3<f64>) -> ConfigError {
+    ConfigError::Invalid {
+        key: what.to_owned(),
+        value: format!("{:?}", [point.x, point.y, point.z]),
+        expected: outside_world_reason(),
+    }
+}
+
 /// The goal stream's ChaCha stream number (the reset noise uses [`NOISE_STREAM`]).
 const GOAL_STREAM: u64 = 0;
 /// The reset-noise stream's ChaCha stream number.
@@ -204,7 +244,8 @@ fn stream(seed: u64, stream: u64) -> ChaCha8Rng {
 }
 
 /// The rules' view of `model`: joints with their limits and speed limits, the feet and the
-/// trunk (with the spec's §3 bounds for the trunk rows).
+/// trunk, with the declared bounds of the trunk rows from the robot's profile
+/// (`[observation]`) where it gives them, else the spec's §3 bounds (HyQ's).
 fn robot_description(model: &RobotModel) -> Result<RobotDescription, ConfigError> {
     let bad = |what: String| ConfigError::Invalid {
         key: "robot".into(),
@@ -227,11 +268,23 @@ fn robot_description(model: &RobotModel) -> Result<RobotDescription, ConfigError
         .iter()
         .map(|t| t.name.clone())
         .collect();
+    let spec = TrunkDescription::spec();
+    let bounds = |given: Option<[[f64; 2]; 3]>, spec: [Bounds; 3]| {
+        given.map_or(spec, |b| b.map(|[min, max]| Bounds { min, max }))
+    };
+    let given = model.observation_bounds();
     let trunk = TrunkDescription {
         name: tracked[model.trunk_tracked_index()].name.clone(),
-        ..TrunkDescription::spec()
+        acceleration: bounds(given.and_then(|b| b.trunk_acceleration), spec.acceleration),
+        position: bounds(given.and_then(|b| b.trunk_position), spec.position),
     };
     RobotDescription::new(joints, feet, trunk).map_err(|e| bad(e.to_string()))
+}
+
+/// The observation layout of `model` (the §3 rows, named and bounded for this robot), as an
+/// environment on any backend has it, without building one.
+pub fn observation_layout_of(model: &RobotModel) -> Result<ObservationLayout, ConfigError> {
+    robot_description(model).map(|robot| ObservationLayout::new(&robot))
 }
 
 impl<B: Backend> Env<B> {
@@ -247,7 +300,7 @@ impl<B: Backend> Env<B> {
         let gains = |key: &str, g: &crate::config::Gains, profile: &[f64]| {
             g.resolve(profile).ok_or_else(|| ConfigError::Invalid {
                 key: key.to_owned(),
-                value: format!("{g:?}"),
+                value: g.to_string(),
                 expected: format!("one gain per joint: {n} values"),
             })
         };
@@ -291,7 +344,7 @@ impl<B: Backend> Env<B> {
                 joint_at_limit: None,
                 divergence: None,
                 distance_to_goal: 0.0,
-                d_n: None,
+                d_n: 1.0,
                 roll: 0.0,
                 pitch: 0.0,
                 yaw: 0.0,
@@ -347,13 +400,19 @@ impl<B: Backend> Env<B> {
         };
         state.validate(&self.model)?;
         let requested = Point3::from(state.trunk.pose.translation.vector);
+        if !requested.iter().all(|v| in_world(*v)) {
+            return Err(outside_world("reset option state's trunk position", requested).into());
+        }
         let goal = match options.goal {
             Some(g) => Point3::from(g),
             None => self.goals.sample(&mut goal_rng),
         };
+        if !goal.iter().all(|v| in_world(*v)) {
+            return Err(outside_world("reset option goal", goal).into());
+        }
         // Checked against the requested start before anything changes, so a refused goal leaves
         // the environment as it was.
-        let requested_rules = EpisodeRules::new(&self.config.task, requested, goal)?;
+        let requested_rules = episode_rules(&self.config.task, requested, goal)?;
         self.backend.set_state(state)?;
 
         self.seeded |= seed.is_some();
@@ -369,7 +428,7 @@ impl<B: Backend> Env<B> {
         // requested start stand in only if this point is unusable (non-finite, which the
         // observation below reports as divergence).
         let initial = Point3::from(self.trunk.pose.translation.vector);
-        let rules = EpisodeRules::new(&self.config.task, initial, goal).unwrap_or(requested_rules);
+        let (rules, k) = episode_rules(&self.config.task, initial, goal).unwrap_or(requested_rules);
         let initial = rules.initial();
         self.latched.fill(false);
         let accel = Vector3::zeros();
@@ -388,7 +447,7 @@ impl<B: Backend> Env<B> {
         info.joint_at_limit = None;
         info.divergence = None;
         info.distance_to_goal = d0;
-        info.d_n = rules.start_goal_distance().map(|k| k.normalise(d0));
+        info.d_n = k.normalise(d0);
         info.roll = attitude.roll;
         info.pitch = attitude.pitch;
         info.yaw = attitude.yaw;
@@ -396,7 +455,11 @@ impl<B: Backend> Env<B> {
         info.initial_position = initial.coords.into();
         info.joint_targets.copy_from_slice(&self.q);
         info.action_clipped = false;
-        self.episode = Some(Episode { rules, done: false });
+        self.episode = Some(Episode {
+            rules,
+            k,
+            done: false,
+        });
         Ok(Reset {
             observation: &self.obs,
             observation_f32: &self.obs_f32,
@@ -420,7 +483,7 @@ impl<B: Backend> Env<B> {
                 reasons: self.info.reasons,
             });
         }
-        let rules = episode.rules;
+        let (rules, k) = (episode.rules, episode.k);
         self.space.check(action)?;
 
         // From here on the step happens.
@@ -446,7 +509,9 @@ impl<B: Backend> Env<B> {
                 info.reasons = Reasons::from_spec(outcome.terminations);
                 info.joint_at_limit = outcome.joint_at_limit;
                 info.distance_to_goal = outcome.distance;
-                info.d_n = outcome.normalised_distance;
+                info.d_n = outcome
+                    .normalised_distance
+                    .unwrap_or_else(|| k.normalise(outcome.distance));
                 info.roll = outcome.attitude.roll;
                 info.pitch = outcome.attitude.pitch;
                 info.yaw = outcome.attitude.yaw;
@@ -544,6 +609,16 @@ impl<B: Backend> Env<B> {
         if let Some(what) = self.first_non_finite_reading() {
             return Err(format!("{what} is not finite after the step"));
         }
+        let position = self.trunk.pose.translation.vector;
+        if let Some(axis) = position.iter().position(|v| !in_world(*v)) {
+            let row = &self.layout.rows()[self.layout.trunk_position().start + axis];
+            return Err(format!(
+                "{} = {:?} m: the trunk left the world, which {}",
+                row.name,
+                position[axis],
+                outside_world_reason()
+            ));
+        }
         let t0 = self.timing_on.then(Instant::now);
         let outcome = rules
             .evaluate_step(&StepSnapshot {
@@ -560,6 +635,19 @@ impl<B: Backend> Env<B> {
         let accel = trunk_acceleration(&previous_velocity, &self.trunk.linvel, self.env_dt)
             .map_err(|e| e.to_string())?;
         self.write_observation(accel)?;
+        // The float32 observation must be finite too.
+        if let Some(i) = self
+            .obs_next
+            .iter()
+            .position(|v| v.abs() > f64::from(f32::MAX))
+        {
+            return Err(format!(
+                "observation row {i} ({}) = {:?} is beyond float32's range (±{:e})",
+                self.layout.rows()[i].name,
+                self.obs_next[i],
+                f32::MAX
+            ));
+        }
         std::mem::swap(&mut self.obs, &mut self.obs_next);
         self.fill_f32();
         if let (Some(t0), Some(t1)) = (t0, t1) {

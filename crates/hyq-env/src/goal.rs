@@ -1,4 +1,4 @@
-//! Goals and reset states (not in the spec; RULINGS "Not in the spec": the default goal is 5 m
+//! Goals and reset states (spec §7.5 and §7.6, beyond the original spec: the default goal is 5 m
 //! straight ahead of the spawn point along +x at the robot's nominal standing trunk height).
 //!
 //! With S = (x_s, y_s) the spawn point and h the goal height (`goal.height_m`, else the robot
@@ -16,11 +16,12 @@
 
 use hyq_physics::na::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
 use hyq_physics::{RobotModel, RobotState, TrunkState};
-use hyq_spec::{EpisodeError, EpisodeRules, TaskConfig};
+use hyq_spec::TaskConfig;
 use rand::RngExt;
 use rand_chacha::ChaCha8Rng;
 
 use crate::config::{EnvConfig, GoalMode, ResetConfig};
+use crate::env::{EnvError, episode_rules};
 
 /// Draws (or computes) each episode's goal from the configuration.
 #[derive(Clone, Debug, PartialEq)]
@@ -56,15 +57,15 @@ impl GoalSampler {
     }
 
     /// Checks that the rules accept the configured goal from the spawn point (a fixed or ahead
-    /// goal at the start is an error when r_n or r_e is on); random goals are at least
-    /// `distance_range_m[0]` > 0 away horizontally.
-    pub fn check(&self, task: &TaskConfig) -> Result<(), EpisodeError> {
+    /// goal at the start is an error, since D_n = D / K is reported every step); random goals
+    /// are at least `distance_range_m[0]` > 0 away horizontally.
+    pub fn check(&self, task: &TaskConfig) -> Result<(), EnvError> {
         let goal = match self.mode {
             GoalMode::Ahead => self.ahead(),
             GoalMode::Fixed => self.fixed(),
             GoalMode::Random => return Ok(()),
         };
-        EpisodeRules::new(task, self.spawn, goal).map(|_| ())
+        episode_rules(task, self.spawn, goal).map(|_| ())
     }
 
     fn ahead(&self) -> Point3<f64> {

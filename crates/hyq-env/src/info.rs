@@ -164,10 +164,9 @@ pub struct StepInfo {
     pub divergence: Option<String>,
     /// D^t = ‖G − C^t‖ (m).
     pub distance_to_goal: f64,
-    /// D_n^t = D^t / K, or `None` when K is too small to divide by (only allowed while r_n and
-    /// r_e are off).
-    pub d_n: Option<f64>,
-    /// The trunk's roll (rad, intrinsic Z-Y-X, RULINGS §1).
+    /// D_n^t = D^t / K (K is at least `hyq_spec::MIN_START_GOAL_DISTANCE` in every episode).
+    pub d_n: f64,
+    /// The trunk's roll (rad, intrinsic Z-Y-X, spec §1).
     pub roll: f64,
     /// The trunk's pitch (rad).
     pub pitch: f64,

@@ -69,7 +69,7 @@
 //! |---|---|---|
 //! | r_b | k_base · (D^{t−1} − D^t) | off (`base_rew_scaling` unset) |
 //! | r_n | k_norm · (D^{t−1} − D^t) / K | off (`norm_rew_scaling` unset) |
-//! | r_e | R_e(D_n^t) − R_e(D_n^{t−1}), R_e the continuous curve of RULINGS §4.3 | k_exp = 5 |
+//! | r_e | R_e(D_n^t) − R_e(D_n^{t−1}), R_e the continuous curve of spec §4.3 | k_exp = 5 |
 //! | r_reach | `reach_target_bonus_reward` on the step the goal is reached | 0 |
 //! | m_yaw, m_pitch | 1 within ±2.5°, else max(0, cos angle) | 2.5° |
 //! | m_height | opt-in §5.2 multiplier | off (1) |
@@ -156,14 +156,17 @@ pub mod vec_env;
 
 pub use action::{ActionError, ActionScalar, ActionSpace};
 pub use config::{
-    ActionConfig, ActionMode, ConfigError, ControlConfig, EnvConfig, Gains, GoalConfig, GoalMode,
-    OutOfRange, PhysicsConfig, ResetConfig,
+    ActionConfig, ActionMode, ConfigError, ControlConfig, EXP_REW_SCALING_MAX, EnvConfig, Gains,
+    GoalConfig, GoalMode, JOINT_NOISE_MAX_RAD, OutOfRange, PhysicsConfig, REWARD_SCALE_MAX,
+    ResetConfig, WORLD_HALF_EXTENT_M,
 };
-pub use env::{DEFAULT_SEED, Env, EnvError, Reset, ResetOptions, Step, StepTiming};
+pub use env::{
+    DEFAULT_SEED, Env, EnvError, Reset, ResetOptions, Step, StepTiming, observation_layout_of,
+};
 pub use info::{Reason, Reasons, StepInfo, TermSums};
 pub use policy::{Policy, PolicyInput, RandomPolicy, Stand, Trot, TrotParams};
 pub use record::{RecordTerms, StepRecord};
-pub use vec_env::{AutoReset, VecEnv, VecEnvError, VecStepOut};
+pub use vec_env::{AutoReset, MAX_ENVS, MAX_THREADS, VecEnv, VecEnvError, VecStepOut};
 
 /// The repository README, whose Rust quickstart runs as a doctest of this crate so that it stays
 /// true (only with `cargo test --doc`; nothing of it is compiled into the library).

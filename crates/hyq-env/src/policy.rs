@@ -1,12 +1,12 @@
 //! Policies for demos, tests and benchmarks (not learned): [`Stand`] holds the standing pose,
 //! [`RandomPolicy`] draws uniformly from the action space with its own seed, and [`Trot`] is a
-//! scripted open-loop trot that carries HyQ forward along +x.
+//! scripted open-loop trot, described by the robot profile's `[gait]` table, that carries HyQ
+//! (or another legged robot with such a table) forward along +x.
 //!
 //! Policies act in the environment's action space whatever its mode: the scripted ones think in
 //! joint targets and convert them with [`ActionSpace::action_for_targets`].
 
-use hyq_physics::RobotModel;
-use hyq_spec::nomenclature::{HyqJoint, JointKind, Leg};
+use hyq_physics::{Gait, RobotModel};
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use thiserror::Error;
@@ -93,15 +93,19 @@ impl Policy for RandomPolicy {
     }
 }
 
-/// A robot the trot cannot drive.
+/// A robot the trot cannot drive: its profile has no `[gait]` table.
 #[derive(Clone, Debug, PartialEq, Error)]
-#[error("the trot policy needs the spec's joint {joint} (HyQ's §1 nomenclature) in the robot")]
+#[error(
+    "the trot policy needs a [gait] table in the robot profile of {robot} (each leg's hip and \
+     knee joint and phase, the frequency and amplitudes; see assets/hyq/profile.toml)"
+)]
 pub struct TrotError {
-    /// The missing joint's name.
-    pub joint: &'static str,
+    /// The robot's name.
+    pub robot: String,
 }
 
-/// Parameters of [`Trot`] (defaults tuned on rapier with the default configuration).
+/// Parameters of [`Trot`]. `Default` is HyQ's gait (its profile's `[gait]` table); a robot's
+/// own are [`TrotParams::from_model`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TrotParams {
     /// Gait frequency (Hz): one full cycle of both diagonal pairs.
@@ -125,67 +129,86 @@ impl Default for TrotParams {
     }
 }
 
+impl TrotParams {
+    /// The parameters of `model`'s profile (`[gait]`).
+    pub fn from_model(model: &RobotModel) -> Result<Self, TrotError> {
+        let gait = gait_of(model)?;
+        Ok(Self {
+            frequency_hz: gait.frequency_hz,
+            hip_amplitude: gait.hip_amplitude,
+            knee_lift: gait.knee_lift,
+            ramp_s: gait.ramp_s,
+        })
+    }
+}
+
+fn gait_of(model: &RobotModel) -> Result<&Gait, TrotError> {
+    model.gait().ok_or_else(|| TrotError {
+        robot: model.name().to_owned(),
+    })
+}
+
 /// One leg's joints for the trot.
 #[derive(Clone, Copy, Debug)]
 struct LegJoints {
     hfe: usize,
     kfe: usize,
-    /// 0 for the diagonal pair lf + rh, π for rf + lh.
+    /// The leg's phase (rad): 2π times the profile's fraction of a cycle.
     phase: f64,
     /// The sign that flexes the knee further from standing (lifting the foot).
     knee_flex: f64,
 }
 
-/// A scripted open-loop trot along +x: diagonal leg pairs (lf + rh, rf + lh) alternate half a
-/// cycle apart. For each leg, with φ = 2π f t + its pair's phase and r(t) a ramp from 0 to 1
-/// over `ramp_s`:
+/// A scripted open-loop trot along +x, driven by the robot profile's `[gait]` table: each leg
+/// (its hip and knee joints) swings with its phase, diagonal pairs half a cycle apart for a
+/// trot. For each leg, with φ = 2π (f t + its phase) and r(t) a ramp from 0 to 1 over
+/// `ramp_s`:
 ///
-/// - hip (hfe) target = standing − r · A_hip · sin φ: the foot swings forward while cos φ > 0
-///   and pushes back (stance) while cos φ < 0;
-/// - knee (kfe) target = standing + r · flex · A_knee · max(0, cos φ): the foot lifts during the
-///   swing only;
-/// - hip abduction (haa) stays at standing.
+/// - hip target = standing − r · A_hip · sin φ: the foot swings forward while cos φ > 0 and
+///   pushes back (stance) while cos φ < 0 (for hips whose positive angle swings the foot back,
+///   as HyQ's and ANYmal C's do);
+/// - knee target = standing + r · flex · A_knee · max(0, cos φ), flex the sign of the standing
+///   knee angle (bending further from straight): the foot lifts during the swing only;
+/// - every other joint stays at standing.
 ///
 /// Open loop: it reads neither the observation nor the goal, so it walks straight only as far
 /// as the simulation stays symmetric. Measured figures are in the crate docs.
 #[derive(Clone, Debug)]
 pub struct Trot {
     params: TrotParams,
-    legs: [LegJoints; 4],
+    legs: Vec<LegJoints>,
     targets: Vec<f64>,
 }
 
 impl Trot {
-    /// The trot for `model`, which must have the spec's twelve joints by name.
+    /// The trot for `model` with `params`; the legs come from the profile's `[gait]` table.
     pub fn new(model: &RobotModel, params: TrotParams) -> Result<Self, TrotError> {
-        let index = |leg: Leg, kind: JointKind| {
-            let joint = HyqJoint { leg, kind }.name();
-            model.joint_index(joint).ok_or(TrotError { joint })
-        };
-        let leg = |leg: Leg| -> Result<LegJoints, TrotError> {
-            let kfe = index(leg, JointKind::Kfe)?;
-            let standing = model.standing_pose()[kfe];
-            Ok(LegJoints {
-                hfe: index(leg, JointKind::Hfe)?,
-                kfe,
-                phase: match leg {
-                    Leg::LeftFront | Leg::RightHind => 0.0,
-                    Leg::RightFront | Leg::LeftHind => std::f64::consts::PI,
-                },
+        let gait = gait_of(model)?;
+        let legs = gait
+            .legs
+            .iter()
+            .map(|leg| LegJoints {
+                hfe: leg.hip,
+                kfe: leg.knee,
+                phase: std::f64::consts::TAU * leg.phase,
                 // Flexing bends the knee further from straight (0 rad): further from 0.
-                knee_flex: if standing < 0.0 { -1.0 } else { 1.0 },
+                knee_flex: if model.standing_pose()[leg.knee] < 0.0 {
+                    -1.0
+                } else {
+                    1.0
+                },
             })
-        };
+            .collect();
         Ok(Self {
             params,
-            legs: [
-                leg(Leg::LeftFront)?,
-                leg(Leg::LeftHind)?,
-                leg(Leg::RightFront)?,
-                leg(Leg::RightHind)?,
-            ],
+            legs,
             targets: model.standing_pose().to_vec(),
         })
+    }
+
+    /// The trot for `model` with its profile's parameters ([`TrotParams::from_model`]).
+    pub fn from_profile(model: &RobotModel) -> Result<Self, TrotError> {
+        Self::new(model, TrotParams::from_model(model)?)
     }
 
     /// The parameters.
@@ -230,6 +253,47 @@ impl Policy for Trot {
 mod tests {
     use super::*;
     use rand::Rng;
+
+    /// HyQ's profile states the gait `TrotParams::default()` has always been, so front ends
+    /// that pass the defaults and those that read the profile drive HyQ identically.
+    #[test]
+    fn hyq_profile_gait_is_the_default_trot() {
+        let hyq = hyq_physics::bundled::hyq();
+        assert_eq!(TrotParams::from_model(&hyq), Ok(TrotParams::default()));
+        let legs: Vec<(String, String, f64)> = Trot::from_profile(&hyq)
+            .expect("HyQ has a gait")
+            .legs
+            .iter()
+            .map(|l| {
+                (
+                    hyq.joints()[l.hfe].name.clone(),
+                    hyq.joints()[l.kfe].name.clone(),
+                    l.phase,
+                )
+            })
+            .collect();
+        let pi = std::f64::consts::PI;
+        let expected = [("lf", 0.0), ("lh", pi), ("rf", pi), ("rh", 0.0)]
+            .map(|(leg, phase)| (format!("{leg}_hfe"), format!("{leg}_kfe"), phase));
+        assert_eq!(legs, expected);
+    }
+
+    /// A robot whose profile has no `[gait]` cannot trot, and the error says what to add.
+    #[test]
+    fn a_robot_without_a_gait_table_is_refused_by_name() {
+        let text = hyq_physics::bundled::HYQ_PROFILE
+            .split("\n[gait]")
+            .next()
+            .expect("text");
+        let profile = hyq_physics::Profile::from_toml_str(text, "test").expect("profile");
+        let model = RobotModel::from_urdf_str(hyq_physics::bundled::HYQ_URDF, "test", &profile)
+            .expect("loads");
+        let e = Trot::from_profile(&model).expect_err("no gait");
+        assert!(
+            e.to_string().contains("[gait]") && e.to_string().contains("hyq"),
+            "{e}"
+        );
+    }
 
     /// The policy's numbers are not those of an environment's goal or noise stream (ChaCha
     /// streams 0 and 1 of the same seed), so a shared seed does not correlate actions and goals.

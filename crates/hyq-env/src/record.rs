@@ -12,7 +12,7 @@
 //! | `terms` | object | `r_b`, `r_n`, `r_e`, `r_reach`, `m_yaw`, `m_pitch`, `joint_penalty`, `fall_penalty`, and `m_height` only when the opt-in height penalty is configured |
 //! | `yaw`, `pitch` | numbers | the trunk's yaw and pitch (rad, intrinsic Z-Y-X) |
 //! | `distance_to_goal` | number | D^t (m) |
-//! | `d_n` | number or null | D_n^t; null when K is too small (only with r_n and r_e off) |
+//! | `d_n` | number | D_n^t = D^t / K |
 //! | `goal` | 3 numbers | G (m, world) |
 //! | `initial_position` | 3 numbers | C^0 (m, world) |
 //! | `terminated`, `truncated` | booleans | Gymnasium's flags |
@@ -79,8 +79,8 @@ pub struct StepRecord<'a> {
     pub pitch: f64,
     /// D^t (m).
     pub distance_to_goal: f64,
-    /// D_n^t, or null.
-    pub d_n: Option<f64>,
+    /// D_n^t = D^t / K.
+    pub d_n: f64,
     /// G (m).
     pub goal: [f64; 3],
     /// C^0 (m).

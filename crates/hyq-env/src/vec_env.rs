@@ -27,6 +27,15 @@ use crate::config::EnvConfig;
 use crate::env::{Env, EnvError, ResetOptions};
 use crate::info::StepInfo;
 
+/// The most envs a [`VecEnv`] holds (`hyq bench --num-envs`, Python's `num_envs`): 4096 HyQ
+/// envs on rapier take about 0.4 GB, and a count beyond it is far more likely a mistake than a
+/// wish (a machine steps 4096 envs at a few hundred vector steps per second at best).
+pub const MAX_ENVS: usize = 4096;
+
+/// The most threads a [`VecEnv`]'s own pool may have (`hyq bench --threads`, Python's
+/// `threads`).
+pub const MAX_THREADS: usize = 4096;
+
 /// When a vector env resets an env whose episode ended (see the module docs).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum AutoReset {
@@ -102,15 +111,18 @@ pub struct VecEnv<B: Backend> {
 
 impl<B: Backend> VecEnv<B> {
     /// `num_envs` environments of `model` with `config` (each validated and built as
-    /// [`Env::new`]), run on rayon's global thread pool.
+    /// [`Env::new`]), run on rayon's global thread pool. `num_envs` is from 1 to [`MAX_ENVS`],
+    /// checked before any env is built.
     pub fn new(
         model: Arc<RobotModel>,
         config: EnvConfig,
         num_envs: usize,
         autoreset: AutoReset,
     ) -> Result<Self, VecEnvError> {
-        if num_envs == 0 {
-            return Err(VecEnvError::Setup("num_envs must be at least 1".into()));
+        if !(1..=MAX_ENVS).contains(&num_envs) {
+            return Err(VecEnvError::Setup(format!(
+                "num_envs = {num_envs}: must be from 1 to {MAX_ENVS}"
+            )));
         }
         let slots = (0..num_envs)
             .map(|index| {
@@ -136,9 +148,14 @@ impl<B: Backend> VecEnv<B> {
         })
     }
 
-    /// Runs the envs on a dedicated pool of `threads` threads instead of rayon's global pool
-    /// (results are the same whatever the count).
+    /// Runs the envs on a dedicated pool of `threads` threads (1 to [`MAX_THREADS`]) instead of
+    /// rayon's global pool (results are the same whatever the count).
     pub fn with_threads(mut self, threads: usize) -> Result<Self, VecEnvError> {
+        if !(1..=MAX_THREADS).contains(&threads) {
+            return Err(VecEnvError::Setup(format!(
+                "threads = {threads}: must be from 1 to {MAX_THREADS}"
+            )));
+        }
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build()

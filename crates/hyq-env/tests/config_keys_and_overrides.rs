@@ -281,3 +281,176 @@ fn a_config_file_is_read_from_disk_and_a_missing_one_names_the_path() {
     assert!(msg.contains("missing.toml"), "{msg}");
     std::fs::remove_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
 }
+
+/// Overrides, and the words their error must contain.
+type Case<'a> = (&'a [(&'a str, &'a str)], &'a [&'a str]);
+
+#[test]
+fn goal_keys_of_another_mode_are_refused_by_name() {
+    // Each key is read in some modes only; given in another, it used to be silently ignored.
+    let cases: &[Case<'_>] = &[
+        (
+            &[("goal.position", "[9, 9, 0.6]")],
+            &["goal.position", "\"fixed\"", "\"ahead\""],
+        ),
+        (
+            &[
+                ("goal.mode", "fixed"),
+                ("goal.position", "[1, 2, 0.6]"),
+                ("goal.distance_m", "9"),
+            ],
+            &["goal.distance_m", "\"ahead\"", "\"fixed\""],
+        ),
+        (
+            &[("goal.distance_range_m", "[1, 2]")],
+            &["goal.distance_range_m", "\"random\""],
+        ),
+        (
+            &[("goal.mode", "random"), ("goal.distance_m", "4")],
+            &["goal.distance_m", "\"random\""],
+        ),
+        (
+            &[("goal.heading_range_deg", "[-10, 10]")],
+            &["goal.heading_range_deg", "\"random\""],
+        ),
+        (
+            &[
+                ("goal.mode", "fixed"),
+                ("goal.position", "[1, 2, 0.6]"),
+                ("goal.height_m", "0.5"),
+            ],
+            &["goal.height_m", "\"fixed\""],
+        ),
+    ];
+    for (pairs, words) in cases {
+        let mut c = EnvConfig::default();
+        let e = c.set_all(pairs).expect_err("refused").to_string();
+        for w in *words {
+            assert!(e.contains(w), "{pairs:?}: {e} lacks {w}");
+        }
+        assert_eq!(c, EnvConfig::default());
+    }
+    // The same in a file.
+    let e = parse_err("[goal]\nmode = \"random\"\nposition = [1, 2, 0.6]\n");
+    assert!(e.contains("goal.position"), "{e}");
+    // A mode's own keys, and the other modes' keys at their defaults (as a written-out
+    // configuration holds them), are accepted; so is switching modes on top of the defaults.
+    for pairs in [
+        &[
+            ("goal.mode", "random"),
+            ("goal.distance_range_m", "[1, 2]"),
+            ("goal.height_m", "0.5"),
+        ][..],
+        &[("goal.mode", "fixed"), ("goal.position", "[1, 2, 0.6]")][..],
+        &[("goal.distance_m", "4"), ("goal.height_m", "0.5")][..],
+    ] {
+        let mut c = EnvConfig::default();
+        c.set_all(pairs)
+            .unwrap_or_else(|e| panic!("{pairs:?}: {e}"));
+        let text = c.to_toml_string();
+        assert_eq!(EnvConfig::from_toml_str(&text, "written").ok(), Some(c));
+    }
+}
+
+#[test]
+fn messages_name_the_key_at_its_line_in_plain_words_and_short_numbers() {
+    let file = |text: &str| parse_err(text);
+    let set = |key: &str, value: &str| {
+        let mut c = EnvConfig::default();
+        c.set(key, value).expect_err("refused").to_string()
+    };
+    let checks: Vec<(String, &[&str], &[&str])> = vec![
+        // A NaN was reported at the line of the [task] header (line 1 of a one-table file).
+        (
+            file(
+                "# c\n[goal]\nmode = \"ahead\"\n\n[task]\nmax_time_steps = 10\nfall_penalty = nan\n",
+            ),
+            &["line 7", "task.fall_penalty", "NaN"],
+            &["line 5"],
+        ),
+        (
+            file("task.fall_penalty = nan\n"),
+            &["line 1", "task.fall_penalty"],
+            &[],
+        ),
+        (
+            file(
+                "[task]\nheight_penalty = {nominal_height_m = 0.6, tolerance_m = -1, rate_per_m = 1}\n",
+            ),
+            &["line 2", "task.height_penalty.tolerance_m"],
+            &[],
+        ),
+        (
+            file("[goal]\n\ndistance_m = -1e300\n"),
+            &["line 3", "goal.distance_m", "-1e300"],
+            &[],
+        ),
+        // Hundreds of digits.
+        (
+            set("task.fall_penalty", "-1e308"),
+            &["-1e308"],
+            &["00000000"],
+        ),
+        // "invalid type: string" for a number too large for TOML's integers.
+        (
+            set("task.max_time_steps", "18446744073709551615"),
+            &[
+                "task.max_time_steps",
+                "18446744073709551615",
+                "9223372036854775807",
+            ],
+            &["string"],
+        ),
+        // Rust's debug text.
+        (set("control.kp", "-1"), &["control.kp = -1"], &["All("]),
+        (
+            set("control.kd", "[1, -2]"),
+            &["control.kd = [1.0, -2.0]"],
+            &["PerJoint"],
+        ),
+        (
+            file("[control]\nkp = -1\n"),
+            &["line 2", "control.kp = -1"],
+            &["All("],
+        ),
+    ];
+    for (message, present, absent) in checks {
+        for p in present {
+            assert!(message.contains(p), "{message:?} lacks {p:?}");
+        }
+        for a in absent {
+            assert!(!message.contains(a), "{message:?} holds {a:?}");
+        }
+        assert!(
+            message.len() < 300 && !message.contains('\n'),
+            "{message:?}"
+        );
+    }
+}
+
+#[test]
+fn a_config_file_is_read_up_to_its_size_limit_so_endless_input_is_refused() {
+    // /dev/zero used to be read until memory ran out.
+    let msg = EnvConfig::from_file("/dev/zero")
+        .err()
+        .map(|e| e.to_string())
+        .unwrap_or_default();
+    assert!(msg.contains("/dev/zero") && msg.contains("1 MiB"), "{msg}");
+    let dir = std::env::temp_dir().join(format!("hyq-env-config-big-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+    let path = dir.join("big.toml");
+    let mut text = "[task]\nfall_penalty = 4.0\n#".to_owned();
+    text.push_str(&"x".repeat(hyq_env::config::CONFIG_FILE_MAX_BYTES - text.len()));
+    std::fs::write(&path, &text).unwrap_or_else(|e| panic!("{e}"));
+    assert!(
+        EnvConfig::from_file(&path).is_ok(),
+        "exactly the limit is read"
+    );
+    text.push('x');
+    std::fs::write(&path, &text).unwrap_or_else(|e| panic!("{e}"));
+    assert!(
+        EnvConfig::from_file(&path).is_err(),
+        "one byte more is refused"
+    );
+    std::fs::remove_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+}

@@ -8,7 +8,11 @@
 //!   `Backend::step` calls, measured by a forwarding backend, and none besides: the actuator,
 //!   the state and contact reads, the observation and the spec's rules allocate nothing.
 //!   rapier's own count per physics sub-step is printed (it allocates LU workspaces and solver
-//!   buffers inside every step; no option of its public API avoids that).
+//!   buffers inside every step; no option of its public API avoids that);
+//! - on MuJoCo (with `--features mujoco`), 1000 env steps make zero allocations: the backend
+//!   reads and writes through the C shim into buffers it holds, and MuJoCo works in the arena
+//!   it allocated when the world was built (its own allocations would not go through Rust's
+//!   allocator; it makes none per step).
 
 use std::sync::Arc;
 
@@ -204,6 +208,30 @@ fn rapier_env_steps_allocate_only_inside_rapier() {
             "timing {timing}: {count} allocations in {steps} env steps, all inside rapier's \
              step ({:.1} per physics sub-step)",
             b.inside_step as f64 / b.steps as f64
+        );
+    }
+}
+
+#[cfg(feature = "mujoco")]
+#[test]
+fn mujoco_env_steps_allocate_nothing() {
+    for timing in [false, true] {
+        let mut env =
+            Env::<hyq_mujoco::MujocoBackend>::new(hyq_physics::bundled::hyq(), config("100"))
+                .unwrap_or_else(|e| panic!("{e}"));
+        env.set_timing(timing);
+        env.reset(Some(7), &ResetOptions::default())
+            .unwrap_or_else(|e| panic!("{e}"));
+        let zero = vec![0.0f64; env.action_space().len()];
+        env.step(&zero).unwrap_or_else(|e| panic!("{e}"));
+        let (count, steps, ended) = counted_steps(&mut env, 1000, 8);
+        assert!(
+            ended >= 5,
+            "episodes end every 100 steps at most: {ended} ended"
+        );
+        assert_eq!(
+            count, 0,
+            "timing {timing}: {count} allocations in {steps} env steps on MuJoCo"
         );
     }
 }

@@ -72,7 +72,7 @@ fn reset_reports_t_zero_no_reward_and_the_episode_facts() {
     assert_eq!(info.goal, [5.0, 0.0, model.standing_height()]);
     let k = ((5.0f64).powi(2) + (model.spawn_height() - model.standing_height()).powi(2)).sqrt();
     assert_eq!(info.distance_to_goal, k);
-    assert_eq!(info.d_n, Some(1.0));
+    assert_eq!(info.d_n, 1.0);
     assert_eq!(info.joint_targets.as_slice(), model.standing_pose());
     // Observation after reset: standing angles, zero speeds, no contact, level, zero
     // acceleration, the spawn position.
@@ -108,6 +108,33 @@ fn a_goal_at_the_start_is_refused_at_build_and_at_reset_naming_the_goal() {
         )
         .err();
     assert!(matches!(err, Some(EnvError::Episode(_))), "{err:?}");
+    assert!(env.needs_reset(), "a failed reset starts no episode");
+}
+
+#[test]
+fn a_goal_at_the_start_is_refused_with_r_n_and_r_e_off_too_since_d_n_is_always_reported() {
+    let model = hyq_physics::bundled::hyq();
+    let at_spawn = format!("[0, 0, {}]", model.spawn_height());
+    let config = common::config(&[
+        ("task.exp_rew_scaling", "off"),
+        ("goal.mode", "fixed"),
+        ("goal.position", &at_spawn),
+    ]);
+    let err = hyq_env::Env::<hyq_env::testing::ScriptedBackend>::new(model, config).err();
+    let msg = err.map(|e| e.to_string()).unwrap_or_default();
+    assert!(msg.contains("goal") && msg.contains("D_n"), "{msg}");
+
+    let mut env = scripted(&[("task.exp_rew_scaling", "off")]);
+    let err = env
+        .reset(
+            Some(0),
+            &ResetOptions {
+                goal: Some([0.0, 0.0, env.model().spawn_height()]),
+                ..ResetOptions::default()
+            },
+        )
+        .err();
+    assert!(matches!(err, Some(EnvError::Config(_))), "{err:?}");
     assert!(env.needs_reset(), "a failed reset starts no episode");
 }
 

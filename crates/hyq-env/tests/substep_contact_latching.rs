@@ -1,4 +1,4 @@
-//! Invariant (spec §6.3, RULINGS §3): a contact flag reads 1 when its body touched the ground in
+//! Invariant (spec §3, §6.3): a contact flag reads 1 when its body touched the ground in
 //! any physics sub-step of the env step, not only the last; the trunk's latched flag is the fall
 //! fact, so a trunk contact in a middle sub-step alone ends the episode with `fell` and its
 //! penalty, and flags do not carry over to the next step.

@@ -1,4 +1,4 @@
-//! Invariant (RULINGS §3, rows 33–35): the trunk acceleration is (v^t − v^{t−1}) / Δt_env, the
+//! Invariant (spec §3, rows 33–35): the trunk acceleration is (v^t − v^{t−1}) / Δt_env, the
 //! change of the trunk frame origin's world velocity over the env step divided by
 //! sub-steps × dt; it is 0 after reset, whatever the velocity at reset.
 

@@ -267,3 +267,36 @@ fn bad_buffers_and_actions_are_refused_before_any_env_steps() {
         .is_err()
     );
 }
+
+#[test]
+fn env_and_thread_counts_are_bounded_and_checked_before_anything_is_built() {
+    // Python's make_vec(num_envs=10**8) used to build envs until memory ran out.
+    let model = hyq_physics::bundled::hyq();
+    let build = |n: usize| {
+        VecEnv::<hyq_env::testing::ScriptedBackend>::new(
+            model.clone(),
+            config(&[]),
+            n,
+            AutoReset::NextStep,
+        )
+    };
+    for n in [0, hyq_env::MAX_ENVS + 1, 100_000_000] {
+        let e = build(n).err().map(|e| e.to_string()).unwrap_or_default();
+        assert!(
+            e.contains("num_envs") && e.contains("4096") && e.contains(&n.to_string()),
+            "{n}: {e}"
+        );
+    }
+    for threads in [0, hyq_env::MAX_THREADS + 1] {
+        let e = build(2)
+            .and_then(|v| v.with_threads(threads))
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default();
+        assert!(
+            e.contains("threads") && e.contains("4096"),
+            "{threads}: {e}"
+        );
+    }
+    assert!(build(2).and_then(|v| v.with_threads(1)).is_ok());
+}

@@ -6,7 +6,13 @@
 //! 2. velocity limit `vᵢ` (URDF `velocity`): if `q̇ᵢ > vᵢ` then `τᵢ = min(τᵢ, 0)`, and if
 //!    `q̇ᵢ < −vᵢ` then `τᵢ = max(τᵢ, 0)`: a motor never pushes a joint that is already faster
 //!    than its limit further in its direction of motion; braking is always allowed;
-//! 3. effort limit `eᵢ` (URDF `effort`): `τᵢ = clamp(τᵢ, −eᵢ, eᵢ)`.
+//! 3. effort limit `eᵢ` (URDF `effort`): `τᵢ = clamp(τᵢ, −eᵢ, eᵢ)`;
+//! 4. Coulomb joint friction `fᵢ` (URDF `<dynamics friction>`), a passive torque outside the
+//!    motor's limit: `τᵢ −= fᵢ · clamp(q̇ᵢ / ω_f, −1, 1)` with [`FRICTION_SMOOTHING`] `ω_f`.
+//!    Below `ω_f` the friction grows linearly with speed, the usual regularisation of
+//!    Coulomb friction for explicit torques (an exact sign function would chatter around
+//!    q̇ = 0 at every sub-step); at rest it therefore holds nothing, unlike a static friction.
+//!    It is skipped for frictionless joints, so their torques are bit for bit steps 1–3.
 //!
 //! Step 2 is the rule Gazebo classic applies to joint efforts (`Joint::CheckAndTruncateForce`),
 //! where HyQ's upstream description was simulated. Its limits: it bounds the motor, not the
@@ -14,11 +20,19 @@
 //! before the rule cuts in, and by whatever gravity, contacts and the motion of the other links
 //! impose (a falling leg is not held back). The conformance suite measures the overshoot.
 //!
-//! Passive joint damping (URDF `damping`) is not part of the actuator: backends apply it.
+//! Passive joint damping (URDF `damping`) is not part of the actuator: backends apply it
+//! (implicitly, where the engine can). Friction is here because no engine applies it the same
+//! way, and every torque of an environment goes through this law.
 
 use crate::backend::{Backend, check_joint_values};
 use crate::error::PhysicsError;
 use crate::model::RobotModel;
+
+/// The speed (rad/s) below which joint friction is proportional to speed (step 4 of the law):
+/// 0.01 rad/s is a thousandth of a walking joint's typical speed, so friction is at its full
+/// value in any motion, and one 1 ms sub-step of full friction on a 0.01 kg·m² link changes its
+/// speed by f · 0.1 rad/s per N·m, so the linear zone is crossed in a few sub-steps.
+pub const FRICTION_SMOOTHING: f64 = 0.01;
 
 /// Per-joint PD gains and limits; see the module documentation for the law.
 #[derive(Debug, Clone, PartialEq)]
@@ -27,17 +41,20 @@ pub struct Actuator {
     kd: Vec<f64>,
     effort: Vec<f64>,
     velocity: Vec<f64>,
+    friction: Vec<f64>,
     velocity_limit: bool,
 }
 
 impl Actuator {
-    /// The model's default gains (from the profile) and its URDF limits, velocity limit on.
+    /// The model's default gains (from the profile), its limits (the URDF's or the profile's
+    /// overrides) and joint friction, velocity limit on.
     pub fn new(model: &RobotModel) -> Self {
         Self {
             kp: model.kp().to_vec(),
             kd: model.kd().to_vec(),
             effort: model.joints().iter().map(|j| j.effort).collect(),
             velocity: model.joints().iter().map(|j| j.velocity).collect(),
+            friction: model.joints().iter().map(|j| j.friction).collect(),
             velocity_limit: true,
         }
     }
@@ -102,7 +119,12 @@ impl Actuator {
                 tau = tau.max(0.0);
             }
         }
-        tau.clamp(-self.effort[i], self.effort[i])
+        let tau = tau.clamp(-self.effort[i], self.effort[i]);
+        let friction = self.friction[i];
+        if friction == 0.0 {
+            return tau;
+        }
+        tau - friction * (qd / FRICTION_SMOOTHING).clamp(-1.0, 1.0)
     }
 
     /// The torques of every joint into `out`; all slices hold one value per joint.

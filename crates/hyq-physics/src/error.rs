@@ -53,15 +53,23 @@ pub enum ModelError {
         referenced_by: String,
     },
     /// The profile names a joint the URDF does not have.
-    #[error("the URDF has no joint named {joint:?} (named by {referenced_by})")]
+    #[error(
+        "the URDF has no joint named {joint:?} (named by {referenced_by}); its movable joints \
+         are: {available}"
+    )]
     MissingJoint {
         /// The joint name that was looked up.
         joint: String,
         /// Which profile field named it.
         referenced_by: String,
+        /// The URDF's movable joints, comma-separated: the names the field can take.
+        available: String,
     },
     /// The profile names a collision element the URDF link does not have.
-    #[error("URDF link {link:?} has no <collision name={collision:?}> (named by {referenced_by})")]
+    #[error(
+        "URDF link {link:?} has no <collision name={collision:?}> (named by {referenced_by}); \
+         its collisions are: {available} (leave `collision` out to track them all)"
+    )]
     MissingCollision {
         /// The URDF link.
         link: String,
@@ -69,6 +77,8 @@ pub enum ModelError {
         collision: String,
         /// Which profile field named it.
         referenced_by: String,
+        /// The link's collision names (unnamed ones as `#i`), comma-separated.
+        available: String,
     },
     /// A link's mass or inertia tensor is not physically valid.
     #[error("link {link:?}: invalid inertia: {reason}")]
@@ -102,6 +112,36 @@ pub enum ModelError {
         /// What is wrong, naming the links or joints involved.
         reason: String,
     },
+    /// A robot choice that is neither a bundled robot nor a profile path.
+    #[error(
+        "unknown robot {choice:?}: not a bundled robot ({bundled}) nor a path to a robot \
+         profile (a .toml file next to its URDF)"
+    )]
+    UnknownRobot {
+        /// What was asked for.
+        choice: String,
+        /// The bundled robots' names, comma-separated.
+        bundled: String,
+    },
+    /// A robot profile file whose robot could not be built: the profile's path, then why.
+    #[error("robot profile {}: {source}", path.display())]
+    InProfile {
+        /// The profile file.
+        path: PathBuf,
+        /// What was wrong with it or its URDF.
+        #[source]
+        source: Box<ModelError>,
+    },
+}
+
+impl ModelError {
+    /// The error itself, without the [`ModelError::InProfile`] wrapping that names the file.
+    pub fn innermost(&self) -> &ModelError {
+        match self {
+            ModelError::InProfile { source, .. } => source.innermost(),
+            other => other,
+        }
+    }
 }
 
 /// Why the physics seam refused an input or could not go on.

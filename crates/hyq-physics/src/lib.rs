@@ -9,10 +9,16 @@
 //!   trunk state and real ground contacts.
 //! - [`actuator`]: the joint PD law with effort and velocity limits, evaluated every sub-step in
 //!   shared code ([`pd_substep`]), so every backend is driven identically.
-//! - [`bundled::hyq`]: the HyQ robot shipped in `assets/hyq/`, usable from any directory.
-//! - `conformance` (cargo feature `conformance`): the test bodies every backend must pass,
-//!   instantiated with `hyq_physics::conformance_tests!(Backend)` in a backend's
-//!   `tests/conformance.rs`.
+//! - [`mjcf`]: the robot as MuJoCo's XML model format, pure text generation (no MuJoCo
+//!   needed), for the MuJoCo backend and for MuJoCo-from-Python benchmarks alike.
+//! - [`urdf_export`]: the loaded robot written back as URDF (fixed links lumped, primitive
+//!   shapes only), for engines and tools outside the project that read URDF.
+//! - [`bundled`]: the robots shipped in `assets/` (HyQ, the default, and ANYmal C), usable from
+//!   any directory, and [`resolve_robot`], which every front end uses to turn a robot choice
+//!   (a bundled name or a profile path) into a model.
+//! - `conformance` (cargo feature `conformance`): the test bodies every backend must pass on
+//!   any robot, instantiated with `hyq_physics::conformance_tests!(Backend)` (or with options
+//!   and a robot) in a backend's `tests/conformance.rs`.
 //!
 //! Nothing here knows HyQ: robot names and counts come from the profile.
 
@@ -23,13 +29,17 @@ pub mod bundled;
 pub mod conformance;
 pub mod error;
 pub mod inertia;
+pub mod mjcf;
 pub mod model;
 pub mod profile;
+pub mod urdf_export;
 
 pub use actuator::{Actuator, PdScratch, apply_pd, pd_substep};
 pub use backend::{Backend, PhysicsParams, RobotState, TrunkState, check_joint_values};
+pub use bundled::resolve as resolve_robot;
 pub use error::{ModelError, PhysicsError};
 pub use model::{Collision, Joint, Link, RobotModel, Shape, TrackedBody};
+pub use model::{Gait, GaitLeg};
 pub use profile::Profile;
 
 /// The linear-algebra crate of this API (`nalgebra`), re-exported so that callers use the

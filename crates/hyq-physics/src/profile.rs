@@ -2,8 +2,11 @@
 //!
 //! A profile is a small TOML file next to the URDF (see `assets/hyq/profile.toml`): the trunk
 //! link, the tracked feet, the actuated joints in observation/action order with the standing
-//! pose, the spawn height and the default PD gains. Nothing in the code knows a robot's link or
-//! joint names or how many it has; it all comes from here, so the crates work for other robots.
+//! pose (and, where the URDF's figures are not the robot's, overrides of their limits), the
+//! spawn height, the default PD gains, and optionally the declared bounds of the trunk's
+//! observation rows (`[observation]`) and the scripted trot's leg map and parameters
+//! (`[gait]`). Nothing in the code knows a robot's link or joint names or how many it has; it
+//! all comes from here, so the crates work for other robots.
 
 use serde::{Deserialize, Serialize};
 
@@ -29,6 +32,12 @@ pub struct Profile {
     pub spawn: Spawn,
     /// Default PD gains of every joint.
     pub gains: Gains,
+    /// Declared bounds of the trunk's observation rows; the spec's (HyQ's) when absent.
+    #[serde(default)]
+    pub observation: Option<ObservationBounds>,
+    /// The scripted trot's leg map and parameters; the trot refuses a robot without one.
+    #[serde(default)]
+    pub gait: Option<GaitEntry>,
 }
 
 /// A tracked foot: a collision shape whose ground contact is reported.
@@ -61,6 +70,19 @@ pub struct JointEntry {
     /// Derivative gain for this joint (N·m·s/rad); `gains.kd` when absent.
     #[serde(default)]
     pub kd: Option<f64>,
+    /// Lower position limit (rad) replacing the URDF's, e.g. where the URDF gives none or a
+    /// placeholder. Say where the figure comes from in a comment.
+    #[serde(default)]
+    pub lower: Option<f64>,
+    /// Upper position limit (rad) replacing the URDF's.
+    #[serde(default)]
+    pub upper: Option<f64>,
+    /// Effort limit (N·m) replacing the URDF's.
+    #[serde(default)]
+    pub effort: Option<f64>,
+    /// Velocity limit (rad/s) replacing the URDF's.
+    #[serde(default)]
+    pub velocity: Option<f64>,
 }
 
 /// Where the robot is placed at reset.
@@ -88,12 +110,70 @@ pub struct Gains {
     pub kd: f64,
 }
 
+/// Declared `[min, max]` bounds of the trunk's estimated observation rows, per axis x, y, z.
+/// Either table may be left out, keeping the spec's bounds for it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ObservationBounds {
+    /// Trunk linear acceleration bounds (m/s²) on x, y, z (the spec's: ±50 each).
+    #[serde(default)]
+    pub trunk_acceleration: Option<[[f64; 2]; 3]>,
+    /// Trunk position bounds (m) on x, y, z (the spec's: ±10, ±10, [0, 1]).
+    #[serde(default)]
+    pub trunk_position: Option<[[f64; 2]; 3]>,
+}
+
+/// The scripted trot's description of the robot: which joints swing each leg and when, and how
+/// far. See `hyq_env::policy::Trot` for the gait these drive.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GaitEntry {
+    /// Gait frequency (Hz): one full cycle of every leg.
+    pub frequency_hz: f64,
+    /// Hip swing amplitude (rad) about the standing angle.
+    pub hip_amplitude: f64,
+    /// Extra knee flexion (rad) at the middle of a leg's swing, lifting the foot.
+    pub knee_lift: f64,
+    /// Time (s) over which the amplitudes ramp up from standing.
+    pub ramp_s: f64,
+    /// The legs, each with its hip and knee joint (profile short names) and its phase.
+    pub legs: Vec<GaitLegEntry>,
+}
+
+/// One leg of the gait.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GaitLegEntry {
+    /// The joint (short name) that swings the leg fore and aft (HyQ's `hfe`).
+    pub hip: String,
+    /// The joint (short name) that bends the knee, lifting the foot (HyQ's `kfe`).
+    pub knee: String,
+    /// The leg's phase as a fraction of a cycle in [0, 1): a trot puts diagonal pairs at 0
+    /// and 0.5.
+    pub phase: f64,
+}
+
 impl Profile {
     /// Parses a profile from TOML text; `origin` (a path or "bundled") appears in errors.
     pub fn from_toml_str(text: &str, origin: &str) -> Result<Self, ModelError> {
         toml::from_str(text).map_err(|e| ModelError::Profile {
             origin: origin.to_owned(),
-            message: e.to_string(),
+            message: one_line(&e.to_string()),
         })
     }
+}
+
+/// A TOML parser message on one line (front ends print errors on one line): its "at line L,
+/// column C" header and its explanation, without the source excerpt drawn between them.
+fn one_line(message: &str) -> String {
+    message
+        .lines()
+        .map(str::trim)
+        .filter(|l| {
+            !l.is_empty()
+                && !l.starts_with('|')
+                && !l.chars().next().is_some_and(|c| c.is_ascii_digit())
+        })
+        .collect::<Vec<_>>()
+        .join(": ")
 }

@@ -98,3 +98,41 @@ fn negative_or_non_finite_gains_are_errors() {
         Err(PhysicsError::NonFinite { .. })
     ));
 }
+
+/// Coulomb joint friction (URDF `<dynamics friction>`) opposes the joint's motion with its full
+/// value above `FRICTION_SMOOTHING`, proportionally below, on top of the clamped motor torque;
+/// a frictionless joint's torque is bit for bit the motor's.
+#[test]
+fn joint_friction_opposes_motion_outside_the_motor_limit() {
+    use hyq_physics::actuator::FRICTION_SMOOTHING;
+    let urdf = hyq_physics::bundled::HYQ_URDF.replacen(
+        "<dynamics damping=\"0.1\" friction=\"0\"/>",
+        "<dynamics damping=\"0.1\" friction=\"2.5\"/>",
+        1,
+    );
+    let profile = hyq_physics::Profile::from_toml_str(hyq_physics::bundled::HYQ_PROFILE, "test")
+        .expect("profile");
+    let model = hyq_physics::RobotModel::from_urdf_str(&urdf, "test", &profile).expect("loads");
+    let act = Actuator::new(&model);
+    // Moving forward at 1 rad/s: kp 1000 × 0.05 − kd 20 × 1 − 2.5 = 27.5.
+    assert_eq!(act.torque(0, 0.05, 0.0, 1.0), 27.5);
+    assert_eq!(act.torque(0, 0.05, 0.0, -1.0), 70.0 + 2.5);
+    // Saturated motor, friction on top: the joint feels more than the effort limit.
+    assert_eq!(act.torque(0, 1.0, 0.0, 1.0), 150.0 - 2.5);
+    // Half the smoothing speed: half the friction.
+    let slow = 0.5 * FRICTION_SMOOTHING;
+    assert_eq!(
+        act.torque(0, 0.0, 0.0, slow),
+        -20.0 * slow - 1.25,
+        "linear below the smoothing speed"
+    );
+    assert_eq!(act.torque(0, 0.0, 0.0, 0.0), 0.0, "no friction at rest");
+    // Joint 1 has none: the plain law, bit for bit.
+    let plain = Actuator::new(&hyq());
+    for (t, q, qd) in [(0.3, 0.1, -0.7), (-1.0, 0.5, 13.0), (0.0, 0.0, -0.0)] {
+        assert_eq!(
+            act.torque(1, t, q, qd).to_bits(),
+            plain.torque(1, t, q, qd).to_bits()
+        );
+    }
+}

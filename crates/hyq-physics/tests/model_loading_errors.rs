@@ -100,7 +100,15 @@ fn malformed_toml_is_a_profile_error() {
 #[test]
 fn unknown_profile_field_is_refused() {
     match profile_with("kd = 20.0", "kd = 20.0\nki = 1.0") {
-        Err(e @ ModelError::Profile { .. }) => assert!(message(&e).contains("ki"), "{e}"),
+        Err(e @ ModelError::Profile { .. }) => {
+            let m = message(&e);
+            assert!(m.contains("ki") && m.contains("test.toml"), "{m}");
+            assert!(
+                m.contains("expected `kp` or `kd`"),
+                "lists the known keys: {m}"
+            );
+            assert!(!m.contains('\n'), "one line: {m}");
+        }
         other => panic!("expected Profile, got {other:?}"),
     }
 }
@@ -123,9 +131,14 @@ fn profile_joint_missing_from_urdf() {
         Err(ModelError::MissingJoint {
             joint,
             referenced_by,
+            available,
         }) => {
             assert_eq!(joint, "rh_knee");
             assert_eq!(referenced_by, "joints[11].urdf");
+            assert!(
+                available.contains("rh_kfe_joint"),
+                "lists the fix: {available}"
+            );
         }
         other => panic!("expected MissingJoint, got {other:?}"),
     }
@@ -169,7 +182,9 @@ fn profile_foot_collision_missing_from_urdf() {
             link,
             collision,
             referenced_by,
+            available,
         }) => {
+            assert_eq!(available, "lh_shin, lh_foot", "lists the fix");
             assert_eq!(
                 (link.as_str(), collision.as_str()),
                 ("lh_lowerleg", "lh_toe")
@@ -204,27 +219,62 @@ fn indefinite_tensor_is_an_invalid_inertia() {
     }
 }
 
-#[test]
-fn triangle_inequality_violation_is_an_invalid_inertia() {
-    // Upstream's foot placeholder: every entry 1e-6 (principal moments 3e-6, 0, 0).
-    let urdf = urdf_with(
-        "</robot>",
-        r#"<joint name="lf_foot_joint" type="fixed">
+/// Upstream's foot placeholder (every entry 1e-6: principal moments 3e-6, 0, 0) on a link
+/// fixed to the lower leg.
+const PLACEHOLDER_FOOT: &str = r#"<joint name="lf_foot_joint" type="fixed">
     <origin xyz="0.346 0 0" rpy="0 0 0"/>
     <parent link="lf_lowerleg"/>
     <child link="lf_foot"/>
   </joint>
   <link name="lf_foot">
     <inertial>
-      <mass value="1e-6"/>
-      <inertia ixx="1e-6" ixy="1e-6" ixz="1e-6" iyy="1e-6" iyz="1e-6" izz="1e-6"/>
+      <mass value="MASS"/>
+      <inertia ixx="1e-6" ixy="1e-6" ixz="1e-6" iyy="1e-6" iyz="1e-6" izz="IZZ"/>
     </inertial>
   </link>
-</robot>"#,
+</robot>"#;
+
+#[test]
+fn invalid_tensor_of_a_fixed_link_is_checked_as_part_of_its_body() {
+    // The placeholder violates the triangle inequality on its own, but the lower leg it is
+    // fixed to stays a valid rigid body: accepted, its mass counted.
+    let urdf = urdf_with(
+        "</robot>",
+        &PLACEHOLDER_FOOT
+            .replace("MASS", "1e-6")
+            .replace("IZZ", "1e-6"),
+    );
+    let model = load(&urdf, &profile()).expect("a valid body with a placeholder part loads");
+    let body = &model.links()[model.link_index("lf_lowerleg").expect("body")];
+    assert_eq!(body.lumped, ["lf_foot"]);
+    assert!((body.mass - 0.881001).abs() < 1e-12, "{}", body.mass);
+}
+
+#[test]
+fn invalid_tensor_of_a_lumped_body_names_the_body_and_its_links() {
+    // A heavy part with a flat tensor makes the whole lower leg invalid.
+    let urdf = urdf_with(
+        "</robot>",
+        &PLACEHOLDER_FOOT
+            .replace("MASS", "1.0")
+            .replace("IZZ", "10.0"),
     );
     match load(&urdf, &profile()) {
         Err(ModelError::InvalidInertia { link, reason }) => {
-            assert_eq!(link, "lf_foot");
+            assert_eq!(link, "lf_lowerleg");
+            assert!(reason.contains("lf_foot"), "{reason}");
+            assert!(reason.contains("triangle"), "{reason}");
+        }
+        other => panic!("expected InvalidInertia, got {other:?}"),
+    }
+}
+
+#[test]
+fn triangle_inequality_violation_of_a_body_is_an_invalid_inertia() {
+    let urdf = urdf_with("izz=\"0.01233\"", "izz=\"0.05\"");
+    match load(&urdf, &profile()) {
+        Err(ModelError::InvalidInertia { link, reason }) => {
+            assert!(link.ends_with("_lowerleg"), "{link}");
             assert!(reason.contains("triangle"), "{reason}");
         }
         other => panic!("expected InvalidInertia, got {other:?}"),
@@ -243,6 +293,26 @@ fn massless_moving_body_is_an_invalid_inertia() {
         Err(ModelError::InvalidInertia { link, reason }) => {
             assert_eq!(link, "lf_hipassembly");
             assert!(reason.contains("must be positive"), "{reason}");
+            assert!(
+                reason.contains("give the link"),
+                "says what to do: {reason}"
+            );
+        }
+        other => panic!("expected InvalidInertia, got {other:?}"),
+    }
+}
+
+#[test]
+fn singular_moving_body_is_an_invalid_inertia() {
+    // A point mass: positive mass, zero tensor. It cannot turn about its joint.
+    let urdf = urdf_with(
+        "ixx=\"0.05071\" ixy=\"-4e-05\" ixz=\"-0.00159\" iyy=\"0.05486\" iyz=\"-5e-05\" izz=\"0.00571\"",
+        "ixx=\"0\" ixy=\"0\" ixz=\"0\" iyy=\"0\" iyz=\"0\" izz=\"0\"",
+    );
+    match load(&urdf, &profile()) {
+        Err(ModelError::InvalidInertia { link, reason }) => {
+            assert_eq!(link, "lf_hipassembly");
+            assert!(reason.contains("positive definite"), "{reason}");
         }
         other => panic!("expected InvalidInertia, got {other:?}"),
     }
@@ -322,6 +392,10 @@ fn unsupported_joint_type() {
         Err(ModelError::InvalidJoint { joint, reason }) => {
             assert_eq!(joint, "lf_kfe_joint");
             assert!(reason.contains("Prismatic"), "{reason}");
+            assert!(
+                reason.contains("make it fixed"),
+                "says what to do: {reason}"
+            );
         }
         other => panic!("expected InvalidJoint, got {other:?}"),
     }
@@ -343,15 +417,26 @@ fn inverted_position_limits() {
 }
 
 #[test]
-fn joint_friction_is_unsupported() {
+fn joint_friction_is_read_into_the_model() {
     let urdf = urdf_with(
         "<dynamics damping=\"0.1\" friction=\"0\"/>",
         "<dynamics damping=\"0.1\" friction=\"2.5\"/>",
     );
+    let model = load(&urdf, &profile()).expect("joint friction is supported");
+    assert_eq!(model.joints()[0].friction, 2.5);
+    assert!(model.joints()[1..].iter().all(|j| j.friction == 0.0));
+}
+
+#[test]
+fn negative_joint_friction_is_refused() {
+    let urdf = urdf_with(
+        "<dynamics damping=\"0.1\" friction=\"0\"/>",
+        "<dynamics damping=\"0.1\" friction=\"-2.5\"/>",
+    );
     match load(&urdf, &profile()) {
         Err(ModelError::InvalidJoint { joint, reason }) => {
             assert_eq!(joint, "lf_haa_joint");
-            assert!(reason.contains("2.5"), "{reason}");
+            assert!(reason.contains("-2.5"), "{reason}");
         }
         other => panic!("expected InvalidJoint, got {other:?}"),
     }
@@ -371,6 +456,11 @@ fn mesh_collision_is_unsupported() {
         }) => {
             assert_eq!((link.as_str(), collision.as_str()), ("trunk", "trunk"));
             assert!(reason.contains("trunk.dae"), "{reason}");
+            assert!(
+                reason.contains("rapier and DART"),
+                "says what engines take: {reason}"
+            );
+            assert!(reason.contains("replace it"), "says what to do: {reason}");
         }
         other => panic!("expected InvalidGeometry, got {other:?}"),
     }

@@ -1,36 +1,25 @@
 //! A step's [`StepInfo`] as the Python `info` dict, and N of them as a Gymnasium vector info.
 //!
-//! Single env keys (a fresh dict and fresh arrays every call):
+//! The schema is stated once, in the README's env card (and as data in `hyq.INFO_SCHEMA`): every
+//! key on every step and reset, each with one type, so that Gymnasium's vector info aggregation
+//! (and `DictInfoToList`, which RLlib uses) works. What is absent on most steps is still there
+//! with a neutral value: `joint_at_limit` (a joint's name) and `joint_at_limit_side` are `""`
+//! and `joint_at_limit_angle` is 0.0 unless `joint_limit` holds, `divergence` is `""` unless
+//! `diverged` holds, `reasons` is `""` while the episode goes on. The caller adds
+//! `observation_clipped` (it does the clipping). A fresh dict and fresh arrays every call.
 //!
-//! | key | type | meaning |
-//! |---|---|---|
-//! | `t` | int | env steps since reset (0 after reset) |
-//! | `r_b`, `r_n`, `r_e`, `r_reach` | float | the reward terms (§4) |
-//! | `m_yaw`, `m_pitch`, `m_height` | float | the multipliers (§5.1, §5.2) |
-//! | `joint_penalty`, `fall_penalty` | float | the penalties subtracted (§5.3, §5.4) |
-//! | `reward` | float | the step's reward, the same number `step` returns |
-//! | `reasons` | tuple of str | every reason the episode ended, in the order `reached`, `joint_limit`, `fell`, `timeout`, `diverged` |
-//! | `reached`, `joint_limit`, `fell`, `timeout`, `diverged` | bool | the same reasons as flags |
-//! | `distance_to_goal` | float | D^t (m) |
-//! | `d_n` | float or None | D_n^t = D^t / K (None only when K is too small and r_n, r_e are off) |
-//! | `roll`, `pitch`, `yaw` | float | the trunk's attitude (rad, intrinsic Z-Y-X) |
-//! | `goal`, `initial_position` | float64 array (3,) | G and C^0 (m, world; C^t is the observation's rows 36–38) |
-//! | `joint_targets` | float64 array (12,) | the joint targets the actuator tracked (rad) |
-//! | `action_clipped` | bool | whether an action value was outside the space and clipped |
-//! | `joint_at_limit` | None or dict | `{"joint": name, "angle": rad, "side": "lower"/"upper"}` on a joint-limit step |
-//! | `divergence` | None or str | what diverged, on a `diverged` step |
-//! | `observation_clipped` | bool | whether an observation value was outside the declared bounds and clipped to them (added by the caller, which does the clipping) |
-//!
-//! The vector info holds the numeric and flag keys as arrays over the envs (`d_n` NaN where
-//! unset), each with Gymnasium's `_key` mask (all true: every env reports every key every step).
+//! The vector info holds the same keys as arrays over the envs, exactly as Gymnasium's
+//! `SyncVectorEnv` builds them from N single infos: int64, float64 and bool arrays, object
+//! arrays of str, and float64 (N, k) arrays, each with its `_key` mask (all true: every env
+//! reports every key every step).
 
-use hyq_env::{Reason, StepInfo};
+use hyq_env::{Reason, Reasons, StepInfo};
 use hyq_physics::RobotModel;
 use hyq_spec::LimitSide;
-use numpy::IntoPyArray;
 use numpy::ndarray::Array2;
+use numpy::{IntoPyArray, PyArray1};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyTuple};
+use pyo3::types::{PyDict, PyString};
 
 /// A key of the info and how to read its value from a [`StepInfo`].
 type Key<T> = (&'static str, fn(&StepInfo) -> T);
@@ -48,7 +37,7 @@ const FLOAT_KEYS: [Key<f64>; 15] = [
     ("fall_penalty", |i| i.reward.fall_penalty),
     ("reward", |i| i.reward.total),
     ("distance_to_goal", |i| i.distance_to_goal),
-    ("d_n", |i| i.d_n.unwrap_or(f64::NAN)),
+    ("d_n", |i| i.d_n),
     ("roll", |i| i.roll),
     ("pitch", |i| i.pitch),
     ("yaw", |i| i.yaw),
@@ -59,6 +48,52 @@ const VECTOR_KEYS: [Key<[f64; 3]>; 2] = [
     ("goal", |i| i.goal),
     ("initial_position", |i| i.initial_position),
 ];
+
+/// `reasons` as one string: the names of the reasons that hold joined by `+`, in
+/// [`Reason::ALL`]'s order (`""` while the episode goes on).
+fn reasons_text(reasons: Reasons) -> String {
+    reasons
+        .iter()
+        .map(Reason::as_str)
+        .collect::<Vec<_>>()
+        .join("+")
+}
+
+/// The string keys, in the order [`string_values`] gives them.
+const STRING_KEYS: [&str; 4] = [
+    "reasons",
+    "joint_at_limit",
+    "joint_at_limit_side",
+    "divergence",
+];
+
+/// The values of [`STRING_KEYS`] (`model` names the joint).
+fn string_values(info: &StepInfo, model: &RobotModel) -> [String; 4] {
+    let (joint, side) = match &info.joint_at_limit {
+        Some(hit) => (
+            model
+                .joints()
+                .get(hit.joint)
+                .map_or_else(String::new, |j| j.name.clone()),
+            match hit.side {
+                LimitSide::Lower => "lower",
+                LimitSide::Upper => "upper",
+            },
+        ),
+        None => (String::new(), ""),
+    };
+    [
+        reasons_text(info.reasons),
+        joint,
+        side.to_owned(),
+        info.divergence.clone().unwrap_or_default(),
+    ]
+}
+
+/// The angle of the joint at its limit (rad), 0.0 when none is.
+fn joint_at_limit_angle(info: &StepInfo) -> f64 {
+    info.joint_at_limit.as_ref().map_or(0.0, |hit| hit.angle)
+}
 
 /// The single env's info dict (see the module docs).
 pub fn info_dict<'py>(
@@ -72,14 +107,8 @@ pub fn info_dict<'py>(
     // that count is not.
     d.set_item("t", info.t)?;
     for (key, read) in FLOAT_KEYS {
-        if key == "d_n" {
-            d.set_item(key, info.d_n)?;
-        } else {
-            d.set_item(key, read(info))?;
-        }
+        d.set_item(key, read(info))?;
     }
-    let reasons: Vec<&str> = info.reasons.iter().map(Reason::as_str).collect();
-    d.set_item("reasons", PyTuple::new(py, reasons)?)?;
     for reason in Reason::ALL {
         d.set_item(reason.as_str(), info.reasons.contains(reason))?;
     }
@@ -88,46 +117,54 @@ pub fn info_dict<'py>(
     }
     d.set_item("joint_targets", info.joint_targets.clone().into_pyarray(py))?;
     d.set_item("action_clipped", info.action_clipped)?;
-    match &info.joint_at_limit {
-        Some(hit) => {
-            let j = PyDict::new(py);
-            let name = model
-                .joints()
-                .get(hit.joint)
-                .map_or("?", |joint| joint.name.as_str());
-            j.set_item("joint", name)?;
-            j.set_item("angle", hit.angle)?;
-            j.set_item(
-                "side",
-                match hit.side {
-                    LimitSide::Lower => "lower",
-                    LimitSide::Upper => "upper",
-                },
-            )?;
-            d.set_item("joint_at_limit", j)?;
-        }
-        None => d.set_item("joint_at_limit", py.None())?,
+    d.set_item("joint_at_limit_angle", joint_at_limit_angle(info))?;
+    for (key, value) in STRING_KEYS.into_iter().zip(string_values(info, model)) {
+        d.set_item(key, value)?;
     }
-    d.set_item("divergence", info.divergence.as_deref())?;
     Ok(d)
 }
 
-/// The vector info of `infos`, one per env (see the module docs).
-pub fn vector_info_dict<'py>(py: Python<'py>, infos: &[&StepInfo]) -> PyResult<Bound<'py, PyDict>> {
+/// The vector info of `infos`, one per env, of envs of `model` (see the module docs).
+pub fn vector_info_dict<'py>(
+    py: Python<'py>,
+    infos: &[&StepInfo],
+    model: &RobotModel,
+) -> PyResult<Bound<'py, PyDict>> {
     let n = infos.len();
     let d = PyDict::new(py);
     let mask = |d: &Bound<'py, PyDict>, key: &str| -> PyResult<()> {
         d.set_item(format!("_{key}"), vec![true; n].into_pyarray(py))
     };
+    // int64, as Gymnasium builds an array of Python ints. Invariant: t counts env steps, far
+    // below 2^63.
     d.set_item(
         "t",
         infos
             .iter()
-            .map(|i| i.t)
+            .map(|i| i64::try_from(i.t).unwrap_or(i64::MAX))
             .collect::<Vec<_>>()
             .into_pyarray(py),
     )?;
     mask(&d, "t")?;
+    d.set_item(
+        "joint_at_limit_angle",
+        infos
+            .iter()
+            .map(|i| joint_at_limit_angle(i))
+            .collect::<Vec<_>>()
+            .into_pyarray(py),
+    )?;
+    mask(&d, "joint_at_limit_angle")?;
+    // Object arrays of str, one per string key.
+    let strings: Vec<[String; 4]> = infos.iter().map(|i| string_values(i, model)).collect();
+    for (k, key) in STRING_KEYS.into_iter().enumerate() {
+        let values: Vec<Py<PyAny>> = strings
+            .iter()
+            .map(|s| PyString::new(py, &s[k]).into_any().unbind())
+            .collect();
+        d.set_item(key, PyArray1::from_vec(py, values))?;
+        mask(&d, key)?;
+    }
     for (key, read) in FLOAT_KEYS {
         d.set_item(
             key,

@@ -15,11 +15,15 @@
 //! - errors keep the core's messages: a refused action, a bad configuration or an unusable goal
 //!   is a `ValueError`; a step before reset or after the episode ended, or a physics failure
 //!   while building or resetting, is a `RuntimeError`;
-//! - the physics runs with the GIL released (`Python::detach`), the vector env on rayon.
+//! - the physics runs with the GIL released (`Python::detach`), the vector env on rayon;
+//! - every call goes through [`guard`]: a second thread inside the same env gets a message
+//!   saying so, and a Rust panic becomes a `RuntimeError` (never PyO3's `PanicException`) and
+//!   retires the env.
 
 mod config;
 mod errors;
 mod frames;
+mod guard;
 mod info;
 mod single;
 mod spaces;
@@ -47,6 +51,12 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<vector::VecCore>()?;
     m.add_function(wrap_pyfunction!(default_max_time_steps, m)?)?;
     m.add_function(wrap_pyfunction!(default_config_toml, m)?)?;
+    m.add_function(wrap_pyfunction!(spaces::observation_table, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    // The ranges the Python side checks arguments against, from the crates that enforce them.
+    m.add("MAX_ENVS", hyq_env::MAX_ENVS)?;
+    m.add("MAX_THREADS", hyq_env::MAX_THREADS)?;
+    m.add("RENDER_SIDE_MIN", hyq_render::MIN_SIDE_PX)?;
+    m.add("RENDER_SIDE_MAX", hyq_render::MAX_SIDE_PX)?;
     Ok(())
 }

@@ -10,8 +10,9 @@ use pyo3::types::PyDict;
 use crate::config;
 use crate::errors::env_error;
 use crate::frames::FrameSource;
+use crate::guard::{Retirable, call, call_mut};
 use crate::info::info_dict;
-use crate::spaces::{Bounds, clip_in_place, observation_bounds, to_f32};
+use crate::spaces::{Bounds, clip_in_place, declared_bounds, table_bounds, to_f32};
 
 /// One HyQ environment (rapier backend). Built by `hyq.HyQEnv`, which adds the Gymnasium API.
 #[pyclass(module = "hyq._core")]
@@ -25,6 +26,18 @@ pub struct Core {
     episode_return: f64,
     /// The last action, copied out of NumPy (reused: no allocation per step).
     action: Vec<f64>,
+    /// Why the env was retired (after an internal error), if it was.
+    retired: Option<String>,
+}
+
+impl Retirable for Core {
+    fn retired(&self) -> Option<&str> {
+        self.retired.as_deref()
+    }
+
+    fn retire(&mut self, why: String) {
+        self.retired = Some(why);
+    }
 }
 
 impl Core {
@@ -59,7 +72,7 @@ impl Core {
         let config = config::build(config_file.as_deref(), &pairs)?;
         let env =
             Env::<RapierBackend>::new(hyq_physics::bundled::hyq(), config).map_err(env_error)?;
-        let clip = clip_observations.then(|| observation_bounds(&env));
+        let clip = clip_observations.then(|| table_bounds(&env));
         let frames = FrameSource::new(render_width, render_height)?;
         Ok(Self {
             env,
@@ -67,6 +80,7 @@ impl Core {
             frames,
             episode_return: 0.0,
             action: Vec::new(),
+            retired: None,
         })
     }
 
@@ -74,27 +88,29 @@ impl Core {
     /// them), `goal` overrides this episode's goal. Returns (observation, info).
     #[pyo3(signature = (seed=None, goal=None))]
     fn reset<'py>(
-        &mut self,
+        slf: &Bound<'py, Self>,
         py: Python<'py>,
         seed: Option<u64>,
         goal: Option<[f64; 3]>,
     ) -> PyResult<(Bound<'py, PyArray1<f32>>, Bound<'py, PyDict>)> {
-        let options = ResetOptions {
-            goal,
-            ..ResetOptions::default()
-        };
-        let env = &mut self.env;
-        py.detach(|| env.reset(seed, &options).map(|_| ()))
-            .map_err(env_error)?;
-        self.episode_return = 0.0;
-        self.observation_and_info(py)
+        call_mut(slf, "reset", |this| {
+            let options = ResetOptions {
+                goal,
+                ..ResetOptions::default()
+            };
+            let env = &mut this.env;
+            py.detach(|| env.reset(seed, &options).map(|_| ()))
+                .map_err(env_error)?;
+            this.episode_return = 0.0;
+            this.observation_and_info(py)
+        })
     }
 
     /// One env step with `action` (float64, one value per joint). Returns (observation,
     /// reward, terminated, truncated, info).
     #[allow(clippy::type_complexity)]
     fn step<'py>(
-        &mut self,
+        slf: &Bound<'py, Self>,
         py: Python<'py>,
         action: PyReadonlyArray1<'py, f64>,
     ) -> PyResult<(
@@ -104,109 +120,158 @@ impl Core {
         bool,
         Bound<'py, PyDict>,
     )> {
-        // Copied while the GIL is held: another Python thread may write to the array while
-        // the env steps.
-        let given = action
-            .as_slice()
-            .map_err(|e| PyValueError::new_err(format!("action: {e}")))?;
-        self.action.clear();
-        self.action.extend_from_slice(given);
-        let (env, action) = (&mut self.env, &self.action);
-        let (reward, terminated, truncated) = py
-            .detach(|| {
-                env.step(action)
-                    .map(|s| (s.reward, s.terminated, s.truncated))
-            })
-            .map_err(env_error)?;
-        self.episode_return += reward;
-        let (obs, info) = self.observation_and_info(py)?;
-        Ok((obs, reward, terminated, truncated, info))
+        call_mut(slf, "step", |this| {
+            // Copied while the GIL is held: another Python thread may write to the array while
+            // the env steps.
+            let given = action
+                .as_slice()
+                .map_err(|e| PyValueError::new_err(format!("action: {e}")))?;
+            this.action.clear();
+            this.action.extend_from_slice(given);
+            let (env, action) = (&mut this.env, &this.action);
+            let (reward, terminated, truncated) = py
+                .detach(|| {
+                    env.step(action)
+                        .map(|s| (s.reward, s.terminated, s.truncated))
+                })
+                .map_err(env_error)?;
+            this.episode_return += reward;
+            let (obs, info) = this.observation_and_info(py)?;
+            Ok((obs, reward, terminated, truncated, info))
+        })
+    }
+
+    /// Panics inside a call, with the GIL released as in `step`: for the test that shows a
+    /// panic reaches Python as a `RuntimeError` and retires the env.
+    #[pyo3(name = "_panic_for_tests")]
+    fn panic_for_tests(slf: &Bound<'_, Self>, py: Python<'_>) -> PyResult<()> {
+        call_mut(slf, "_panic_for_tests", |_| {
+            py.detach(|| -> PyResult<()> { panic!("a panic asked for by a test") })
+        })
     }
 
     /// A frame of the current state: uint8, (height, width, 3). Before the first reset it
     /// shows the robot at its spawn pose without goal or overlay.
-    fn render<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyArray3<u8>>> {
-        self.frames.frame(py, &self.env, self.episode_return)
+    fn render<'py>(slf: &Bound<'py, Self>, py: Python<'py>) -> PyResult<Bound<'py, PyArray3<u8>>> {
+        call_mut(slf, "render", |this| {
+            this.frames.frame(py, &this.env, this.episode_return)
+        })
     }
 
-    /// The observation's declared lower bounds (float32; the §3 table's).
-    fn observation_low<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f32>> {
-        observation_bounds(&self.env).0.into_pyarray(py)
+    /// The observation space's lower bounds (float32; see `spaces`).
+    fn observation_low<'py>(
+        slf: &Bound<'py, Self>,
+        py: Python<'py>,
+    ) -> PyResult<Bound<'py, PyArray1<f32>>> {
+        call(slf, "observation_low", |this| {
+            Ok(declared_bounds(&this.env, this.clip.is_some())
+                .0
+                .into_pyarray(py))
+        })
     }
 
-    /// The observation's declared upper bounds (float32).
-    fn observation_high<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f32>> {
-        observation_bounds(&self.env).1.into_pyarray(py)
+    /// The observation space's upper bounds (float32).
+    fn observation_high<'py>(
+        slf: &Bound<'py, Self>,
+        py: Python<'py>,
+    ) -> PyResult<Bound<'py, PyArray1<f32>>> {
+        call(slf, "observation_high", |this| {
+            Ok(declared_bounds(&this.env, this.clip.is_some())
+                .1
+                .into_pyarray(py))
+        })
     }
 
     /// The action space's lower bounds (float32; −1 in the normalized and delta modes, the
     /// joints' lower limits in the absolute mode).
-    fn action_low<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f32>> {
-        to_f32(self.env.action_space().low()).into_pyarray(py)
+    fn action_low<'py>(
+        slf: &Bound<'py, Self>,
+        py: Python<'py>,
+    ) -> PyResult<Bound<'py, PyArray1<f32>>> {
+        call(slf, "action_low", |this| {
+            Ok(to_f32(this.env.action_space().low()).into_pyarray(py))
+        })
     }
 
     /// The action space's upper bounds (float32).
-    fn action_high<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f32>> {
-        to_f32(self.env.action_space().high()).into_pyarray(py)
+    fn action_high<'py>(
+        slf: &Bound<'py, Self>,
+        py: Python<'py>,
+    ) -> PyResult<Bound<'py, PyArray1<f32>>> {
+        call(slf, "action_high", |this| {
+            Ok(to_f32(this.env.action_space().high()).into_pyarray(py))
+        })
     }
 
     /// The observation rows' names, in order (`lf_haa_angle`, …, `trunk_position_z`).
-    fn observation_names(&self) -> Vec<String> {
-        self.env
-            .observation_layout()
-            .rows()
-            .iter()
-            .map(|r| r.name.to_string())
-            .collect()
+    fn observation_names<'py>(slf: &Bound<'py, Self>) -> PyResult<Vec<String>> {
+        call(slf, "observation_names", |this| {
+            Ok(this
+                .env
+                .observation_layout()
+                .rows()
+                .iter()
+                .map(|r| r.name.to_string())
+                .collect())
+        })
     }
 
     /// The joints' names in action order.
-    fn joint_names(&self) -> Vec<String> {
-        self.env
-            .model()
-            .joints()
-            .iter()
-            .map(|j| j.name.clone())
-            .collect()
+    fn joint_names<'py>(slf: &Bound<'py, Self>) -> PyResult<Vec<String>> {
+        call(slf, "joint_names", |this| {
+            Ok(this
+                .env
+                .model()
+                .joints()
+                .iter()
+                .map(|j| j.name.clone())
+                .collect())
+        })
     }
 
     /// t_max (`task.max_time_steps`).
     #[getter]
-    fn max_time_steps(&self) -> u64 {
-        self.env.config().task.max_time_steps
+    fn max_time_steps<'py>(slf: &Bound<'py, Self>) -> PyResult<u64> {
+        call(slf, "max_time_steps", |this| {
+            Ok(this.env.config().task.max_time_steps)
+        })
     }
 
     /// Δt_env = sub-steps × dt (s).
     #[getter]
-    fn env_dt(&self) -> f64 {
-        self.env.env_dt()
+    fn env_dt<'py>(slf: &Bound<'py, Self>) -> PyResult<f64> {
+        call(slf, "env_dt", |this| Ok(this.env.env_dt()))
     }
 
     /// The action mode (`normalized`, `absolute` or `delta`).
     #[getter]
-    fn action_mode(&self) -> &'static str {
-        config::action_mode_name(self.env.config().action.mode)
+    fn action_mode<'py>(slf: &Bound<'py, Self>) -> PyResult<&'static str> {
+        call(slf, "action_mode", |this| {
+            Ok(config::action_mode_name(this.env.config().action.mode))
+        })
     }
 
     /// Whether observations are clipped to the declared bounds.
     #[getter]
-    fn clip_observations(&self) -> bool {
-        self.clip.is_some()
+    fn clip_observations<'py>(slf: &Bound<'py, Self>) -> PyResult<bool> {
+        call(slf, "clip_observations", |this| Ok(this.clip.is_some()))
     }
 
     /// The frame size (width, height) of `render`.
     #[getter]
-    fn render_size(&self) -> (u32, u32) {
-        self.frames.size()
+    fn render_size<'py>(slf: &Bound<'py, Self>) -> PyResult<(u32, u32)> {
+        call(slf, "render_size", |this| Ok(this.frames.size()))
     }
 
     /// The whole validated configuration as TOML text.
-    fn config_toml(&self) -> String {
-        self.env.config().to_toml_string()
+    fn config_toml<'py>(slf: &Bound<'py, Self>) -> PyResult<String> {
+        call(slf, "config_toml", |this| {
+            Ok(this.env.config().to_toml_string())
+        })
     }
 
     /// Whether the next call must be `reset` (no episode started, or it ended).
-    fn needs_reset(&self) -> bool {
-        self.env.needs_reset()
+    fn needs_reset<'py>(slf: &Bound<'py, Self>) -> PyResult<bool> {
+        call(slf, "needs_reset", |this| Ok(this.env.needs_reset()))
     }
 }

@@ -1,20 +1,99 @@
-//! The observation and action spaces as the Python side needs them: bounds as f32 arrays, and
-//! observations clipped to their declared bounds when the env was built with
+//! The observation and action spaces as the Python side needs them: bounds as f32 arrays, the
+//! spec's §3 table as data, and observations clipped to the table when the env was built with
 //! `clip_observations=True`.
+//!
+//! The declared observation space must contain every observation emitted (spec §3;
+//! Gymnasium's and Stable-Baselines3's checkers hold an env to it). Clipped, it is the table.
+//! Unclipped (the default), it carries the table's bounds only on the rows that are invariants,
+//! the contact flags (0 or 1) and the quaternion (a unit quaternion's components lie in
+//! [−1, 1]); the rows the physics can leave (joint angles past a limit by an overshoot, joint
+//! speeds, the trunk's acceleration and position) are unbounded, declared as the whole finite
+//! float32 range (±3.4028235e38) rather than ±inf, which Gymnasium's checker flags as "probably
+//! too low/high". The environment never emits a value outside that range (it ends the episode as
+//! `diverged` first).
 
 use hyq_env::Env;
 use hyq_physics::Backend;
+use hyq_spec::ObservationLayout;
+use pyo3::prelude::*;
 
-/// The observation's declared bounds (low, high) as f32, one per row.
+/// The observation's bounds (low, high) as f32, one per row.
 pub type Bounds = (Vec<f32>, Vec<f32>);
 
-/// The observation's declared bounds as f32 (the §3 table's for HyQ).
-pub fn observation_bounds<B: Backend>(env: &Env<B>) -> Bounds {
+/// Whether row `i` of `layout` is an invariant (a contact flag or a quaternion component), whose
+/// table bounds hold for every value the physics can produce.
+fn is_invariant(layout: &ObservationLayout, i: usize) -> bool {
+    layout.foot_contacts().contains(&i)
+        || i == layout.trunk_contact()
+        || layout.trunk_rotation().contains(&i)
+}
+
+/// The unit of row `i` of `layout`.
+fn unit_of(layout: &ObservationLayout, i: usize) -> &'static str {
+    if layout.joint_angles().contains(&i) {
+        "rad"
+    } else if layout.joint_speeds().contains(&i) {
+        "rad/s"
+    } else if layout.foot_contacts().contains(&i) || i == layout.trunk_contact() {
+        "0/1"
+    } else if layout.trunk_rotation().contains(&i) {
+        "1"
+    } else if layout.trunk_acceleration().contains(&i) {
+        "m/s^2"
+    } else {
+        "m"
+    }
+}
+
+/// The §3 table's bounds as f32: what observations are clipped to, and the space when they are.
+pub fn table_bounds<B: Backend>(env: &Env<B>) -> Bounds {
     let rows = env.observation_layout().rows();
     (
         rows.iter().map(|r| r.min as f32).collect(),
         rows.iter().map(|r| r.max as f32).collect(),
     )
+}
+
+/// The declared observation space's bounds (see the module docs): the table when `clipped`,
+/// else the table on the invariant rows and the finite float32 range elsewhere.
+pub fn declared_bounds<B: Backend>(env: &Env<B>, clipped: bool) -> Bounds {
+    let (mut low, mut high) = table_bounds(env);
+    if !clipped {
+        let layout = env.observation_layout();
+        for i in (0..low.len()).filter(|&i| !is_invariant(layout, i)) {
+            low[i] = f32::MIN;
+            high[i] = f32::MAX;
+        }
+    }
+    (low, high)
+}
+
+/// One row of the table as Python receives it: (index, name, low, high, unit, estimated,
+/// invariant).
+type TableRow = (usize, String, f64, f64, &'static str, bool, bool);
+
+/// The spec's §3 observation table of the bundled HyQ, one tuple per row: (index, name, low,
+/// high, unit, estimated, invariant). `estimated` marks the rows the spec gives only estimated
+/// bounds for (33–38); `invariant` the rows whose bounds every value respects (24–32).
+#[pyfunction]
+pub fn observation_table() -> PyResult<Vec<TableRow>> {
+    let layout = hyq_env::observation_layout_of(&hyq_physics::bundled::hyq())
+        .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))?;
+    Ok(layout
+        .rows()
+        .iter()
+        .map(|r| {
+            (
+                r.index,
+                r.name.to_string(),
+                r.min,
+                r.max,
+                unit_of(&layout, r.index),
+                r.estimated,
+                is_invariant(&layout, r.index),
+            )
+        })
+        .collect())
 }
 
 /// `values` (action space bounds, f64) as the f32 a `gymnasium.spaces.Box` of float32 takes.

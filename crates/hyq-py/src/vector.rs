@@ -16,8 +16,9 @@ use pyo3::types::PyDict;
 use crate::config;
 use crate::errors::vec_env_error;
 use crate::frames::FrameSource;
+use crate::guard::{Retirable, call, call_mut};
 use crate::info::{info_dict, vector_info_dict};
-use crate::spaces::{Bounds, clip_in_place, observation_bounds, to_f32, would_clip};
+use crate::spaces::{Bounds, clip_in_place, declared_bounds, table_bounds, to_f32, would_clip};
 
 /// N HyQ environments (rapier backend) stepped in parallel.
 #[pyclass(module = "hyq._core")]
@@ -29,6 +30,18 @@ pub struct VecCore {
     frames: FrameSource,
     /// The last step's actions, copied out of NumPy (reused: no allocation per step).
     actions: Vec<f64>,
+    /// Why the env was retired (after an internal error), if it was.
+    retired: Option<String>,
+}
+
+impl Retirable for VecCore {
+    fn retired(&self) -> Option<&str> {
+        self.retired.as_deref()
+    }
+
+    fn retire(&mut self, why: String) {
+        self.retired = Some(why);
+    }
 }
 
 /// The autoreset mode named as in Gymnasium's `AutoresetMode` values.
@@ -78,7 +91,7 @@ impl VecCore {
         let array = Array2::from_shape_vec((self.vec.num_envs(), self.vec.observation_len()), flat)
             .map_err(|e| PyValueError::new_err(format!("observations: {e}")))?;
         let infos: Vec<_> = (0..self.vec.num_envs()).map(|i| self.vec.info(i)).collect();
-        let info = vector_info_dict(py, &infos)?;
+        let info = vector_info_dict(py, &infos, self.vec.env(0).model())?;
         info.set_item("observation_clipped", clipped.into_pyarray(py))?;
         info.set_item(
             "_observation_clipped",
@@ -120,7 +133,7 @@ impl VecCore {
         if let Some(threads) = threads {
             vec = vec.with_threads(threads).map_err(vec_env_error)?;
         }
-        let clip = clip_observations.then(|| observation_bounds(vec.env(0)));
+        let clip = clip_observations.then(|| table_bounds(vec.env(0)));
         let frames = FrameSource::new(render_width, render_height)?;
         Ok(Self {
             returns: vec![0.0; vec.num_envs()],
@@ -128,6 +141,7 @@ impl VecCore {
             clip,
             frames,
             actions: Vec::new(),
+            retired: None,
         })
     }
 
@@ -138,202 +152,267 @@ impl VecCore {
     /// (the others keep their state and report their current observation).
     #[pyo3(signature = (seed=None, seeds=None, goal=None, mask=None))]
     fn reset<'py>(
-        &mut self,
+        slf: &Bound<'py, Self>,
         py: Python<'py>,
         seed: Option<u64>,
         seeds: Option<Vec<Option<u64>>>,
         goal: Option<[f64; 3]>,
         mask: Option<Vec<bool>>,
     ) -> PyResult<(Bound<'py, PyArray2<f32>>, Bound<'py, PyDict>)> {
-        let n = self.vec.num_envs();
-        for (what, len) in [
-            ("seeds", seeds.as_ref().map(Vec::len)),
-            ("mask", mask.as_ref().map(Vec::len)),
-        ] {
-            if let Some(len) = len
-                && len != n
-            {
-                return Err(PyValueError::new_err(format!(
-                    "{what} has {len} values, expected one per env ({n})"
-                )));
+        call_mut(slf, "reset", |this| {
+            let n = this.vec.num_envs();
+            for (what, len) in [
+                ("seeds", seeds.as_ref().map(Vec::len)),
+                ("mask", mask.as_ref().map(Vec::len)),
+            ] {
+                if let Some(len) = len
+                    && len != n
+                {
+                    return Err(PyValueError::new_err(format!(
+                        "{what} has {len} values, expected one per env ({n})"
+                    )));
+                }
             }
-        }
-        if seeds.is_none() && goal.is_none() && mask.is_none() {
-            let mut flat = vec![0.0f32; n * self.vec.observation_len()];
-            let vec = &mut self.vec;
-            py.detach(|| vec.reset(seed, &mut flat))
-                .map_err(vec_env_error)?;
-            self.returns.fill(0.0);
-            return self.observations_and_infos(py, flat);
-        }
-        let options = ResetOptions {
-            goal,
-            ..ResetOptions::default()
-        };
-        for i in 0..n {
-            if mask.as_ref().is_some_and(|m| !m[i]) {
-                continue;
+            if seeds.is_none() && goal.is_none() && mask.is_none() {
+                let mut flat = vec![0.0f32; n * this.vec.observation_len()];
+                let vec = &mut this.vec;
+                py.detach(|| vec.reset(seed, &mut flat))
+                    .map_err(vec_env_error)?;
+                this.returns.fill(0.0);
+                return this.observations_and_infos(py, flat);
             }
-            let seed_i = match &seeds {
-                Some(s) => s[i],
-                None => seed.map(|s| s.wrapping_add(i as u64)),
+            let options = ResetOptions {
+                goal,
+                ..ResetOptions::default()
             };
-            self.vec
-                .reset_env(i, seed_i, &options)
-                .map_err(vec_env_error)?;
-            self.returns[i] = 0.0;
-        }
-        let flat = self.current_observations();
-        self.observations_and_infos(py, flat)
+            for i in 0..n {
+                if mask.as_ref().is_some_and(|m| !m[i]) {
+                    continue;
+                }
+                let seed_i = match &seeds {
+                    Some(s) => s[i],
+                    None => seed.map(|s| s.wrapping_add(i as u64)),
+                };
+                this.vec
+                    .reset_env(i, seed_i, &options)
+                    .map_err(vec_env_error)?;
+                this.returns[i] = 0.0;
+            }
+            let flat = this.current_observations();
+            this.observations_and_infos(py, flat)
+        })
     }
 
     /// Steps every env with its row of `actions` ((N, action_len) float64); returns
     /// (observations, rewards, terminated, truncated, vector info).
     fn step<'py>(
-        &mut self,
+        slf: &Bound<'py, Self>,
         py: Python<'py>,
         actions: PyReadonlyArray2<'py, f64>,
     ) -> PyResult<StepArrays<'py>> {
-        let (n, width) = (self.vec.num_envs(), self.vec.action_len());
-        let shape = actions.as_array().dim();
-        if shape != (n, width) {
-            return Err(PyValueError::new_err(format!(
-                "actions have shape {shape:?}, expected ({n}, {width})"
-            )));
-        }
-        // Copied while the GIL is held: another Python thread may write to the array while
-        // the envs step.
-        self.actions.clear();
-        self.actions.extend(actions.as_array().iter().copied());
-        let mut observations = vec![0.0f32; n * self.vec.observation_len()];
-        let mut rewards = vec![0.0f64; n];
-        let mut terminated = vec![false; n];
-        let mut truncated = vec![false; n];
-        let (vec, actions) = (&mut self.vec, &self.actions);
-        py.detach(|| {
-            vec.step(
-                actions,
-                VecStepOut {
-                    observations: &mut observations,
-                    rewards: &mut rewards,
-                    terminated: &mut terminated,
-                    truncated: &mut truncated,
-                },
-            )
+        call_mut(slf, "step", |this| {
+            let (n, width) = (this.vec.num_envs(), this.vec.action_len());
+            let shape = actions.as_array().dim();
+            if shape != (n, width) {
+                return Err(PyValueError::new_err(format!(
+                    "actions have shape {shape:?}, expected ({n}, {width})"
+                )));
+            }
+            // Copied while the GIL is held: another Python thread may write to the array while
+            // the envs step.
+            this.actions.clear();
+            this.actions.extend(actions.as_array().iter().copied());
+            let mut observations = vec![0.0f32; n * this.vec.observation_len()];
+            let mut rewards = vec![0.0f64; n];
+            let mut terminated = vec![false; n];
+            let mut truncated = vec![false; n];
+            let (vec, actions) = (&mut this.vec, &this.actions);
+            py.detach(|| {
+                vec.step(
+                    actions,
+                    VecStepOut {
+                        observations: &mut observations,
+                        rewards: &mut rewards,
+                        terminated: &mut terminated,
+                        truncated: &mut truncated,
+                    },
+                )
+            })
+            .map_err(vec_env_error)?;
+            for (i, r) in rewards.iter().enumerate() {
+                // t = 0: the env was reset in this step (an autoreset), so a new episode began.
+                this.returns[i] = if this.vec.info(i).t == 0 {
+                    0.0
+                } else {
+                    this.returns[i] + r
+                };
+            }
+            let (observations, infos) = this.observations_and_infos(py, observations)?;
+            Ok((
+                observations,
+                rewards.into_pyarray(py),
+                terminated.into_pyarray(py),
+                truncated.into_pyarray(py),
+                infos,
+            ))
         })
-        .map_err(vec_env_error)?;
-        for (i, r) in rewards.iter().enumerate() {
-            // t = 0: the env was reset in this step (an autoreset), so a new episode began.
-            self.returns[i] = if self.vec.info(i).t == 0 {
-                0.0
-            } else {
-                self.returns[i] + r
-            };
-        }
-        let (observations, infos) = self.observations_and_infos(py, observations)?;
-        Ok((
-            observations,
-            rewards.into_pyarray(py),
-            terminated.into_pyarray(py),
-            truncated.into_pyarray(py),
-            infos,
-        ))
     }
 
     /// Env `i`'s info of its last step or reset, as the single env's dict.
-    fn env_info<'py>(&self, py: Python<'py>, i: usize) -> PyResult<Bound<'py, PyDict>> {
-        self.check_index(i)?;
-        let info = info_dict(py, self.vec.info(i), self.vec.env(i).model())?;
-        let clipped = would_clip(self.vec.env(i).observation_f32(), self.clip.as_ref());
-        info.set_item("observation_clipped", clipped)?;
-        Ok(info)
+    fn env_info<'py>(
+        slf: &Bound<'py, Self>,
+        py: Python<'py>,
+        i: usize,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        call(slf, "env_info", |this| {
+            this.check_index(i)?;
+            let info = info_dict(py, this.vec.info(i), this.vec.env(i).model())?;
+            let clipped = would_clip(this.vec.env(i).observation_f32(), this.clip.as_ref());
+            info.set_item("observation_clipped", clipped)?;
+            Ok(info)
+        })
     }
 
     /// With `same_step` autoreset: env `i`'s final observation if its episode ended in the
     /// last step, else None.
     fn final_observation<'py>(
-        &self,
+        slf: &Bound<'py, Self>,
         py: Python<'py>,
         i: usize,
     ) -> PyResult<Option<Bound<'py, PyArray1<f32>>>> {
-        self.check_index(i)?;
-        Ok(self.vec.final_observation(i).map(|o| {
-            let mut o = o.to_vec();
-            clip_in_place(&mut o, self.clip.as_ref());
-            o.into_pyarray(py)
-        }))
+        call(slf, "final_observation", |this| {
+            this.check_index(i)?;
+            Ok(this.vec.final_observation(i).map(|o| {
+                let mut o = o.to_vec();
+                clip_in_place(&mut o, this.clip.as_ref());
+                o.into_pyarray(py)
+            }))
+        })
     }
 
     /// With `same_step` autoreset: env `i`'s final step's info if its episode ended in the last
     /// step, else None.
-    fn final_info<'py>(&self, py: Python<'py>, i: usize) -> PyResult<Option<Bound<'py, PyDict>>> {
-        self.check_index(i)?;
-        let (Some(info), Some(obs)) = (self.vec.final_info(i), self.vec.final_observation(i))
-        else {
-            return Ok(None);
-        };
-        let info = info_dict(py, info, self.vec.env(i).model())?;
-        info.set_item("observation_clipped", would_clip(obs, self.clip.as_ref()))?;
-        Ok(Some(info))
+    fn final_info<'py>(
+        slf: &Bound<'py, Self>,
+        py: Python<'py>,
+        i: usize,
+    ) -> PyResult<Option<Bound<'py, PyDict>>> {
+        call(slf, "final_info", |this| {
+            this.check_index(i)?;
+            let (Some(info), Some(obs)) = (this.vec.final_info(i), this.vec.final_observation(i))
+            else {
+                return Ok(None);
+            };
+            let info = info_dict(py, info, this.vec.env(i).model())?;
+            info.set_item("observation_clipped", would_clip(obs, this.clip.as_ref()))?;
+            Ok(Some(info))
+        })
     }
 
     /// A frame of env `i`'s current state (uint8, (height, width, 3)).
-    fn render<'py>(&mut self, py: Python<'py>, i: usize) -> PyResult<Bound<'py, PyArray3<u8>>> {
-        self.check_index(i)?;
-        self.frames.frame(py, self.vec.env(i), self.returns[i])
+    fn render<'py>(
+        slf: &Bound<'py, Self>,
+        py: Python<'py>,
+        i: usize,
+    ) -> PyResult<Bound<'py, PyArray3<u8>>> {
+        call_mut(slf, "render", |this| {
+            this.check_index(i)?;
+            this.frames.frame(py, this.vec.env(i), this.returns[i])
+        })
+    }
+
+    /// Panics inside a call, with the GIL released as in `step`: for the test that shows a
+    /// panic reaches Python as a `RuntimeError` and retires the env.
+    #[pyo3(name = "_panic_for_tests")]
+    fn panic_for_tests(slf: &Bound<'_, Self>, py: Python<'_>) -> PyResult<()> {
+        call_mut(slf, "_panic_for_tests", |_| {
+            py.detach(|| -> PyResult<()> { panic!("a panic asked for by a test") })
+        })
     }
 
     /// N.
     #[getter]
-    fn num_envs(&self) -> usize {
-        self.vec.num_envs()
+    fn num_envs<'py>(slf: &Bound<'py, Self>) -> PyResult<usize> {
+        call(slf, "num_envs", |this| Ok(this.vec.num_envs()))
     }
 
-    /// The observation's declared lower bounds (float32).
-    fn observation_low<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f32>> {
-        observation_bounds(self.vec.env(0)).0.into_pyarray(py)
+    /// The observation space's lower bounds (float32; see `spaces`).
+    fn observation_low<'py>(
+        slf: &Bound<'py, Self>,
+        py: Python<'py>,
+    ) -> PyResult<Bound<'py, PyArray1<f32>>> {
+        call(slf, "observation_low", |this| {
+            Ok(declared_bounds(this.vec.env(0), this.clip.is_some())
+                .0
+                .into_pyarray(py))
+        })
     }
 
-    /// The observation's declared upper bounds (float32).
-    fn observation_high<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f32>> {
-        observation_bounds(self.vec.env(0)).1.into_pyarray(py)
+    /// The observation space's upper bounds (float32).
+    fn observation_high<'py>(
+        slf: &Bound<'py, Self>,
+        py: Python<'py>,
+    ) -> PyResult<Bound<'py, PyArray1<f32>>> {
+        call(slf, "observation_high", |this| {
+            Ok(declared_bounds(this.vec.env(0), this.clip.is_some())
+                .1
+                .into_pyarray(py))
+        })
     }
 
     /// The action space's lower bounds (float32).
-    fn action_low<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f32>> {
-        to_f32(self.vec.env(0).action_space().low()).into_pyarray(py)
+    fn action_low<'py>(
+        slf: &Bound<'py, Self>,
+        py: Python<'py>,
+    ) -> PyResult<Bound<'py, PyArray1<f32>>> {
+        call(slf, "action_low", |this| {
+            Ok(to_f32(this.vec.env(0).action_space().low()).into_pyarray(py))
+        })
     }
 
     /// The action space's upper bounds (float32).
-    fn action_high<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f32>> {
-        to_f32(self.vec.env(0).action_space().high()).into_pyarray(py)
+    fn action_high<'py>(
+        slf: &Bound<'py, Self>,
+        py: Python<'py>,
+    ) -> PyResult<Bound<'py, PyArray1<f32>>> {
+        call(slf, "action_high", |this| {
+            Ok(to_f32(this.vec.env(0).action_space().high()).into_pyarray(py))
+        })
     }
 
     /// t_max (`task.max_time_steps`).
     #[getter]
-    fn max_time_steps(&self) -> u64 {
-        self.vec.env(0).config().task.max_time_steps
+    fn max_time_steps<'py>(slf: &Bound<'py, Self>) -> PyResult<u64> {
+        call(slf, "max_time_steps", |this| {
+            Ok(this.vec.env(0).config().task.max_time_steps)
+        })
     }
 
     /// Δt_env (s).
     #[getter]
-    fn env_dt(&self) -> f64 {
-        self.vec.env(0).env_dt()
+    fn env_dt<'py>(slf: &Bound<'py, Self>) -> PyResult<f64> {
+        call(slf, "env_dt", |this| Ok(this.vec.env(0).env_dt()))
     }
 
     /// The action mode.
     #[getter]
-    fn action_mode(&self) -> &'static str {
-        config::action_mode_name(self.vec.env(0).config().action.mode)
+    fn action_mode<'py>(slf: &Bound<'py, Self>) -> PyResult<&'static str> {
+        call(slf, "action_mode", |this| {
+            Ok(config::action_mode_name(
+                this.vec.env(0).config().action.mode,
+            ))
+        })
     }
 
     /// The autoreset mode (`next_step`, `same_step` or `disabled`).
     #[getter]
-    fn autoreset_mode(&self) -> &'static str {
-        match self.vec.autoreset() {
-            AutoReset::NextStep => "next_step",
-            AutoReset::SameStep => "same_step",
-            AutoReset::Disabled => "disabled",
-        }
+    fn autoreset_mode<'py>(slf: &Bound<'py, Self>) -> PyResult<&'static str> {
+        call(slf, "autoreset_mode", |this| {
+            Ok(match this.vec.autoreset() {
+                AutoReset::NextStep => "next_step",
+                AutoReset::SameStep => "same_step",
+                AutoReset::Disabled => "disabled",
+            })
+        })
     }
 }

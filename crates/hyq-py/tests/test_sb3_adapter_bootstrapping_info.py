@@ -3,12 +3,9 @@ same-step resets, ``terminal_observation`` (the final observation) and
 ``TimeLimit.truncated`` (timeout and not terminated) in the ended env's info, seeds
 ``seed + i``, float32 rewards and bool dones.
 
-Stable-Baselines3 cannot be imported without PyTorch (a multi-gigabyte install), so these
-tests put a stand-in for ``stable_baselines3.common.vec_env.VecEnv`` in ``sys.modules``: it
-reproduces the parts of SB3 2.9.2's base class the adapter relies on (the constructor's
-attributes and ``render_mode`` lookup, ``seed``, ``_reset_seeds``, ``_reset_options``,
-``step``). The adapter's own logic is what is tested; running it under the real base class
-is left to ``examples/train_sb3_ppo.py``.
+The adapter runs on SB3's real ``VecEnv`` base class and is compared with SB3's real
+``DummyVecEnv``, both loaded from the pinned SB3 wheel without PyTorch (see
+``sb3_without_torch``).
 """
 
 from __future__ import annotations
@@ -16,58 +13,31 @@ from __future__ import annotations
 import importlib
 import sys
 import types
-from typing import Any
 
 import numpy as np
 import pytest
 
 import hyq
-
-
-class FakeVecEnv:
-    """The parts of ``stable_baselines3.common.vec_env.VecEnv`` (2.9.2) the adapter uses."""
-
-    def __init__(self, num_envs: int, observation_space: Any, action_space: Any) -> None:
-        self.num_envs = num_envs
-        self.observation_space = observation_space
-        self.action_space = action_space
-        self.reset_infos: list[dict[str, Any]] = [{} for _ in range(num_envs)]
-        self._seeds: list[int | None] = [None for _ in range(num_envs)]
-        self._options: list[dict[str, Any]] = [{} for _ in range(num_envs)]
-        self.render_mode = self.get_attr("render_mode")[0]
-
-    def _reset_seeds(self) -> None:
-        self._seeds = [None for _ in range(self.num_envs)]
-
-    def _reset_options(self) -> None:
-        self._options = [{} for _ in range(self.num_envs)]
-
-    def seed(self, seed: int | None = None) -> list[int | None]:
-        self._seeds = [seed + i for i in range(self.num_envs)]
-        return self._seeds
-
-    def step(self, actions: np.ndarray):
-        self.step_async(actions)
-        return self.step_wait()
+from sb3_without_torch import load
 
 
 @pytest.fixture()
-def sb3(monkeypatch: pytest.MonkeyPatch) -> types.ModuleType:
-    names = ["stable_baselines3", "stable_baselines3.common", "stable_baselines3.common.vec_env"]
-    for name in names:
-        monkeypatch.setitem(sys.modules, name, types.ModuleType(name))
-    sys.modules["stable_baselines3.common.vec_env"].VecEnv = FakeVecEnv
+def sb3(monkeypatch: pytest.MonkeyPatch) -> types.SimpleNamespace:
+    real = load(monkeypatch)
     monkeypatch.delitem(sys.modules, "hyq.sb3", raising=False)
-    return importlib.import_module("hyq.sb3")
+    module = importlib.import_module("hyq.sb3")
+    # hyq.sb3 was imported against this test's SB3 modules: forget it afterwards.
+    monkeypatch.setitem(sys.modules, "hyq.sb3", module)
+    return types.SimpleNamespace(HyQVecEnv=module.HyQVecEnv, **vars(real))
 
 
 N = 2
 CONFIG = dict(max_time_steps=6, goal={"mode": "random"})
 
 
-def test_adapter_matches_dummy_vec_env_semantics(sb3: types.ModuleType) -> None:
+def test_adapter_matches_dummy_vec_env_semantics(sb3: types.SimpleNamespace) -> None:
     venv = sb3.HyQVecEnv(num_envs=N, seed=3, **CONFIG)
-    assert isinstance(venv, FakeVecEnv)
+    assert isinstance(venv, sb3.VecEnv)
     singles = [hyq.HyQEnv(**CONFIG) for _ in range(N)]
     obs = venv.reset()
     for i, env in enumerate(singles):
@@ -97,7 +67,7 @@ def test_adapter_matches_dummy_vec_env_semantics(sb3: types.ModuleType) -> None:
     assert venv.env_is_wrapped(object) == [False, False]
 
 
-def test_seeds_are_used_once(sb3: types.ModuleType) -> None:
+def test_seeds_are_used_once(sb3: types.SimpleNamespace) -> None:
     venv = sb3.HyQVecEnv(num_envs=N, **CONFIG)
     venv.seed(10)
     first = venv.reset()
@@ -108,3 +78,26 @@ def test_seeds_are_used_once(sb3: types.ModuleType) -> None:
     venv.reset()
     assert not all(np.array_equal(g, venv.reset_infos[i]["goal"]) for i, g in enumerate(goals))
     assert second.shape == first.shape
+
+
+def test_adapter_gives_what_sb3s_dummy_vec_env_gives(sb3: types.SimpleNamespace) -> None:
+    venv = sb3.HyQVecEnv(num_envs=N, **CONFIG)
+    dummy = sb3.DummyVecEnv([lambda: hyq.HyQEnv(**CONFIG) for _ in range(N)])
+    venv.seed(7)
+    dummy.seed(7)
+    np.testing.assert_array_equal(venv.reset(), dummy.reset())
+    rng = np.random.default_rng(1)
+    for _ in range(20):
+        actions = rng.uniform(-1, 1, size=(N, 12)).astype(np.float32)
+        obs, rewards, dones, infos = venv.step(actions)
+        d_obs, d_rewards, d_dones, d_infos = dummy.step(actions)
+        np.testing.assert_array_equal(obs, d_obs)
+        np.testing.assert_array_equal(rewards, d_rewards)
+        np.testing.assert_array_equal(dones, d_dones)
+        for info, d_info in zip(infos, d_infos):
+            assert info["TimeLimit.truncated"] == d_info.get("TimeLimit.truncated", False)
+            assert ("terminal_observation" in info) == ("terminal_observation" in d_info)
+            if "terminal_observation" in info:
+                np.testing.assert_array_equal(
+                    info["terminal_observation"], d_info["terminal_observation"]
+                )

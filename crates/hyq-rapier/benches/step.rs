@@ -4,6 +4,7 @@
 use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
+use hyq_physics::conformance::fixtures::Rng;
 use hyq_physics::{Actuator, Backend, PdScratch, PhysicsParams, bundled, pd_substep};
 use hyq_rapier::{RapierBackend, RapierOptions};
 
@@ -11,18 +12,6 @@ fn backend(options: &RapierOptions) -> RapierBackend {
     // Benchmarks may panic on setup failure: there is no caller to report to.
     #[allow(clippy::expect_used)]
     RapierBackend::build(bundled::hyq(), &PhysicsParams::default(), options).expect("builds")
-}
-
-/// A small deterministic generator so every run draws the same targets.
-struct Rng(u64);
-
-impl Rng {
-    fn unit(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
 }
 
 #[allow(clippy::expect_used)]
@@ -52,7 +41,7 @@ fn substep(c: &mut Criterion) {
         // Random targets inside the limits, redrawn every 10 sub-steps (one env step), reset
         // to the spawn state when the trunk touches the ground (rare; included).
         let mut b = backend(&options);
-        let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
+        let mut rng = Rng::new(0);
         let mut targets = standing.clone();
         let mut contacts = vec![false; model.tracked().len()];
         let trunk = model.trunk_tracked_index();
@@ -63,9 +52,7 @@ fn substep(c: &mut Criterion) {
             |bench| {
                 bench.iter(|| {
                     if n.is_multiple_of(10) {
-                        for (t, j) in targets.iter_mut().zip(model.joints()) {
-                            *t = j.lower + (j.upper - j.lower) * rng.unit();
-                        }
+                        rng.fill_joint_angles(&model, 0.0, &mut targets);
                     }
                     n += 1;
                     pd_substep(&mut b, &act, &targets, &mut scratch).expect("steps");

@@ -18,20 +18,9 @@ use std::collections::hash_map::DefaultHasher;
 use std::hash::Hasher;
 use std::time::Instant;
 
+use hyq_physics::conformance::fixtures::Rng;
 use hyq_physics::{Actuator, Backend, PdScratch, PhysicsError, PhysicsParams, bundled, pd_substep};
 use hyq_rapier::{RapierBackend, RapierOptions};
-
-/// The same xorshift generator as the criterion benchmark, so both draw the same targets.
-struct Rng(u64);
-
-impl Rng {
-    fn unit(&mut self) -> f64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
@@ -60,7 +49,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut contacts = vec![false; model.tracked().len()];
     let trunk = model.trunk_tracked_index();
     let spawn = model.spawn_state();
-    let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
+    // The criterion benchmark's stream, so both draw the same targets.
+    let mut rng = Rng::new(0);
     if !random {
         for _ in 0..1000 {
             pd_substep(&mut b, &act, &standing, &mut scratch)?;
@@ -74,9 +64,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let start = Instant::now();
     for n in 0..steps {
         if random && n % 10 == 0 {
-            for (t, j) in targets.iter_mut().zip(model.joints()) {
-                *t = j.lower + (j.upper - j.lower) * rng.unit();
-            }
+            rng.fill_joint_angles(&model, 0.0, &mut targets);
         }
         pd_substep(&mut b, &act, &targets, &mut scratch)?;
         b.contacts(&mut contacts);

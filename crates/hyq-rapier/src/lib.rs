@@ -51,116 +51,25 @@
 
 use std::sync::Arc;
 
-use hyq_physics::na::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3};
-use hyq_physics::{
-    Backend, PhysicsError, PhysicsParams, RobotModel, RobotState, Shape, TrunkState,
-};
+use hyq_physics::na::{Isometry3, Translation3, Vector3};
+use hyq_physics::{Backend, PhysicsError, PhysicsParams, RobotModel, RobotState, TrunkState};
 use rapier3d::prelude::*;
-use serde::{Deserialize, Serialize};
 
+mod build;
+mod convert;
 #[cfg(test)]
 mod limit_gating;
+mod options;
+
+use build::Sets;
+use convert::{from_pose, to_pose};
+pub use options::RapierOptions;
 
 /// Distance (rad) beyond `|q̇|·dt` within which a joint's limit constraint is kept on (see
 /// `RapierBackend::gate_limit_constraints`): it covers what the joint's speed can change within
 /// one step. Under full torque into the limits, the farthest a joint came from to cross its
 /// limit within one step was 0.006 rad beyond `|q̇|·dt`.
 const LIMIT_REACH_MARGIN: Real = 0.05;
-
-/// rapier-specific settings (`[physics.rapier]` in an environment's TOML).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct RapierOptions {
-    /// Internal solver substeps per physics step (rapier's `num_solver_iterations`)
-    /// (default: 2; rapier's own default is 4). The main cost knob: a HyQ sub-step costs about
-    /// 310, 480 and 820 thousand instructions at 1, 2 and 4 (random targets; see the crate's
-    /// README). The conformance suite passes at all three; fewer make joint limits softer under
-    /// full torque (worst overshoot 0.087 rad at 1, 0.032 at 2, 0.015 at 4) and free-floating
-    /// momentum drift larger (6.4, 1.8, 0.7 mm in a violent second). Standing is the same at 1
-    /// to 4.
-    pub solver_iterations: usize,
-    /// Natural frequency (Hz) of the ground-contact constraint (rapier's
-    /// `static_contact_softness`) (default: 240; rapier's own default is 60). A standing HyQ's
-    /// feet sink 0.2–0.3 mm at 240 Hz and 3–4.5 mm at 60 Hz; at 240 Hz its trunk settles at
-    /// the height DART's rigid contacts give (0.5895 m against 0.5897 m), so the engines
-    /// compare.
-    pub ground_contact_frequency: f64,
-    /// Damping ratio of the ground-contact constraint (default: 10, rapier's).
-    pub ground_contact_damping_ratio: f64,
-    /// Distance (m) within which rapier creates speculative contacts
-    /// (`normalized_prediction_distance`) (default: 0.02, rapier's). They keep fast feet from
-    /// tunnelling; they never count as contact flags.
-    pub prediction_distance: f64,
-}
-
-impl Default for RapierOptions {
-    fn default() -> Self {
-        Self {
-            solver_iterations: 2,
-            ground_contact_frequency: 240.0,
-            ground_contact_damping_ratio: 10.0,
-            prediction_distance: 0.02,
-        }
-    }
-}
-
-impl RapierOptions {
-    /// Checks every field; the error names the first invalid one.
-    pub fn validate(&self) -> Result<(), PhysicsError> {
-        let bad = |field: &'static str, value: String, reason: &'static str| {
-            Err(PhysicsError::InvalidParam {
-                field,
-                value,
-                reason,
-            })
-        };
-        if !(1..=64).contains(&self.solver_iterations) {
-            return bad(
-                "rapier.solver_iterations",
-                self.solver_iterations.to_string(),
-                "must be in 1..=64",
-            );
-        }
-        if !(self.ground_contact_frequency.is_finite() && self.ground_contact_frequency > 0.0) {
-            return bad(
-                "rapier.ground_contact_frequency",
-                self.ground_contact_frequency.to_string(),
-                "must be finite and positive (Hz)",
-            );
-        }
-        if !(self.ground_contact_damping_ratio.is_finite()
-            && self.ground_contact_damping_ratio > 0.0)
-        {
-            return bad(
-                "rapier.ground_contact_damping_ratio",
-                self.ground_contact_damping_ratio.to_string(),
-                "must be finite and positive",
-            );
-        }
-        if !(self.prediction_distance.is_finite() && self.prediction_distance >= 0.0) {
-            return bad(
-                "rapier.prediction_distance",
-                self.prediction_distance.to_string(),
-                "must be finite and non-negative (m)",
-            );
-        }
-        Ok(())
-    }
-}
-
-/// Everything rapier simulates: cloned whole to snapshot and restore a world.
-#[derive(Clone)]
-struct Sets {
-    bodies: RigidBodySet,
-    colliders: ColliderSet,
-    impulse_joints: ImpulseJointSet,
-    multibody_joints: MultibodyJointSet,
-    islands: IslandManager,
-    broad_phase: BroadPhaseBvh,
-    narrow_phase: NarrowPhase,
-    ccd: CCDSolver,
-    soft_bodies: SoftBodySet,
-}
 
 /// HyQ (or any [`RobotModel`]) in rapier; see the crate documentation.
 pub struct RapierBackend {
@@ -207,48 +116,6 @@ impl std::fmt::Debug for RapierBackend {
             .field("params", &self.params)
             .field("options", &self.options)
             .finish_non_exhaustive()
-    }
-}
-
-fn to_vec(v: &Vector3<f64>) -> Vector {
-    Vector::new(v.x as Real, v.y as Real, v.z as Real)
-}
-
-fn from_vec(v: Vector) -> Vector3<f64> {
-    Vector3::new(f64::from(v.x), f64::from(v.y), f64::from(v.z))
-}
-
-fn to_pose(p: &Isometry3<f64>) -> Pose {
-    let q = p.rotation.quaternion();
-    let rotation = Rotation::from_xyzw(q.i as Real, q.j as Real, q.k as Real, q.w as Real);
-    Pose::from_parts(to_vec(&p.translation.vector), rotation.normalize())
-}
-
-fn from_pose(p: &Pose) -> Isometry3<f64> {
-    let r = p.rotation;
-    Isometry3::from_parts(
-        Translation3::from(from_vec(p.translation)),
-        UnitQuaternion::new_normalize(Quaternion::new(
-            f64::from(r.w),
-            f64::from(r.x),
-            f64::from(r.y),
-            f64::from(r.z),
-        )),
-    )
-}
-
-/// The shortest rotation taking the x axis onto `axis` (rapier's revolute DoF is about x).
-fn x_onto(axis: &Vector3<f64>) -> UnitQuaternion<f64> {
-    UnitQuaternion::rotation_between(&Vector3::x(), axis).unwrap_or_else(|| {
-        // `axis` is -x: any half turn about an axis orthogonal to x.
-        UnitQuaternion::from_axis_angle(&Vector3::z_axis(), std::f64::consts::PI)
-    })
-}
-
-fn backend_error(message: String) -> PhysicsError {
-    PhysicsError::Backend {
-        backend: RapierBackend::NAME,
-        message,
     }
 }
 
@@ -344,240 +211,47 @@ impl Backend for RapierBackend {
         params.validate()?;
         options.validate()?;
         let friction = params.ground_friction as Real;
-        let mut world = Sets {
-            bodies: RigidBodySet::new(),
-            colliders: ColliderSet::new(),
-            impulse_joints: ImpulseJointSet::new(),
-            multibody_joints: MultibodyJointSet::new(),
-            islands: IslandManager::new(),
-            broad_phase: BroadPhaseBvh::new(),
-            narrow_phase: NarrowPhase::new(),
-            ccd: CCDSolver::new(),
-            soft_bodies: SoftBodySet::new(),
-        };
-        let robot_groups =
-            InteractionGroups::new(Group::GROUP_1, Group::GROUP_2, InteractionTestMode::And);
-        let ground_groups =
-            InteractionGroups::new(Group::GROUP_2, Group::GROUP_1, InteractionTestMode::And);
-
-        let ground_body = world.bodies.insert(RigidBodyBuilder::fixed());
-        let ground = world.colliders.insert_with_parent(
-            ColliderBuilder::halfspace(rapier3d::na::Unit::new_unchecked(Vector::Z))
-                .friction(friction)
-                .restitution(0.0)
-                .collision_groups(ground_groups),
-            ground_body,
-            &mut world.bodies,
-        );
-
-        // Bodies at the spawn configuration (the multibody overwrites their poses from its
-        // coordinates anyway), the trunk's at its centre of mass.
-        let links = model.links();
-        let spawn = model.spawn_state();
-        let mut link_poses = vec![Isometry3::identity(); links.len()];
-        model.link_poses(&spawn.trunk.pose, &spawn.q, &mut link_poses)?;
-        let trunk_com = links[0].com;
-        let shift = |i: usize| {
-            if i == 0 {
-                Isometry3::from(Translation3::from(trunk_com))
-            } else {
-                Isometry3::identity()
-            }
-        };
-        let mut bodies = Vec::with_capacity(links.len());
-        let mut collider_of: Vec<Vec<ColliderHandle>> = Vec::with_capacity(links.len());
-        for (i, link) in links.iter().enumerate() {
-            let com = if i == 0 { Vector3::zeros() } else { link.com };
-            let inertia = Matrix::from_cols(
-                to_vec(&link.inertia.column(0).into_owned()),
-                to_vec(&link.inertia.column(1).into_owned()),
-                to_vec(&link.inertia.column(2).into_owned()),
-            );
-            let mass =
-                MassProperties::with_inertia_matrix(to_vec(&com), link.mass as Real, inertia);
-            let handle = world.bodies.insert(
-                RigidBodyBuilder::dynamic()
-                    .pose(to_pose(&(link_poses[i] * shift(i))))
-                    .additional_mass_properties(mass)
-                    .can_sleep(false)
-                    .ccd_enabled(false),
-            );
-            let mut handles = Vec::with_capacity(link.collisions.len());
-            for c in &link.collisions {
-                let in_body = shift(i).inverse() * c.origin;
-                let builder = match c.shape {
-                    Shape::Box { half_extents } => ColliderBuilder::cuboid(
-                        half_extents.x as Real,
-                        half_extents.y as Real,
-                        half_extents.z as Real,
-                    )
-                    .position(to_pose(&in_body)),
-                    Shape::Sphere { radius } => {
-                        ColliderBuilder::ball(radius as Real).position(to_pose(&in_body))
-                    }
-                    Shape::Capsule {
-                        radius,
-                        half_length,
-                    } => ColliderBuilder::capsule_z(half_length as Real, radius as Real)
-                        .position(to_pose(&in_body)),
-                    Shape::Cylinder {
-                        radius,
-                        half_length,
-                    } => {
-                        // rapier's cylinder lies along y; turn y onto the model's z.
-                        let y_to_z = UnitQuaternion::from_axis_angle(
-                            &Vector3::x_axis(),
-                            std::f64::consts::FRAC_PI_2,
-                        );
-                        ColliderBuilder::cylinder(half_length as Real, radius as Real)
-                            .position(to_pose(&(in_body * y_to_z)))
-                    }
-                    ref other => {
-                        return Err(backend_error(format!(
-                            "link {:?}: unsupported shape {other:?}",
-                            link.name
-                        )));
-                    }
-                };
-                handles.push(
-                    world.colliders.insert_with_parent(
-                        builder
-                            .density(0.0)
-                            .friction(friction)
-                            .restitution(0.0)
-                            .collision_groups(robot_groups),
-                        handle,
-                        &mut world.bodies,
-                    ),
-                );
-            }
-            // Mass properties are otherwise only folded in at the first step; the pristine
-            // world and the multibody's kinematics need them now.
-            world.bodies[handle].recompute_mass_properties_from_colliders(&world.colliders);
-            bodies.push(handle);
-            collider_of.push(handles);
-        }
-
-        // Joints, parents before children. Body frame = link frame · shift, so the joint frame
-        // on the parent is shift⁻¹ · origin · (x onto axis), and on the child (x onto axis).
-        let joints = model.joints();
-        let mut joint_axes = vec![Vector::ZERO; joints.len()];
-        for (i, link) in links.iter().enumerate().skip(1) {
-            let Some(j) = link.parent_joint else {
-                return Err(backend_error(format!(
-                    "link {:?} has no parent joint",
-                    link.name
-                )));
-            };
-            let joint = &joints[j];
-            let a = x_onto(&joint.axis);
-            let frame1 = shift(joint.parent).inverse() * joint.origin * a;
-            let frame2 = shift(i).inverse() * Isometry3::from_parts(Translation3::identity(), a);
-            let data = GenericJointBuilder::new(JointAxesMask::LOCKED_REVOLUTE_AXES)
-                .local_frame1(to_pose(&frame1))
-                .local_frame2(to_pose(&frame2))
-                .limits(JointAxis::AngX, [joint.lower as Real, joint.upper as Real])
-                .contacts_enabled(false)
-                .build();
-            world
-                .multibody_joints
-                .insert(bodies[joint.parent], bodies[i], data, true)
-                .ok_or_else(|| {
-                    backend_error(format!("rapier refused joint {:?}", joint.urdf_name))
-                })?;
-            joint_axes[j] = to_vec(&(joint.origin.rotation * joint.axis.into_inner()));
-        }
-
-        let root_link = world
-            .multibody_joints
-            .rigid_body_link(bodies[0])
-            .ok_or_else(|| backend_error("the trunk is not in a multibody".into()))?;
-        let multibody = root_link.multibody;
-        let mut joint_links = vec![0; joints.len()];
-        for (j, joint) in joints.iter().enumerate() {
-            let link = world
-                .multibody_joints
-                .rigid_body_link(bodies[joint.child])
-                .ok_or_else(|| {
-                    backend_error(format!(
-                        "joint {:?} is not in the multibody",
-                        joint.urdf_name
-                    ))
-                })?;
-            if link.multibody != multibody {
-                return Err(backend_error(format!(
-                    "joint {:?} is in another multibody",
-                    joint.urdf_name
-                )));
-            }
-            joint_links[j] = link.id;
-        }
-        let mb = world
-            .multibody_joints
-            .get_multibody_mut(multibody)
-            .ok_or_else(|| backend_error("the robot's multibody vanished".into()))?;
-        if mb.root().rigid_body_handle() != bodies[0] {
-            return Err(backend_error(
-                "the trunk is not the multibody's root".into(),
-            ));
-        }
-        mb.set_self_contacts_enabled(false);
-        let mut joint_dofs = vec![0; joints.len()];
-        for (j, &id) in joint_links.iter().enumerate() {
-            let link = mb
-                .link(id)
-                .ok_or_else(|| backend_error(format!("multibody link {id} missing")))?;
-            joint_dofs[j] = link.assembly_id();
-        }
-        // Joint damping from the model; none on the free root (rapier puts 0.1 on its rotation).
-        mb.damping_mut().fill(0.0);
-        for (j, &dof) in joint_dofs.iter().enumerate() {
-            mb.damping_mut()[dof] = joints[j].damping as Real;
-        }
-
+        let mut world = Sets::new();
+        let ground = build::add_ground(&mut world, friction);
+        let bodies = build::add_bodies(&mut world, &model, friction)?;
+        let joint_axes = build::add_joints(&mut world, &model, &bodies.handles)?;
+        let dofs = build::locate_dofs(&mut world, &model, &bodies.handles)?;
         let tracked_colliders = model
             .tracked()
             .iter()
-            .map(|t| t.shapes.iter().map(|&s| collider_of[t.link][s]).collect())
+            .map(|t| {
+                t.shapes
+                    .iter()
+                    .map(|&s| bodies.colliders[t.link][s])
+                    .collect()
+            })
             .collect();
-
-        let integration = IntegrationParameters {
-            dt: params.dt as Real,
-            num_solver_iterations: options.solver_iterations,
-            static_contact_softness: SpringCoefficients::new(
-                options.ground_contact_frequency as Real,
-                options.ground_contact_damping_ratio as Real,
-            ),
-            normalized_prediction_distance: options.prediction_distance as Real,
-            contact_recycling: false,
-            max_ccd_substeps: 0,
-            ..IntegrationParameters::default()
-        };
         let gravity = Vector::new(
             params.gravity[0] as Real,
             params.gravity[1] as Real,
             params.gravity[2] as Real,
         );
-        let n = joints.len();
+        let joints = model.joints();
+        let spawn = model.spawn_state();
         let mut backend = Self {
             pristine: world.clone(),
             world,
             model: Arc::clone(&model),
             params: params.clone(),
             options: options.clone(),
-            integration,
+            integration: build::integration_parameters(params, options),
             gravity,
             pipeline: PhysicsPipeline::new(),
-            bodies,
-            multibody,
-            joint_links,
-            joint_dofs,
+            body_torques: vec![Vector::ZERO; bodies.handles.len()],
+            bodies: bodies.handles,
+            multibody: dofs.multibody,
+            joint_links: dofs.joint_links,
+            joint_dofs: dofs.joint_dofs,
             joint_axes,
             tracked_colliders,
             ground,
-            trunk_com,
-            torques: vec![0.0; n],
-            body_torques: vec![Vector::ZERO; links.len()],
+            trunk_com: model.links()[0].com,
+            torques: vec![0.0; joints.len()],
             contacts: vec![false; model.tracked().len()],
             joint_limits: joints
                 .iter()

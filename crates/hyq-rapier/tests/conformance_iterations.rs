@@ -3,21 +3,27 @@
 //! changes rapier's internal substeps, so every invariant must hold at each documented setting.
 
 mod one_iteration {
+    use hyq_physics::conformance::fixtures::Robot;
+
     hyq_physics::conformance_tests!(
         hyq_rapier::RapierBackend,
         hyq_rapier::RapierOptions {
             solver_iterations: 1,
             ..Default::default()
-        }
+        },
+        Robot::bundled(hyq_physics::bundled::DEFAULT)
     );
 }
 
 mod four_iterations {
+    use hyq_physics::conformance::fixtures::Robot;
+
     hyq_physics::conformance_tests!(
         hyq_rapier::RapierBackend,
         hyq_rapier::RapierOptions {
             solver_iterations: 4,
             ..Default::default()
-        }
+        },
+        Robot::bundled(hyq_physics::bundled::DEFAULT)
     );
 }

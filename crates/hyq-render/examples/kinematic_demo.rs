@@ -2,7 +2,7 @@
 //! records as the environment would (rewards from `hyq-spec`'s rules) and plots them.
 //!
 //! ```sh
-//! cargo run --release -p hyq-render --example kinematic_demo -- /tmp/hyq-render-demo
+//! cargo run --release -p hyq-render --example kinematic_demo -- target/hyq-render-demo
 //! ```
 //!
 //! Writes `trot.gif`, `frames/frame_*.png` (every 20th frame), `records.jsonl` and
@@ -142,7 +142,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         k_exp: config.exp_rew_scaling,
         env_dt_s: Some(DT),
     };
-    let plots = plot_jsonl(out.join("records.jsonl"), &options, out.join("plots"))?;
+    let plots = plot_jsonl(out.join("records.jsonl"), &options, out.join("plots"))?.plots;
     println!(
         "wrote {} and {} plot pairs",
         out.join("trot.gif").display(),

@@ -1,6 +1,6 @@
 //! A pinhole camera orbiting a target point: world (z up) to pixel coordinates.
 //!
-//! The camera sits at `distance_m` from its target, `elevation_deg` above the ground plane
+//! The camera sits at `distance_m` from its target (by default scaled to the robot's size), `elevation_deg` above the ground plane
 //! through the target and at `azimuth_deg` around the vertical (0° on +x, 90° on +y), and
 //! looks at the target with the world's z axis up. A point p maps to the camera frame
 //! (x right, y up, z along the view direction) and then to pixels:
@@ -17,11 +17,21 @@ use crate::error::RenderError;
 /// The distance (m) in front of the camera below which geometry is clipped away.
 pub const NEAR_PLANE_M: f64 = 0.05;
 
+/// The camera distance (m) that frames HyQ, a robot standing [`REFERENCE_HEIGHT_M`] tall.
+pub const REFERENCE_DISTANCE_M: f64 = 3.2;
+
+/// The standing height (m) of the robot the drawing sizes were chosen on (HyQ's trunk frame,
+/// standing): a renderer scales its camera distance and markers by the robot's standing height
+/// over this.
+pub const REFERENCE_HEIGHT_M: f64 = 0.5895;
+
 /// Where the camera sits relative to its target, and how wide it sees.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CameraConfig {
-    /// Distance from the target (m) (default: 3.2).
-    pub distance_m: f64,
+    /// Distance from the target (m) (default: unset: [`REFERENCE_DISTANCE_M`] scaled by the
+    /// robot's standing height over [`REFERENCE_HEIGHT_M`], so every robot fills the frame as
+    /// HyQ does at 3.2 m; a [`Camera`] built from an unset distance uses 3.2 m).
+    pub distance_m: Option<f64>,
     /// Angle above the horizontal plane through the target, exclusive of 0° and 90° (default:
     /// 22°).
     pub elevation_deg: f64,
@@ -36,7 +46,7 @@ pub struct CameraConfig {
 impl Default for CameraConfig {
     fn default() -> Self {
         Self {
-            distance_m: 3.2,
+            distance_m: None,
             elevation_deg: 22.0,
             azimuth_deg: -140.0,
             fov_y_deg: 45.0,
@@ -58,12 +68,14 @@ impl CameraConfig {
                 })
             }
         };
-        check(
-            "camera.distance_m",
-            self.distance_m,
-            self.distance_m > NEAR_PLANE_M,
-            "must be finite and above the near plane (0.05 m)",
-        )?;
+        if let Some(d) = self.distance_m {
+            check(
+                "camera.distance_m",
+                d,
+                d > NEAR_PLANE_M,
+                "must be finite and above the near plane (0.05 m)",
+            )?;
+        }
         check(
             "camera.elevation_deg",
             self.elevation_deg,
@@ -106,7 +118,7 @@ impl Camera {
             config.azimuth_deg.to_radians(),
         );
         let offset = Vector3::new(el.cos() * az.cos(), el.cos() * az.sin(), el.sin());
-        let eye = target + offset * config.distance_m;
+        let eye = target + offset * config.distance_m.unwrap_or(REFERENCE_DISTANCE_M);
         let forward = -offset;
         // The elevation is strictly between 0° and 90°, so the view direction is never
         // vertical and the cross product with z is never zero.

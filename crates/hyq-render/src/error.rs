@@ -149,6 +149,16 @@ pub enum PlotError {
         #[source]
         source: serde_json::Error,
     },
+    /// A line of a JSONL records file is longer than any step record.
+    #[error("{origin} line {line}: longer than {} MiB, which no step record is (is it the right file?)", limit >> 20)]
+    LineTooLong {
+        /// The file (or `"input"`).
+        origin: String,
+        /// The 1-based line number.
+        line: usize,
+        /// The limit (bytes).
+        limit: usize,
+    },
     /// An episode (or a whole file) holds no step.
     #[error("{what} holds no step to plot")]
     Empty {

@@ -54,7 +54,7 @@
 //!
 //! // The run's exp_rew_scaling (None when r_e was off) and env step (s).
 //! let options = PlotOptions { k_exp: Some(5.0), env_dt_s: Some(0.01), ..PlotOptions::default() };
-//! let plots = plot_jsonl("episode.jsonl", &options, "plots/")?;
+//! let plots = plot_jsonl("episode.jsonl", &options, "plots/")?.plots;
 //! println!("{}", plots[0].rewards.display()); // plots/episode_001_rewards.png
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
@@ -99,15 +99,16 @@ mod scene;
 mod text;
 mod writer;
 
-pub use camera::{Camera, CameraConfig, NEAR_PLANE_M};
+pub use camera::{Camera, CameraConfig, NEAR_PLANE_M, REFERENCE_DISTANCE_M, REFERENCE_HEIGHT_M};
 pub use error::{PlotError, RenderError, WriteError};
 pub use frame::Frame;
 pub use plot::{
-    DISTANCE_PLOT_SIZE, EpisodePlots, PlotOptions, REWARD_PLOT_SIZE, plot_distance, plot_episode,
-    plot_jsonl, plot_reward_terms,
+    DISTANCE_PLOT_SIZE, EpisodePlots, JsonlPlots, PlotOptions, REWARD_PLOT_SIZE, plot_distance,
+    plot_episode, plot_jsonl, plot_records, plot_reward_terms,
 };
 pub use records::{
-    EpisodeSeries, RewardTerms, StepRecord, cumulative, parse_jsonl, read_jsonl, split_episodes,
+    EpisodeSeries, JsonlRecords, MAX_RECORD_LINE_BYTES, RewardTerms, StepRecord, cumulative,
+    parse_jsonl, read_jsonl, split_episodes,
 };
 pub use renderer::{MAX_SIDE_PX, MIN_SIDE_PX, RenderConfig, Renderer};
 pub use scene::{Overlay, RobotPose, Scene};

@@ -24,7 +24,7 @@ use plotters::style::FontStyle;
 
 use crate::error::PlotError;
 use crate::frame::Frame;
-use crate::records::{EpisodeSeries, cumulative, read_jsonl, split_episodes};
+use crate::records::{EpisodeSeries, StepRecord, cumulative, read_jsonl, split_episodes};
 use crate::text::{SANS, SANS_BOLD};
 use crate::writer::write_png;
 
@@ -144,17 +144,29 @@ fn render_png(
     Ok(())
 }
 
-/// The range of `values` (and of `also`), padded by 6 %, never empty.
+/// The largest magnitude an axis end may have: the span of two such ends and its padding stay
+/// finite (an axis reaching ±inf makes the plotting library loop forever). Values beyond it are
+/// drawn at the edge of the plot.
+const AXIS_LIMIT: f64 = f64::MAX / 4.0;
+
+/// The range of the finite `values` (and of `also`), padded by 6 %, never empty, each end
+/// within ±[`AXIS_LIMIT`].
 fn padded_range<'a>(values: impl IntoIterator<Item = &'a f64>, also: &'a [f64]) -> (f64, f64) {
     let (lo, hi) = values
         .into_iter()
         .chain(also)
+        .filter(|v| v.is_finite())
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
             (lo.min(v), hi.max(v))
         });
-    if !lo.is_finite() || !hi.is_finite() {
+    if lo > hi {
         return (-1.0, 1.0);
     }
+    let (lo, hi) = (
+        lo.clamp(-AXIS_LIMIT, AXIS_LIMIT),
+        hi.clamp(-AXIS_LIMIT, AXIS_LIMIT),
+    );
+    // At most 2 · AXIS_LIMIT, and so is each padded end: finite.
     let span = hi - lo;
     if span < 1e-9 {
         let d = lo.abs().max(1.0) * 0.1;
@@ -626,18 +638,33 @@ pub fn plot_episode(
 /// Reads a JSONL file of step records and writes both plots of every episode in it into
 /// `dir`, as `episode_001_rewards.png`, `episode_001_distance.png`, … (numbered by their
 /// order in the file). `options.title` prefixes each plot's title (`"<title>, episode 1"`);
-/// `options.k_exp` is the run's `exp_rew_scaling` and `options.env_dt_s` its env step.
+/// `options.k_exp` is the run's `exp_rew_scaling` and `options.env_dt_s` its env step. A torn
+/// last line is left out and reported (see [`crate::parse_jsonl`]).
 pub fn plot_jsonl(
     path: impl AsRef<Path>,
     options: &PlotOptions,
     dir: impl AsRef<Path>,
-) -> Result<Vec<EpisodePlots>, PlotError> {
+) -> Result<JsonlPlots, PlotError> {
     let path = path.as_ref();
-    let records = read_jsonl(path)?;
-    let episodes = split_episodes(&records);
+    let read = read_jsonl(path)?;
+    plot_records(&read.records, &path.display().to_string(), options, dir).map(|plots| JsonlPlots {
+        plots,
+        torn_last_line: read.torn_last_line,
+    })
+}
+
+/// Writes both plots of every episode in `records` into `dir`, as [`plot_jsonl`] does for a
+/// file; `origin` names the records in errors.
+pub fn plot_records(
+    records: &[StepRecord],
+    origin: &str,
+    options: &PlotOptions,
+    dir: impl AsRef<Path>,
+) -> Result<Vec<EpisodePlots>, PlotError> {
+    let episodes = split_episodes(records);
     if episodes.is_empty() {
         return Err(PlotError::Empty {
-            what: path.display().to_string(),
+            what: origin.to_owned(),
         });
     }
     episodes
@@ -662,4 +689,36 @@ pub fn plot_jsonl(
             )
         })
         .collect()
+}
+
+/// What [`plot_jsonl`] wrote, and the torn last line it left out, if any.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct JsonlPlots {
+    /// Both plots of every episode, in the file's order.
+    pub plots: Vec<EpisodePlots>,
+    /// The 1-based number of a torn last line that was left out.
+    pub torn_last_line: Option<usize>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::padded_range;
+
+    #[test]
+    fn padded_ranges_stay_finite_with_a_finite_span() {
+        for values in [
+            vec![1e308, -1e308],
+            vec![f64::MAX, -f64::MAX, 0.0],
+            vec![f64::MAX],
+            vec![f64::INFINITY, 2.0, f64::NAN],
+            vec![],
+        ] {
+            let (lo, hi) = padded_range(&values, &[0.0]);
+            assert!(
+                lo.is_finite() && hi.is_finite() && (hi - lo).is_finite() && lo < hi,
+                "{values:?} gave [{lo}, {hi}]"
+            );
+        }
+        assert_eq!(padded_range(&[1.0, 3.0], &[]), (0.88, 3.12));
+    }
 }

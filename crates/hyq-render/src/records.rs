@@ -6,7 +6,7 @@
 //! reset, 1 for the first step), `reward` (the step's total reward),
 //! `terms` (`r_b`, `r_n`, `r_e`, `r_reach`, `m_yaw`, `m_pitch`, optional `m_height`,
 //! `joint_penalty`, `fall_penalty`: the spec's per-term breakdown, penalties as the positive
-//! amounts subtracted), `d_n` (D_n^t, `null` when K is too small to divide by) and
+//! amounts subtracted), `d_n` (D_n^t; `null` is read as unknown, as older records held it) and
 //! `distance_to_goal` (D^t, m), and `episode` (the episode's number; optional here). Other keys
 //! (`obs`, `action`, `goal`, …) are ignored, so the environment can log more without breaking
 //! the plots.
@@ -90,35 +90,88 @@ pub struct StepRecord {
     pub reward: f64,
     /// The step's reward terms.
     pub terms: RewardTerms,
-    /// D_n^t, the distance to the goal over the start's (`None` when K is too small).
+    /// D_n^t, the distance to the goal over the start's (`None` for a `null`, which older
+    /// records held when K was too small; records written now always hold a number).
     pub d_n: Option<f64>,
     /// D^t, the distance from the trunk to the goal (m).
     pub distance_to_goal: f64,
 }
 
-/// Parses JSONL step records, skipping blank lines; `origin` names the input in errors.
-pub fn parse_jsonl(reader: impl BufRead, origin: &str) -> Result<Vec<StepRecord>, PlotError> {
-    let mut records = Vec::new();
-    for (i, line) in reader.lines().enumerate() {
-        let line = line.map_err(|source| PlotError::Read {
-            path: origin.into(),
-            source,
-        })?;
-        if line.trim().is_empty() {
-            continue;
-        }
-        let record = serde_json::from_str(&line).map_err(|source| PlotError::Json {
-            origin: origin.to_owned(),
-            line: i + 1,
-            source,
-        })?;
-        records.push(record);
-    }
-    Ok(records)
+/// The longest line of a JSONL record file read (bytes): 1 MiB, several hundred times a step
+/// record, so that a wrong file (`/dev/zero`, a binary) is refused at once.
+pub const MAX_RECORD_LINE_BYTES: usize = 1 << 20;
+
+/// The records of a JSONL file, and the number of its last line if that line was left out
+/// because it is torn (see [`parse_jsonl`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct JsonlRecords {
+    /// Every whole record, in order.
+    pub records: Vec<StepRecord>,
+    /// The 1-based number of a torn last line that was left out, if there was one.
+    pub torn_last_line: Option<usize>,
 }
 
-/// Reads a JSONL file of step records.
-pub fn read_jsonl(path: impl AsRef<Path>) -> Result<Vec<StepRecord>, PlotError> {
+/// Parses JSONL step records, skipping blank lines; `origin` names the input in errors.
+///
+/// A last line that ends without a newline and stops in the middle of a record (what a run cut
+/// short by a full disk or a kill leaves) is left out and reported in
+/// [`JsonlRecords::torn_last_line`], so the whole lines before it can still be read. Any other
+/// bad line is an error naming it, and so is a line longer than [`MAX_RECORD_LINE_BYTES`]
+/// (which is not read further).
+pub fn parse_jsonl(mut reader: impl BufRead, origin: &str) -> Result<JsonlRecords, PlotError> {
+    use std::io::Read;
+    let mut records = Vec::new();
+    let mut line = Vec::new();
+    for number in 1.. {
+        line.clear();
+        let read = (&mut reader)
+            .take(MAX_RECORD_LINE_BYTES as u64 + 1)
+            .read_until(b'\n', &mut line)
+            .map_err(|source| PlotError::Read {
+                path: origin.into(),
+                source,
+            })?;
+        if read == 0 {
+            break;
+        }
+        let ended = line.last() == Some(&b'\n');
+        if !ended && line.len() > MAX_RECORD_LINE_BYTES {
+            return Err(PlotError::LineTooLong {
+                origin: origin.to_owned(),
+                line: number,
+                limit: MAX_RECORD_LINE_BYTES,
+            });
+        }
+        let text = String::from_utf8_lossy(&line);
+        if text.trim().is_empty() {
+            continue;
+        }
+        match serde_json::from_str(&text) {
+            Ok(record) => records.push(record),
+            // The input ends inside this record: a torn last line.
+            Err(e) if !ended && e.is_eof() => {
+                return Ok(JsonlRecords {
+                    records,
+                    torn_last_line: Some(number),
+                });
+            }
+            Err(source) => {
+                return Err(PlotError::Json {
+                    origin: origin.to_owned(),
+                    line: number,
+                    source,
+                });
+            }
+        }
+    }
+    Ok(JsonlRecords {
+        records,
+        torn_last_line: None,
+    })
+}
+
+/// Reads a JSONL file of step records (see [`parse_jsonl`]).
+pub fn read_jsonl(path: impl AsRef<Path>) -> Result<JsonlRecords, PlotError> {
     let path = path.as_ref();
     let file = std::fs::File::open(path).map_err(|source| PlotError::Read {
         path: path.to_owned(),

@@ -24,7 +24,7 @@ use tiny_skia::{
     Pixmap, Point, RadialGradient, Rect, Shader, SpreadMode, Stroke, StrokeDash, Transform,
 };
 
-use crate::camera::{Camera, CameraConfig, NEAR_PLANE_M};
+use crate::camera::{Camera, CameraConfig, NEAR_PLANE_M, REFERENCE_DISTANCE_M, REFERENCE_HEIGHT_M};
 use crate::error::RenderError;
 use crate::frame::Frame;
 use crate::geom::{clip_polygon_near, clip_segment_near, convex_hull, push_circle_points};
@@ -153,9 +153,11 @@ const GRID_HALF_M: f64 = 14.0;
 /// Fog: clear up to this horizontal distance from the camera (m), thick from the next one on.
 const FOG_CLEAR_M: f64 = 5.0;
 const FOG_THICK_M: f64 = 16.0;
-/// Radius (m) of the disc drawn on the ground under a foot in contact.
+/// Radius (m) of the disc drawn on the ground under a foot in contact, for a robot of the
+/// reference size (HyQ; see [`crate::camera::REFERENCE_HEIGHT_M`]), scaled for others.
 const CONTACT_DISC_M: f64 = 0.07;
-/// The goal marker: ring radius and ball radius (m), pole radius (m).
+/// The goal marker: ring radius and ball radius (m) for a robot of the reference size, scaled
+/// like [`CONTACT_DISC_M`]; pole radius (m).
 const GOAL_RING_M: f64 = 0.3;
 const GOAL_BALL_M: f64 = 0.06;
 const GOAL_POLE_M: f64 = 0.01;
@@ -228,6 +230,8 @@ const BOX_FACES: [([usize; 4], [f64; 3]); 6] = [
 pub struct Renderer {
     model: Arc<RobotModel>,
     config: RenderConfig,
+    /// The robot's size relative to the reference robot (HyQ: exactly 1).
+    scale: f64,
     parts: Vec<Part>,
     foot_names: Vec<String>,
     pixmap: Pixmap,
@@ -252,9 +256,19 @@ impl std::fmt::Debug for Renderer {
 }
 
 impl Renderer {
-    /// A renderer of `model` with `config` (validated here).
-    pub fn new(model: Arc<RobotModel>, config: RenderConfig) -> Result<Self, RenderError> {
+    /// A renderer of `model` with `config` (validated here). An unset camera distance becomes
+    /// the reference distance scaled to the robot (see [`CameraConfig::distance_m`]), and the
+    /// contact discs and the goal marker are scaled alike; [`Renderer::config`] gives the
+    /// distance used.
+    pub fn new(model: Arc<RobotModel>, mut config: RenderConfig) -> Result<Self, RenderError> {
         config.validate()?;
+        // HyQ's standing height is the reference, so its scale is exactly 1 and its frames
+        // are those drawn before the scaling existed. The ratio is checked finite and
+        // positive: the model's standing height is (the loader refuses other values).
+        let scale = model.standing_height() / REFERENCE_HEIGHT_M;
+        if config.camera.distance_m.is_none() {
+            config.camera.distance_m = Some(REFERENCE_DISTANCE_M * scale);
+        }
         // The size was just checked to be 16..=4096 on each side, which a pixmap accepts.
         let pixmap =
             Pixmap::new(config.width, config.height).ok_or(RenderError::InvalidConfig {
@@ -283,6 +297,7 @@ impl Renderer {
             line: String::with_capacity(64),
             model,
             config,
+            scale,
         })
     }
 
@@ -579,7 +594,7 @@ impl Renderer {
                     .translation
                     .vector;
                 self.hull.clear();
-                push_circle_points([p.x, p.y], CONTACT_DISC_M, 20, &mut self.hull);
+                push_circle_points([p.x, p.y], CONTACT_DISC_M * self.scale, 20, &mut self.hull);
                 self.push_ground_polygon(cam, &mut pb);
             }
         }
@@ -610,7 +625,12 @@ impl Renderer {
 
         let mut ring = PathBuilder::new();
         self.hull.clear();
-        push_circle_points([goal.x, goal.y], GOAL_RING_M, 48, &mut self.hull);
+        push_circle_points(
+            [goal.x, goal.y],
+            GOAL_RING_M * self.scale,
+            48,
+            &mut self.hull,
+        );
         self.push_ground_polygon(cam, &mut ring);
         if let Some(path) = ring.finish() {
             fill_solid(&mut self.pixmap, &path, GOAL.alpha(0.22));
@@ -685,7 +705,7 @@ impl Renderer {
                 ));
             }
             self.prims
-                .extend(sphere_prim(cam, g, GOAL_BALL_M, GOAL, 3.0));
+                .extend(sphere_prim(cam, g, GOAL_BALL_M * self.scale, GOAL, 3.0));
         }
         // Far first; an unstable sort allocates nothing and is deterministic for equal input.
         self.prims

@@ -136,7 +136,9 @@ fn jsonl_with_several_episodes_gives_one_plot_pair_each() {
         env_dt_s: Some(0.01),
         ..PlotOptions::default()
     };
-    let plots = plot_jsonl(&path, &options, dir.join("plots")).unwrap();
+    let plotted = plot_jsonl(&path, &options, dir.join("plots")).unwrap();
+    assert_eq!(plotted.torn_last_line, None);
+    let plots = plotted.plots;
     assert_eq!(plots.len(), 2);
     assert!(plots[1].rewards.ends_with("episode_002_rewards.png"));
     for p in &plots {
@@ -168,14 +170,16 @@ fn records_in_the_environments_schema_parse_with_extra_keys_ignored() {
     // `hyq-env`'s record (its `record` module): more keys than the plots need, `m_height` only
     // when the height penalty is on, `d_n` null when K is too small.
     let line = r#"{"episode":3,"t":1,"obs":[0.1,0.2],"action":[0.0],"joint_targets":[0.5],"reward":0.5,"terms":{"r_b":0.1,"r_n":0.2,"r_e":0.2,"r_reach":0.0,"m_yaw":1.0,"m_pitch":1.0,"joint_penalty":0.0,"fall_penalty":0.0},"yaw":0.0,"pitch":0.0,"distance_to_goal":4.9,"d_n":null,"goal":[5.0,0.0,0.6],"initial_position":[0.0,0.0,0.6],"terminated":false,"truncated":false,"reasons":[]}"#;
-    let records = parse_jsonl(line.as_bytes(), "input").unwrap();
+    let records = parse_jsonl(line.as_bytes(), "input").unwrap().records;
     assert_eq!(records.len(), 1);
     let r = &records[0];
     assert_eq!((r.episode, r.t, r.d_n), (Some(3), 1, None));
     assert_eq!(r.terms.m_height, 1.0);
     assert_eq!(r.terms.r_n, 0.2);
     let with_height = line.replace(r#""m_pitch":1.0,"#, r#""m_pitch":1.0,"m_height":0.5,"#);
-    let records = parse_jsonl(with_height.as_bytes(), "input").unwrap();
+    let records = parse_jsonl(with_height.as_bytes(), "input")
+        .unwrap()
+        .records;
     assert_eq!(records[0].terms.m_height, 0.5);
 }
 
@@ -258,4 +262,57 @@ fn bad_series_and_options_are_refused_by_name() {
     plot_distance(&good, &off, dir.join("e.png")).unwrap();
     assert!(png_size_and_colours(&dir.join("e.png")).1 > 50);
     std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn a_torn_last_line_is_left_out_and_reported_while_a_bad_line_before_it_is_an_error() {
+    // A run stopped by a full disk or Ctrl-C leaves a last line without its end.
+    let good = to_jsonl(&spec_episode()[..3]);
+    let full = to_jsonl(&spec_episode()[..4]);
+    let torn = &full[..good.len() + 40];
+    let read = parse_jsonl(torn.as_bytes(), "run.jsonl").unwrap();
+    assert_eq!(read.records.len(), 3);
+    assert_eq!(read.torn_last_line, Some(4));
+    let whole = parse_jsonl(good.as_bytes(), "run.jsonl").unwrap();
+    assert_eq!((whole.records.len(), whole.torn_last_line), (3, None));
+
+    // Torn in the middle, or a last line that is whole but wrong: errors, as before.
+    let middle = format!("{}\n{}", &full[..good.len() + 40], &good);
+    let err = parse_jsonl(middle.as_bytes(), "run.jsonl").unwrap_err();
+    assert!(matches!(err, PlotError::Json { line: 4, .. }), "{err}");
+    let wrong_last = format!("{good}{{\"t\": 1}}");
+    let err = parse_jsonl(wrong_last.as_bytes(), "run.jsonl").unwrap_err();
+    assert!(matches!(err, PlotError::Json { line: 4, .. }), "{err}");
+}
+
+/// A reader that counts the bytes taken from it.
+struct Counting<R> {
+    inner: R,
+    taken: std::rc::Rc<std::cell::Cell<usize>>,
+}
+
+impl<R: std::io::Read> std::io::Read for Counting<R> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let n = self.inner.read(buf)?;
+        self.taken.set(self.taken.get() + n);
+        Ok(n)
+    }
+}
+
+#[test]
+fn a_line_longer_than_the_limit_is_refused_without_reading_on() {
+    // hyq plot /dev/zero used to read one endless line until memory ran out.
+    use std::io::Read;
+    let taken = std::rc::Rc::new(std::cell::Cell::new(0));
+    let endless = Counting {
+        inner: std::io::repeat(b'x').take(64 << 20),
+        taken: taken.clone(),
+    };
+    let err = parse_jsonl(std::io::BufReader::new(endless), "zero").unwrap_err();
+    assert!(err.to_string().contains("1 MiB"), "{err}");
+    assert!(
+        taken.get() <= hyq_render::MAX_RECORD_LINE_BYTES + (64 << 10),
+        "read {} bytes",
+        taken.get()
+    );
 }

@@ -351,7 +351,7 @@ fn bad_scenes_and_settings_are_refused_by_name() {
         (
             RenderConfig {
                 camera: CameraConfig {
-                    distance_m: f64::NAN,
+                    distance_m: Some(f64::NAN),
                     ..CameraConfig::default()
                 },
                 ..RenderConfig::default()

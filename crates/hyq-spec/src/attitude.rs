@@ -1,4 +1,4 @@
-//! Spec §1 (Figure 2, "HyQ Rotation", lost from the printed text) as read by RULINGS §1:
+//! Spec §1 (Figure 2, "HyQ Rotation", lost from the printed text) as ruled in spec §1:
 //! roll, pitch and yaw are the intrinsic Z-Y-X Tait–Bryan angles of the trunk quaternion, in the
 //! world frame with x forward, y left and z up:
 //!
@@ -40,7 +40,7 @@ pub struct RollPitchYaw {
     pub yaw: f64,
 }
 
-/// Roll, pitch and yaw of `orientation` (RULINGS §1: intrinsic Z-Y-X, x forward, y left, z up).
+/// Roll, pitch and yaw of `orientation` (spec §1: intrinsic Z-Y-X, x forward, y left, z up).
 ///
 /// `q` and `−q` give the same angles. See the module docs for the gimbal-lock convention.
 pub fn roll_pitch_yaw(orientation: &UnitQuaternion<f64>) -> RollPitchYaw {

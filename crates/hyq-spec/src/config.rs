@@ -1,4 +1,4 @@
-//! Spec §2 (User Variables) with RULINGS §2: the task's user variables, with the spec's names.
+//! Spec §2 (User Variables): the task's user variables, with the spec's names.
 //!
 //! | field | symbol | default | valid | spec |
 //! |---|---|---|---|---|
@@ -23,15 +23,15 @@
 //! [`crate::EpisodeRules::new`] runs on any configuration built in code. An invalid value is an
 //! error naming the field and the value.
 //!
-//! The physics settings RULINGS §2 also lists (`sim_steps_per_env_step`, the physics time
-//! step) belong to the environment, not to these rules: the rules see their effect only through
+//! The physics settings (`sim_steps_per_env_step`, the physics time step; spec §7.3) belong to
+//! the environment, not to these rules: the rules see their effect only through
 //! the fall fact and the step count they are given.
 
 use serde::{Deserialize, Deserializer, Serialize, Serializer, de};
 use std::fmt;
 use thiserror::Error;
 
-/// The task's user variables (spec §2, RULINGS §2): reward scalings, bonus, penalties,
+/// The task's user variables (spec §2): reward scalings, bonus, penalties,
 /// tolerances and limits.
 ///
 /// Plain data with the spec's names. `Default` is the §2 table. Deserialising validates every
@@ -42,15 +42,15 @@ use thiserror::Error;
 pub struct TaskConfig {
     /// k_base, the base reward's scale: r_b = k_base · (D^{t−1} − D^t), D in metres, so r_b is
     /// k_base per metre of progress towards the goal. `None` turns r_b off (r_b = 0). Finite and
-    /// > 0 when set. (default: `None`, the spec's "No impl") Spec §2, §4.1, RULINGS §4.1.
+    /// > 0 when set. (default: `None`, the spec's "No impl") Spec §2, §4.1.
     pub base_rew_scaling: Option<f64>,
     /// k_exp, the exponential reward's scale, dimensionless: R_e(D_n) = (e^{k_exp(1−D_n)} − 1) /
     /// k_exp on 0 ≤ D_n ≤ 1. `None` turns r_e off. Finite and > 0 when set. (default:
-    /// `Some(5.0)`) Spec §2, §4.3, RULINGS §4.3.
+    /// `Some(5.0)`) Spec §2, §4.3.
     pub exp_rew_scaling: Option<f64>,
     /// k_norm, the normalised reward's scale: r_n = k_norm · (D^{t−1} − D^t) / K, so a whole walk
     /// from start to goal earns k_norm. `None` turns r_n off. Finite and > 0 when set. (default:
-    /// `None`, the spec's "No impl"; the spec's Figures 3–4 use 10) Spec §2, §4.2, RULINGS §4.1.
+    /// `None`, the spec's "No impl"; the spec's Figures 3–4 use 10) Spec §2, §4.2.
     pub norm_rew_scaling: Option<f64>,
     /// r_reach, the reward added on the step the goal is reached (§6.1), before the orientation
     /// multipliers. Reward units. Finite, ≥ 0. (default: `0.0`) Spec §2, §4.4.
@@ -61,7 +61,7 @@ pub struct TaskConfig {
     pub accepted_error: f64,
     /// ε_joint, how close to a joint limit counts as reaching it, in radians: reached when
     /// θ ≤ θ_min + ε_joint or θ ≥ θ_max − ε_joint. Finite, ≥ 0. (default: `0.01` rad) Spec §2,
-    /// §6.2, RULINGS §6.2.
+    /// §6.2.
     pub accepted_dist_to_bounds: f64,
     /// The fixed penalty subtracted, after the multipliers, on a step where a joint limit is
     /// reached (§6.2). Reward units. Finite, ≥ 0. (default: `0.0`) Spec §5.3.
@@ -74,13 +74,13 @@ pub struct TaskConfig {
     pub max_time_steps: u64,
     /// The yaw angle up to which the yaw multiplier is 1, in degrees: m_yaw = 1 if |yaw| ≤ limit,
     /// else max(0, cos yaw). Finite, in [0, 180]; 180 turns the yaw penalty off. (default: `2.5`°)
-    /// Spec §5.1.1, RULINGS §5.
+    /// Spec §5.1.1.
     pub yaw_limit_deg: f64,
     /// The pitch angle up to which the pitch multiplier is 1, in degrees: m_pitch = 1 if
     /// |pitch| ≤ limit, else max(0, cos pitch). Finite, in [0, 180]; 90 or more turns the pitch
-    /// penalty off, as |pitch| ≤ 90°. (default: `2.5`°) Spec §5.1.2, RULINGS §5.
+    /// penalty off, as |pitch| ≤ 90°. (default: `2.5`°) Spec §5.1.2.
     pub pitch_limit_deg: f64,
-    /// The opt-in height multiplier (spec §5.2 is "TBD"; RULINGS §5 allows it off by default).
+    /// The opt-in height multiplier (the original's §5.2 is "TBD"; off by default).
     /// `None` turns it off (m_height = 1). In TOML, a `[height_penalty]` table with all three
     /// fields. (default: `None`) Spec §5.2.
     pub height_penalty: Option<HeightPenalty>,
@@ -103,8 +103,8 @@ pub struct HeightPenalty {
 }
 
 impl Default for TaskConfig {
-    /// The spec's §2 table, with RULINGS §2's defaults for the variables the spec names without
-    /// one.
+    /// The spec's §2 table, including the defaults it sets for the variables the original names
+    /// without one.
     fn default() -> Self {
         TaskConfig {
             base_rew_scaling: None,

@@ -1,4 +1,4 @@
-//! Spec §1 Table 1 (D^i, D_n^i) and §4.2 step 1 (K), as RULINGS reads them:
+//! Spec §1 Table 1 (D^i, D_n^i) and §4.2 step 1 (K), as spec §1 rules:
 //!
 //! - D^t   = ‖G − C^t‖, the Euclidean distance (metres, all three axes) from the trunk centre
 //!   after env step t to the goal G;
@@ -6,7 +6,7 @@
 //! - D_n^t = D^t / K, the normalised distance (1 at the start, 0 at the goal).
 //!
 //! K divides D^t, so a goal at (or numerically at) the start is an error when a reward that needs
-//! D_n is on (RULINGS §1), never a division by zero: [`StartGoalDistance`] holds a K that is safe
+//! D_n is on (spec §1), never a division by zero: [`StartGoalDistance`] holds a K that is safe
 //! to divide by.
 
 use nalgebra::Point3;

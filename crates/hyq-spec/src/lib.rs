@@ -7,10 +7,9 @@
 //! four feet: a robot enters only through its description ([`RobotDescription`], slices of
 //! joint angles and ranges), so other robots reuse the same rules.
 //!
-//! The spec is `000_fed6b28d2b6c7065.txt`; where it is ambiguous or contradicts itself the
-//! project follows its rulings. Every place the code departs from the printed spec, or fills a
-//! gap in it, is listed with its reason and the test that shows it in the repository's
-//! `docs/spec-deviations.md`, which these docs include as [`spec_deviations`].
+//! The rules are the repository's `docs/spec.md`, which these docs include as [`spec_page`]: the
+//! original spec's sections §1–§6 as the project implements them, with each ruling on a place
+//! where the original is ambiguous or contradicts itself, its reason and the test that shows it.
 //!
 //! # Modules and spec sections
 //!
@@ -27,7 +26,7 @@
 //! | [`termination`] | §6 | reached, joint limit, fell, timeout; [`Terminations`] |
 //! | [`step`] | §4–§6 composed | [`EpisodeRules::evaluate_step`] |
 //! | [`printed`] | eqs. (2), (4), §6.2 | the printed forms the rulings replace (tests only) |
-//! | [`spec_deviations`] | all | every departure from the printed spec, why, and its test |
+//! | [`spec_page`] | all | the rules as implemented, every ruling, why, and its test |
 //!
 //! # Example
 //!
@@ -73,10 +72,10 @@ pub mod robot;
 pub mod step;
 pub mod termination;
 
-/// The project's page of deviations from the printed spec (`docs/spec-deviations.md`), included
-/// here so that it reads beside the code it describes.
-#[doc = include_str!("../../../docs/spec-deviations.md")]
-pub mod spec_deviations {}
+/// The spec as the project implements it (`docs/spec.md`), included here so that it reads beside
+/// the code it describes.
+#[doc = include_str!("../../../docs/spec.md")]
+pub mod spec_page {}
 
 /// The linear-algebra crate of this API's positions and orientations, re-exported so that
 /// callers use the same version.

@@ -2,7 +2,7 @@
 //!
 //! Legs are `lf, lh, rf, rh` (left front, left hind, right front, right hind); each leg has
 //! three joints `haa, hfe, kfe` (hip abduction/adduction, hip flexion/extension, knee
-//! flexion/extension). The spec order of the twelve joints (RULINGS §1, the order of the §3
+//! flexion/extension). The spec order of the twelve joints (spec §1, the order of the §3
 //! table's rows 0–11 and 12–23) is leg-major:
 //!
 //! `lf_haa, lf_hfe, lf_kfe, lh_haa, lh_hfe, lh_kfe, rf_haa, rf_hfe, rf_kfe, rh_haa, rh_hfe, rh_kfe`

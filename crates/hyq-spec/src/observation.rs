@@ -1,4 +1,4 @@
-//! Spec §3 (Observations), with RULINGS §3: the observation is a flat vector whose rows are, in
+//! Spec §3 (Observations): the observation is a flat vector whose rows are, in
 //! order, for a robot with N joints and F observed feet,
 //!
 //! | rows | field | unit | HyQ rows |
@@ -16,7 +16,7 @@
 //! writes an [`Observation`] into a buffer.
 //!
 //! - Contact flags are 1 if that link touched the ground in **any** physics sub-step of the env
-//!   step, else 0 (RULINGS §3); row 28 is the §6.3 fall fact.
+//!   step, else 0 (spec §3); row 28 is the §6.3 fall fact.
 //! - The quaternion is as the physics reports it; w ≥ 0 is not required.
 //! - The acceleration is the coordinate acceleration of the trunk centre, gravity not included:
 //!   a^t = (v^t − v^{t−1}) / Δt_env, 0 after reset ([`trunk_acceleration`]).
@@ -109,7 +109,7 @@ pub static SPEC_TABLE: [ObservationRow; 39] = [
 /// Whether [`ObservationLayout::write`] clips values to their rows' declared bounds.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Clipping {
-    /// Write the values as measured (the default, RULINGS §3).
+    /// Write the values as measured (the default, spec §3).
     #[default]
     Off,
     /// Clip each value to its row's [min, max].
@@ -368,7 +368,7 @@ impl ObservationLayout {
     }
 }
 
-/// RULINGS §3, rows 33–35: the trunk centre's coordinate acceleration over the env step,
+/// Spec §3, rows 33–35: the trunk centre's coordinate acceleration over the env step,
 /// a^t = (v^t − v^{t−1}) / Δt_env, with Δt_env = sub-steps × physics dt in seconds. Gravity is
 /// not included (0 at rest); after reset the environment reports 0.
 pub fn trunk_acceleration(

@@ -1,6 +1,6 @@
-//! The spec's equations **as printed**, where RULINGS.md departs from them. Nothing in the
+//! The spec's equations **as printed**, where the spec page rules otherwise. Nothing in the
 //! environment uses these; they exist so that tests can show each ruling's reason
-//! (`tests/ruling_reasons.rs`, and `docs/spec-deviations.md`).
+//! (`tests/ruling_reasons.rs`, and `docs/spec.md`).
 //!
 //! - §4.1, eq. (2): r_b^t = |C^t − C^{t−1}|, the distance travelled in any direction
 //!   (ruled: k_base · (D^{t−1} − D^t), see [`crate::reward::base`]).

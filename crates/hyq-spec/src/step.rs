@@ -1,4 +1,4 @@
-//! One env step of the spec, composed: spec §4 eq. (1), §5 and §6 with RULINGS §4–§6.
+//! One env step of the spec, composed: spec §4 eq. (1), §5 and §6.
 //!
 //! r_total = (r_b + r_n + r_e + r_reach) · m_yaw · m_pitch · m_height
 //!           − reach_bounds_penalty · [§6.2] − fall_penalty · [§6.3]

@@ -1,4 +1,4 @@
-//! Invariant: the configuration (spec §2, RULINGS §2) defaults to the §2 table, accepts exactly
+//! Invariant: the configuration (spec §2) defaults to the §2 table, accepts exactly
 //! the documented values, and rejects every other value (negative, NaN, infinite, zero where it
 //! must be positive, out of range, unknown key, wrong type) with an error whose message names
 //! the field; a valid configuration survives a TOML round trip unchanged.
@@ -10,7 +10,7 @@ fn parse(text: &str) -> Result<TaskConfig, toml::de::Error> {
     toml::from_str(text)
 }
 
-/// The §2 table and RULINGS §2, written out independently of `Default`.
+/// The §2 table, written out independently of `Default`.
 #[test]
 fn every_default_is_the_spec_table() {
     let d = TaskConfig::default();
@@ -28,10 +28,10 @@ fn every_default_is_the_spec_table() {
     );
     assert_eq!(
         d.reach_bounds_penalty, 0.0,
-        "reach_bounds_penalty: 0.0 (RULINGS)"
+        "reach_bounds_penalty: 0.0 (§2)"
     );
-    assert_eq!(d.fall_penalty, 0.0, "fall_penalty: 0.0 (RULINGS)");
-    assert_eq!(d.max_time_steps, 1000, "max_time_steps: 1000 (RULINGS)");
+    assert_eq!(d.fall_penalty, 0.0, "fall_penalty: 0.0 (§2)");
+    assert_eq!(d.max_time_steps, 1000, "max_time_steps: 1000 (§2)");
     assert_eq!(d.yaw_limit_deg, 2.5, "yaw limit: ±2.5° (§5.1.1)");
     assert_eq!(d.pitch_limit_deg, 2.5, "pitch limit: ±2.5° (§5.1.2)");
     assert_eq!(d.height_penalty, None, "§5.2 is TBD: off");

@@ -1,4 +1,4 @@
-//! Invariant: the ruled R_e (spec §4.3, RULINGS §4.3) is a continuous, decreasing curve with
+//! Invariant: the ruled R_e (spec §4.3) is a continuous, decreasing curve with
 //! R_e(1) = 0 and R_e(0) = (e^k − 1)/k:
 //!
 //! - 0 ≤ D_n ≤ 1: (e^{k(1−D_n)} − 1)/k;  1 < D_n ≤ 9: 5(1 − D_n);  D_n > 9: −40 + 0.5(9 − D_n);

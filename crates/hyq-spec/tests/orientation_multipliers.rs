@@ -1,4 +1,4 @@
-//! Invariant: the §5.1 multipliers (RULINGS §5), m(angle) = 1 if |angle| ≤ limit else
+//! Invariant: the §5.1 multipliers, m(angle) = 1 if |angle| ≤ limit else
 //! max(0, cos angle), are in [0, 1], even in the angle, exactly 1 at ±limit, exactly cos angle
 //! just beyond it and 0 past 90°; and the composed step applies m_yaw and m_pitch to the
 //! trunk's actual yaw and pitch.

@@ -1,5 +1,5 @@
-//! Invariant: each deviation from the printed spec (RULINGS §4.1, §4.3, §6.2;
-//! `docs/spec-deviations.md`) has a reason that can be shown, and the ruled form removes it.
+//! Invariant: each deviation from the printed spec (spec §4.1, §4.3 and §6.2 of
+//! `docs/spec.md`) has a reason that can be shown, and the ruled form removes it.
 //!
 //! - Printed eq. (2), r_b = |C^t − C^{t−1}|, pays for walking away from the goal; the ruled
 //!   k_base · (D^{t−1} − D^t) charges for it.

@@ -2,7 +2,7 @@
 //!
 //! total = (r_b + r_n + r_e + r_reach) · m_yaw · m_pitch · m_height − joint_penalty − fall_penalty
 //!
-//! (spec §4 eq. (1) and §5, RULINGS §5), each term is the rule applied to the snapshot, the
+//! (spec §4 eq. (1) and §5), each term is the rule applied to the snapshot, the
 //! reach bonus is scaled by the multipliers, the fixed penalties are not, every penalty whose
 //! condition holds is subtracted, and an episode whose goal is at its start is rejected (naming
 //! the goal) instead of dividing by K = 0.

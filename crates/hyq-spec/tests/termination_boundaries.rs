@@ -1,4 +1,4 @@
-//! Invariant: each §6 termination test fires exactly at its boundary (RULINGS §6).
+//! Invariant: each §6 termination test fires exactly at its boundary.
 //!
 //! - §6.1 reached ⇔ |C_i − G_i| ≤ ε/2 on every axis: true on the cube's faces and corners, false
 //!   just beyond (1 nm, or one float where that is exact), symmetric per axis.

@@ -1,4 +1,4 @@
-//! The spec (`shared/spec/000_fed6b28d2b6c7065.txt`, read as RULINGS.md rules), section by
+//! The spec (`docs/spec.md`, the rules as the project implements them), section by
 //! section, on the real simulators: one module per section, each test body run on every backend
 //! that is built (`spec_tests::for_each_backend!`): rapier always, DART with `--features dart`.
 //! Contracts about sub-steps that a real engine cannot stage exactly run on hyq-env's scripted

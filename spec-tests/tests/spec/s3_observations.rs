@@ -1,4 +1,4 @@
-//! Spec §3 (Observations) with RULINGS §3: 39 values in the table's order and units, not
+//! Spec §3 (Observations): 39 values in the table's order and units, not
 //! clipped. Rows 24–28 are 1 when that body touched the ground in any sub-step of the step;
 //! 29–32 the trunk quaternion (w, x, y, z, world); 33–35 the trunk's coordinate acceleration
 //! (v^t − v^{t−1}) / Δt_env, 0 at rest and after reset, gravity not included; 36–38 the trunk

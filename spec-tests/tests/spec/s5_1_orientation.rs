@@ -1,6 +1,6 @@
-//! Spec §5.1 (Orientation penalty) with RULINGS §5: the rewards of a step are multiplied by
+//! Spec §5.1 (Orientation penalty): the rewards of a step are multiplied by
 //! m_yaw = 1 if |yaw| ≤ yaw_limit (2.5°), else max(0, cos yaw), and by m_pitch likewise with
-//! the pitch; yaw and pitch are the intrinsic Z-Y-X angles of the trunk quaternion (RULINGS §1).
+//! the pitch; yaw and pitch are the intrinsic Z-Y-X angles of the trunk quaternion (spec §1).
 //!
 //! Invariant, on every backend: HyQ spawned standing yawed by ±10° gets m_yaw = cos 10° on its
 //! first step (cos of the yaw it reports, to the bit; within 1e-4 of cos 10°, since the trunk

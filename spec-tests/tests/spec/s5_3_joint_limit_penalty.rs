@@ -1,4 +1,4 @@
-//! Spec §5.3 (Reach joint limits) and §6.2 with RULINGS §5 and §6.2 (a **deviation**: the
+//! Spec §5.3 (Reach joint limits) and §6.2 (a **deviation**: the
 //! printed test is false for every negative range): a joint is at its limit when
 //! θ ≤ θ_min + ε_joint or θ ≥ θ_max − ε_joint; the episode then ends (`joint_limit`,
 //! terminated) and `reach_bounds_penalty` is subtracted after the multipliers, on that step

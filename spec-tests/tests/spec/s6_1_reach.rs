@@ -1,4 +1,4 @@
-//! Spec §6.1 (Reach goal) and §4.4 with RULINGS §4.4 and §6.1: the goal is reached when the
+//! Spec §6.1 (Reach goal) and §4.4: the goal is reached when the
 //! trunk centre lies in the cube of side ε_reach (`accepted_error`) centred on the goal,
 //! |C_i − G_i| ≤ ε_reach / 2 on each of x, y, z; the episode ends (`reached`, terminated) and
 //! r_reach = `reach_target_bonus_reward` is added on that step *before* the §5.1 multipliers.

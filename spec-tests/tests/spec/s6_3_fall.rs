@@ -1,4 +1,4 @@
-//! Spec §6.3 (Fall) and §5.4 with RULINGS §3, §5 and §6: the robot has fallen when the trunk
+//! Spec §6.3 (Fall) and §5.4: the robot has fallen when the trunk
 //! touched the ground in *any* physics sub-step of the env step (not only the last); the episode
 //! ends (`fell`, terminated) and `fall_penalty` is subtracted after the multipliers, on that step.
 //! The trunk contact flag (row 28) is the same fact.

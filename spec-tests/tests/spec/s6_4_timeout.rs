@@ -1,4 +1,4 @@
-//! Spec §6.4 (Timeout) with RULINGS §6: the episode times out when t ≥ t_max
+//! Spec §6.4 (Timeout): the episode times out when t ≥ t_max
 //! (`max_time_steps`), t the env steps since reset (1 after the first), so t_max = 1 ends it
 //! after its first step and "there will be no second step". In Gymnasium terms timeout is
 //! `truncated` and the other conditions `terminated` (which wins when both hold); a step after

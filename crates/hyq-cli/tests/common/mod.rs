@@ -67,3 +67,19 @@ pub fn scratch(name: &str) -> PathBuf {
     let _ = std::fs::remove_file(&path);
     path
 }
+
+/// The path of the first `null` in `v` (`path` is `v`'s own), if any: the CLI's JSON outputs
+/// hold numbers where numbers belong, never `null`.
+pub fn first_null(v: &serde_json::Value, path: &str) -> Option<String> {
+    match v {
+        serde_json::Value::Null => Some(path.to_owned()),
+        serde_json::Value::Array(items) => items
+            .iter()
+            .enumerate()
+            .find_map(|(i, x)| first_null(x, &format!("{path}[{i}]"))),
+        serde_json::Value::Object(map) => map
+            .iter()
+            .find_map(|(k, x)| first_null(x, &format!("{path}.{k}"))),
+        _ => None,
+    }
+}

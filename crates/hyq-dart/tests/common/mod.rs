@@ -4,25 +4,8 @@
 #![allow(dead_code)]
 
 use hyq_dart::{DartBackend, DartOptions};
+use hyq_physics::conformance::fixtures::Rng;
 use hyq_physics::{Actuator, Backend, PdScratch, PhysicsParams, bundled, pd_substep};
-
-/// A small deterministic generator (xorshift64*), so that the tests need no dependency.
-pub struct Rng(u64);
-
-impl Rng {
-    /// A generator for `seed` (any value, zero included).
-    pub fn new(seed: u64) -> Self {
-        Self(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1)
-    }
-
-    /// Uniform in [0, 1).
-    pub fn unit(&mut self) -> f64 {
-        self.0 ^= self.0 >> 12;
-        self.0 ^= self.0 << 25;
-        self.0 ^= self.0 >> 27;
-        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
 
 /// A DART world with the bundled HyQ at its spawn state.
 pub fn hyq() -> DartBackend {
@@ -60,9 +43,7 @@ pub fn random_trajectory_from(
     let mut out = Vec::with_capacity(steps * (2 * n + 13 + contacts.len()));
     for k in 0..skip + steps {
         if k.is_multiple_of(10) {
-            for (t, j) in targets.iter_mut().zip(model.joints()) {
-                *t = j.lower + rng.unit() * (j.upper - j.lower);
-            }
+            rng.fill_joint_angles(&model, 0.0, &mut targets);
         }
         if k < skip {
             continue;
@@ -80,10 +61,4 @@ pub fn random_trajectory_from(
     out
 }
 
-/// Index of the first value where two traces differ (or where one ends early).
-pub fn first_difference(a: &[u64], b: &[u64]) -> Option<usize> {
-    a.iter()
-        .zip(b)
-        .position(|(x, y)| x != y)
-        .or_else(|| (a.len() != b.len()).then(|| a.len().min(b.len())))
-}
+pub use hyq_physics::conformance::fixtures::first_difference;

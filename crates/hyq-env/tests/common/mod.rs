@@ -2,7 +2,7 @@
 //! the action that holds the standing pose, and a trot episode run to its truncation.
 #![allow(dead_code)]
 
-use hyq_env::policy::{Policy, Trot, TrotParams};
+use hyq_env::policy::{Policy, Trot};
 use hyq_env::testing::ScriptedBackend;
 use hyq_env::{Env, EnvConfig, ResetOptions};
 use hyq_physics::Backend;
@@ -40,13 +40,13 @@ pub fn stand_action<B: Backend>(env: &Env<B>) -> Vec<f64> {
     a
 }
 
-/// Runs the default trot from the env's current state until the episode is truncated, asserting
+/// Runs the robot profile's trot from the env's current state until the episode is truncated, asserting
 /// at every step that the trunk never touched the ground and that nothing terminated the
 /// episode; returns the step at which it was truncated.
 pub fn trot_until_truncated<B: Backend>(env: &mut Env<B>) -> u64 {
     let model = env.model().clone();
-    let mut trot = Trot::new(&model, TrotParams::default()).unwrap_or_else(|e| panic!("{e}"));
-    let mut a = vec![0.0; 12];
+    let mut trot = Trot::from_profile(&model).unwrap_or_else(|e| panic!("{e}"));
+    let mut a = vec![0.0; env.action_space().len()];
     let trunk_row = env.observation_layout().trunk_contact();
     loop {
         trot.act(&env.policy_input(), &mut a);

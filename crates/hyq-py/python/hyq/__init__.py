@@ -17,6 +17,8 @@ import gymnasium
 
 from hyq import _core
 from hyq.env import HyQEnv
+from hyq.info import INFO_SCHEMA
+from hyq.observation import OBSERVATION_TABLE, ObservationRow
 from hyq.vector import HyQVectorEnv
 
 __version__ = _core.__version__
@@ -36,4 +38,13 @@ if ENV_ID not in gymnasium.registry:
         max_episode_steps=MAX_EPISODE_STEPS,
     )
 
-__all__ = ["ENV_ID", "MAX_EPISODE_STEPS", "HyQEnv", "HyQVectorEnv", "__version__"]
+__all__ = [
+    "ENV_ID",
+    "INFO_SCHEMA",
+    "MAX_EPISODE_STEPS",
+    "OBSERVATION_TABLE",
+    "HyQEnv",
+    "HyQVectorEnv",
+    "ObservationRow",
+    "__version__",
+]

@@ -15,7 +15,7 @@ an unknown key or a bad value raises ``ValueError`` naming the key and the value
 
 from __future__ import annotations
 
-import json
+import re
 from collections.abc import Mapping
 from typing import Any
 
@@ -30,6 +30,31 @@ ENV_KEYS = (
     "render_width",
     "render_height",
 )
+
+
+def toml_string(text: str) -> str:
+    """`text` as a TOML basic string: quotes, backslashes and control characters escaped,
+    everything else as it is (JSON's escapes differ: it writes characters beyond U+FFFF as
+    surrogate pairs, which TOML refuses)."""
+    out = []
+    for ch in text:
+        if ch in '"\\':
+            out.append("\\" + ch)
+        elif ord(ch) < 0x20 or ord(ch) == 0x7F:
+            out.append(f"\\u{ord(ch):04x}")
+        else:
+            out.append(ch)
+    return '"' + "".join(out) + '"'
+
+
+def toml_key(key: Any) -> str:
+    """A dict key as one TOML key: bare when it is one (letters, digits, `_`, `-`), else a
+    quoted key, so that no key can spell more than itself."""
+    if not isinstance(key, str):
+        raise ValueError(f"configuration key {key!r}: keys are strings")
+    if re.fullmatch(r"[A-Za-z0-9_-]+", key):
+        return key
+    return toml_string(key)
 
 
 def toml_value(value: Any, key: str) -> str:
@@ -49,10 +74,11 @@ def toml_value(value: Any, key: str) -> str:
         # A float's repr is a TOML float, "nan", "inf" and "-inf" included.
         return repr(value)
     if isinstance(value, str):
-        # A JSON string is a valid TOML basic string.
-        return json.dumps(value)
+        return toml_string(value)
     if isinstance(value, Mapping):
-        items = ", ".join(f"{k} = {toml_value(v, f'{key}.{k}')}" for k, v in value.items())
+        items = ", ".join(
+            f"{toml_key(k)} = {toml_value(v, f'{key}.{k}')}" for k, v in value.items()
+        )
         return "{" + items + "}"
     if isinstance(value, (list, tuple)):
         return "[" + ", ".join(toml_value(v, key) for v in value) + "]"

@@ -10,7 +10,9 @@ import numpy as np
 from gymnasium import spaces
 
 from hyq import _core
+from hyq._checks import RENDER_SIDES, as_actions, check_count, check_flag
 from hyq._config import config_pairs, split_options
+from hyq.observation import OBSERVATION_TABLE, ObservationRow
 
 #: The render modes this environment implements.
 RENDER_MODES = ["rgb_array"]
@@ -36,10 +38,28 @@ def reset_goal(options: Mapping[str, Any] | None) -> list[float] | None:
     goal = options.get("goal")
     if goal is None:
         return None
-    goal = np.asarray(goal, dtype=np.float64)
+    try:
+        goal = np.asarray(goal, dtype=np.float64)
+    except (TypeError, ValueError) as e:
+        raise ValueError(f"reset option goal = {goal!r}: expected [x, y, z] in m ({e})") from None
     if goal.shape != (3,):
         raise ValueError(f"reset option goal has shape {goal.shape}, expected (3,): [x, y, z] in m")
     return [float(v) for v in goal]
+
+
+def core_options(env_options: Mapping[str, Any]) -> dict[str, Any]:
+    """The core's keyword arguments for clipping and frame size, checked by name."""
+    return {
+        "clip_observations": check_flag(
+            "clip_observations", env_options.get("clip_observations", False)
+        ),
+        "render_width": check_count(
+            "render_width", env_options.get("render_width", 480), *RENDER_SIDES
+        ),
+        "render_height": check_count(
+            "render_height", env_options.get("render_height", 360), *RENDER_SIDES
+        ),
+    }
 
 
 def check_seed(seed: int | None) -> int | None:
@@ -58,14 +78,15 @@ class HyQEnv(gymnasium.Env):
 
     **Observation**: ``Box(39,)`` float32, the spec's §3 table in order and units (joint angles,
     joint speeds, four foot contact flags, trunk contact flag, trunk quaternion w x y z, trunk
-    acceleration, trunk position); the bounds are the table's. As the project's rulings require
-    (§3), values are **not** clipped by default: the physics does leave the declared bounds (joint
-    speeds past ±12 rad/s in about a quarter of first steps under random actions, accelerations
-    past ±50 m/s² on impacts), and the observation then lies outside the Box, exactly as
-    ``hyq run --record`` writes it. ``clip_observations=True`` clips each value to its row's
-    bounds and ``info["observation_clipped"]`` says when that happened; use it where a tool
-    insists that every observation lie in the space (Gymnasium's and Stable-Baselines3's
-    checkers do).
+    acceleration, trunk position). As the project's spec requires (§3), values are **not**
+    clipped by default, and the physics does leave the table (joint speeds past ±12 rad/s in
+    about a quarter of first steps under random actions, accelerations past ±50 m/s² on
+    impacts), so the space declares the table's bounds only where they always hold (the contact
+    flags and the quaternion) and leaves every other row unbounded (the finite float32 range), as
+    Gymnasium's MuJoCo locomotion envs do: every observation lies in it.
+    ``clip_observations=True`` declares the table as the space and clips each value to its row's
+    bounds (``info["observation_clipped"]`` says when). The table itself is
+    ``hyq.OBSERVATION_TABLE`` (also ``env.observation_table``).
 
     **Action**: ``Box(-1, 1, (12,), float32)`` joint position targets in the default
     ``normalized`` mode (−1 a joint's lower limit, +1 its upper); ``action={"mode":
@@ -75,7 +96,8 @@ class HyQEnv(gymnasium.Env):
     **Reward and info**: the spec's reward; ``info`` holds every term (``r_b``, ``r_n``,
     ``r_e``, ``r_reach``, ``m_yaw``, ``m_pitch``, ``m_height``, ``joint_penalty``,
     ``fall_penalty``), every reason the episode ended (``reasons`` and one flag each), the
-    distance to the goal, the attitude, the goal and the joint targets.
+    distance to the goal, the attitude, the goal and the joint targets: every key of
+    ``hyq.INFO_SCHEMA`` on every step, each with one type.
 
     **Episode end**: ``terminated`` when the goal is reached, a joint reaches a limit, the
     trunk touches the ground, or the physics diverges; ``truncated`` at ``max_time_steps``
@@ -104,9 +126,7 @@ class HyQEnv(gymnasium.Env):
         self._core = _core.Core(
             config_pairs(config),
             config_file=env_options.get("config_file"),
-            clip_observations=bool(env_options.get("clip_observations", False)),
-            render_width=int(env_options.get("render_width", 480)),
-            render_height=int(env_options.get("render_height", 360)),
+            **core_options(env_options),
         )
         self.observation_space = spaces.Box(
             low=self._core.observation_low(),
@@ -133,6 +153,11 @@ class HyQEnv(gymnasium.Env):
         return self._core.observation_names()
 
     @property
+    def observation_table(self) -> tuple[ObservationRow, ...]:
+        """The spec's section 3 table: each row's name, bounds, unit and kind."""
+        return OBSERVATION_TABLE
+
+    @property
     def joint_names(self) -> list[str]:
         """The 12 joints' names, in action order."""
         return self._core.joint_names()
@@ -156,13 +181,8 @@ class HyQEnv(gymnasium.Env):
         self, action: Any
     ) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
         """One env step (10 physics sub-steps of 1 ms by default)."""
-        action = np.asarray(action, dtype=np.float64)
-        if action.ndim != 1:
-            # A 1-D action of the wrong length is refused by the core, with its message.
-            raise ValueError(
-                f"action has shape {action.shape}, expected {self.action_space.shape}"
-            )
-        return self._core.step(np.ascontiguousarray(action))
+        # A 1-D action of the wrong length is refused by the core, with its message.
+        return self._core.step(as_actions(action, 1, self.action_space.shape))
 
     def render(self) -> np.ndarray | None:
         """With ``render_mode="rgb_array"``: the current state as a uint8 (H, W, 3) frame."""

@@ -19,7 +19,8 @@ from gymnasium.vector.utils import batch_space
 
 from hyq import _core
 from hyq._config import config_pairs, split_options
-from hyq.env import check_render_mode, check_seed, reset_goal
+from hyq._checks import MAX_ENVS, MAX_THREADS, as_actions, check_count, check_index
+from hyq.env import check_render_mode, check_seed, core_options, reset_goal
 
 _MODES = {
     AutoresetMode.NEXT_STEP: "next_step",
@@ -38,8 +39,8 @@ class HyQVectorEnv(VectorEnv):
     unless ``max_time_steps`` is given); ``threads`` (a dedicated rayon pool; results do not
     depend on it); and every argument of ``HyQEnv``.
 
-    ``infos`` holds every numeric and flag key of ``HyQEnv``'s info as an array over the envs,
-    each with Gymnasium's ``_key`` mask.
+    ``infos`` holds every key of ``HyQEnv``'s info (``hyq.INFO_SCHEMA``) as an array over the
+    envs, each with Gymnasium's ``_key`` mask, as ``SyncVectorEnv`` would give them.
     """
 
     metadata = {
@@ -71,15 +72,16 @@ class HyQVectorEnv(VectorEnv):
         if max_episode_steps is not None and not given:
             config["max_time_steps"] = int(max_episode_steps)
         self.render_mode = render_mode
+        num_envs = check_count("num_envs", num_envs, 1, MAX_ENVS)
+        if threads is not None:
+            threads = check_count("threads", threads, 1, MAX_THREADS)
         self._core = _core.VecCore(
             config_pairs(config),
-            int(num_envs),
+            num_envs,
             autoreset_mode=_MODES[mode],
             config_file=env_options.get("config_file"),
             threads=threads,
-            clip_observations=bool(env_options.get("clip_observations", False)),
-            render_width=int(env_options.get("render_width", 480)),
-            render_height=int(env_options.get("render_height", 360)),
+            **core_options(env_options),
         )
         self.num_envs = self._core.num_envs
         self.single_observation_space = spaces.Box(
@@ -139,12 +141,7 @@ class HyQVectorEnv(VectorEnv):
         self, actions: Any
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, dict[str, Any]]:
         """Steps every env with its row of ``actions`` (shape (num_envs, 12))."""
-        actions = np.ascontiguousarray(actions, dtype=np.float64)
-        if actions.ndim != 2:
-            raise ValueError(
-                f"actions have shape {actions.shape}, expected {self.action_space.shape}"
-            )
-        return self._core.step(actions)
+        return self._core.step(as_actions(actions, 2, self.action_space.shape))
 
     def render(self) -> tuple[np.ndarray, ...] | None:
         """With ``render_mode="rgb_array"``: one uint8 (H, W, 3) frame per env."""
@@ -158,14 +155,14 @@ class HyQVectorEnv(VectorEnv):
 
     def env_info(self, i: int) -> dict[str, Any]:
         """Env ``i``'s info of its last step or reset, as ``HyQEnv`` gives it."""
-        return self._core.env_info(i)
+        return self._core.env_info(check_index(i, self.num_envs))
 
     def final_observation(self, i: int) -> np.ndarray | None:
         """With ``SAME_STEP`` autoreset: env ``i``'s final observation if its episode ended in
         the last step, else None."""
-        return self._core.final_observation(i)
+        return self._core.final_observation(check_index(i, self.num_envs))
 
     def final_info(self, i: int) -> dict[str, Any] | None:
         """With ``SAME_STEP`` autoreset: env ``i``'s final info if its episode ended in the last
         step, else None."""
-        return self._core.final_info(i)
+        return self._core.final_info(check_index(i, self.num_envs))

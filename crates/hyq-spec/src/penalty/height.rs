@@ -1,4 +1,4 @@
-//! Spec §5.2 (Height Penalty): "TBD" in the spec. RULINGS §5 allows it as an opt-in multiplier,
+//! Spec §5.2 (Height Penalty): "TBD" in the original, an opt-in multiplier here,
 //! off by default. When `height_penalty` is set in [`crate::TaskConfig`], with z the trunk
 //! centre's height (world z of C^t) and the parameters of [`HeightPenalty`],
 //!

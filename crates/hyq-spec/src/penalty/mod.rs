@@ -1,4 +1,4 @@
-//! Spec §5 (Penalties), with RULINGS §5: penalties act after all rewards, multipliers first,
+//! Spec §5 (Penalties): penalties act after all rewards, multipliers first,
 //! then fixed penalties:
 //!
 //! r_total = (r_b + r_n + r_e + r_reach) · m_yaw · m_pitch · m_height

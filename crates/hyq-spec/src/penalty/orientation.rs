@@ -1,4 +1,4 @@
-//! Spec §5.1 (Orientation Penalty), with RULINGS §5: for the yaw angle α (§5.1.1) and the pitch
+//! Spec §5.1 (Orientation Penalty): for the yaw angle α (§5.1.1) and the pitch
 //! angle β (§5.1.2) of [`crate::attitude`], each with its limit (`yaw_limit_deg`,
 //! `pitch_limit_deg`, "currently" 2.5°),
 //!

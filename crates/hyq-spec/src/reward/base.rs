@@ -1,4 +1,4 @@
-//! Spec §4.1, eq. (2), as ruled (RULINGS §4.1, a **deviation**): the base reward is the change
+//! Spec §4.1, eq. (2), as ruled (a **deviation**): the base reward is the change
 //! of the distance to the goal, scaled by k_base,
 //!
 //! r_b^t = k_base · (D^{t−1} − D^t),   D^t = ‖G − C^t‖,

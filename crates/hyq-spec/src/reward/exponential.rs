@@ -1,4 +1,4 @@
-//! Spec §4.3, eqs. (4)–(5), as ruled (RULINGS §4.3, a **deviation**): the cumulative exponential
+//! Spec §4.3, eqs. (4)–(5), as ruled (a **deviation**): the cumulative exponential
 //! reward R_e is the continuous piecewise curve of the normalised distance D_n,
 //!
 //! - 0 ≤ D_n ≤ 1:  R_e(D_n) = (e^{k_exp(1 − D_n)} − 1) / k_exp

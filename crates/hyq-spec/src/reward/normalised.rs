@@ -1,4 +1,4 @@
-//! Spec §4.2, eq. (3), as ruled (RULINGS §2 and §4.1, a **deviation** inherited from eq. (2)):
+//! Spec §4.2, eq. (3), as ruled (a **deviation** inherited from §4.1's eq. (2)):
 //! the base reward's distance change divided by K = ‖G − C^0‖ and scaled by k_norm,
 //!
 //! r_n^t = k_norm · (D^{t−1} − D^t) / K,

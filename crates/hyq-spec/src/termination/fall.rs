@@ -1,4 +1,4 @@
-//! Spec §6.3 (Fall), with RULINGS §3 and §6: the robot has fallen when the trunk touched the
+//! Spec §6.3 (Fall): the robot has fallen when the trunk touched the
 //! ground in **any** physics sub-step of the env step, not just the last:
 //!
 //! fell ⇔ ∃ sub-step s of the step: trunk_contact(s).

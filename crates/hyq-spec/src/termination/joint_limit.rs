@@ -1,4 +1,4 @@
-//! Spec §6.2 (Reach Joint Limits), as ruled (RULINGS §6.2, a **deviation**): at the end of each
+//! Spec §6.2 (Reach Joint Limits), as ruled (a **deviation**): at the end of each
 //! step joint i has reached its limit when its angle θ^i is within ε_joint
 //! (`accepted_dist_to_bounds`) of either end of its range [θ_min^i, θ_max^i], ends included:
 //!

@@ -1,4 +1,4 @@
-//! Spec §6 (Termination), with RULINGS §6: four conditions, each checked at the end of every env
+//! Spec §6 (Termination): four conditions, each checked at the end of every env
 //! step, independently of the others:
 //!
 //! 1. reached ([`reach`], §6.1): |C_i − G_i| ≤ ε_reach / 2 on every axis;

@@ -1,4 +1,4 @@
-//! Spec §6.1 (Reach Goal), with RULINGS §6: at the end of each step the trunk centre C is
+//! Spec §6.1 (Reach Goal): at the end of each step the trunk centre C is
 //! inside the cube of side ε_reach (`accepted_error`) centred on the goal G, faces included:
 //!
 //! reached ⇔ |C_i − G_i| ≤ ε_reach / 2 for each of x, y and z.

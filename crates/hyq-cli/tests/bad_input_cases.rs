@@ -1,0 +1,435 @@
+//! Invariant: the command line's bad-input cases of an outside review (a new user's mistakes and
+//! an attacker's inputs) each end as documented: a usage error (status 2) or a run-time error
+//! (status 1) printed as one line `hyq: error: …` naming what was wrong, never a panic, a hang
+//! or hundreds of digits; and the odd-but-valid inputs run. Each case keeps its review number
+//! (`#N`) so the suite, not a manual round, keeps them fixed. Cases with a file of their own:
+//! closed and full stdout (`closed_or_full_stdout.rs`), outputs kept on failure
+//! (`outputs_are_replaced_only_by_a_finished_run.rs`), no null in records
+//! (`records_and_summaries_hold_no_null.rs`).
+
+// In tests a failed unwrap is a failed test, with its location.
+#![allow(clippy::unwrap_used)]
+
+mod common;
+
+use std::path::Path;
+
+use common::{hyq, hyq_ok, scratch, stderr};
+
+/// `hyq args` exits with `status` and one error line containing every one of `words`, with no
+/// panic and no run of 30 digits (a number printed in full instead of its short form).
+#[track_caller]
+fn fails(status: i32, args: &[&str], words: &[&str]) {
+    let out = hyq(args);
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(status), "hyq {args:?}: {err}");
+    assert_eq!(
+        err.lines().count(),
+        1,
+        "hyq {args:?}: one line, got:\n{err}"
+    );
+    assert!(err.starts_with("hyq: error: "), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(!err.contains(&"0".repeat(30)), "a number in full: {err}");
+    for w in words {
+        assert!(
+            err.contains(w),
+            "hyq {args:?}: the error does not name `{w}`: {err}"
+        );
+    }
+}
+
+/// `hyq run --set …` with these overrides is a usage error naming `words`.
+#[track_caller]
+fn bad_set(sets: &[&str], words: &[&str]) {
+    let mut args = vec!["run"];
+    for s in sets {
+        args.extend(["--set", s]);
+    }
+    fails(2, &args, words);
+}
+
+fn write(name: &str, bytes: &[u8]) -> String {
+    let path = scratch(name);
+    std::fs::write(&path, bytes).unwrap();
+    path.to_str().unwrap().to_owned()
+}
+
+#[test]
+fn configuration_keys_and_values_1_to_8() {
+    // #1, #2: unknown keys and tables.
+    bad_set(&["task.bogus=1"], &["bogus"]);
+    bad_set(&["bogus.key=1"], &["bogus"]);
+    bad_set(&["physics.bogus.x=1"], &["bogus"]);
+    bad_set(&["physics.rapier.bogus=1"], &["bogus"]);
+    // #3: malformed --set.
+    for s in [
+        "task.fall_penalty",
+        "=5",
+        "task=1",
+        "task..x=1",
+        "task.fall_penalty.x=1",
+    ] {
+        fails(2, &["run", "--set", s], &["--set"]);
+    }
+    // #4: wrong types.
+    bad_set(&["task.fall_penalty=abc"], &["fall_penalty"]);
+    bad_set(&["control.velocity_limit=maybe"], &["velocity_limit"]);
+    bad_set(
+        &["physics.rapier.solver_iterations=1e1"],
+        &["solver_iterations"],
+    );
+    // #5: NaN, infinities and negatives of every real [task] key.
+    for key in [
+        "fall_penalty",
+        "base_rew_scaling",
+        "exp_rew_scaling",
+        "norm_rew_scaling",
+        "reach_target_bonus_reward",
+        "accepted_error",
+        "accepted_dist_to_bounds",
+        "reach_bounds_penalty",
+        "yaw_limit_deg",
+        "pitch_limit_deg",
+    ] {
+        for value in ["nan", "inf", "-inf", "-1"] {
+            bad_set(&[&format!("task.{key}={value}")], &[key]);
+        }
+    }
+    // #6: zero where > 0 is required.
+    for key in [
+        "exp_rew_scaling",
+        "base_rew_scaling",
+        "norm_rew_scaling",
+        "accepted_error",
+    ] {
+        bad_set(&[&format!("task.{key}=0")], &[key]);
+    }
+    // #7, #8: max_time_steps, and integers beyond TOML's.
+    for value in ["0", "-1", "1.5", "1e30"] {
+        bad_set(
+            &[&format!("task.max_time_steps={value}")],
+            &["max_time_steps"],
+        );
+    }
+    bad_set(
+        &["task.max_time_steps=18446744073709551615"],
+        &["max_time_steps", "9223372036854775807"],
+    );
+}
+
+#[test]
+fn values_that_would_emit_non_finite_numbers_or_panic_10_to_18_and_27_to_30() {
+    // #10, #13: scalings whose terms or sums overflow.
+    bad_set(
+        &["task.exp_rew_scaling=1000"],
+        &["task.exp_rew_scaling", "500"],
+    );
+    bad_set(
+        &["task.base_rew_scaling=1e308"],
+        &["task.base_rew_scaling", "1e308"],
+    );
+    bad_set(
+        &["task.norm_rew_scaling=1.5e308", "goal.distance_m=1.5"],
+        &["task.norm_rew_scaling"],
+    );
+    // #12, #15, #16: goals so far that D overflows, or that only reset would have found.
+    bad_set(
+        &["goal.mode=fixed", "goal.position=[1e308, 1e308, 0]"],
+        &["goal.position", "100 m"],
+    );
+    bad_set(&["goal.distance_m=1e308"], &["goal.distance_m"]);
+    bad_set(&["goal.height_m=1e308"], &["goal.height_m"]);
+    bad_set(
+        &["goal.mode=fixed", "goal.position=[1e200, 0, 0]"],
+        &["goal.position"],
+    );
+    bad_set(
+        &["goal.mode=random", "goal.distance_range_m=[1e300, 1e300]"],
+        &["goal.distance_range_m"],
+    );
+    // #14: bad goal values.
+    for s in [
+        "goal.distance_m=nan",
+        "goal.distance_m=0",
+        "goal.distance_m=-1",
+        "goal.distance_m=inf",
+        "goal.heading_range_deg=[nan, 0]",
+        "goal.heading_range_deg=[-181, 0]",
+        "goal.height_m=nan",
+        "goal.mode=bogus",
+    ] {
+        let key = s.split('=').next().unwrap();
+        bad_set(&[s], &[key]);
+    }
+    for s in ["[1, 2]", "[nan, 0, 0]"] {
+        bad_set(
+            &["goal.mode=fixed", &format!("goal.position={s}")],
+            &["goal.position"],
+        );
+    }
+    for s in ["[0, 1]", "[2, 1]", "[1, inf]", "[1, 2, 3]"] {
+        bad_set(
+            &["goal.mode=random", &format!("goal.distance_range_m={s}")],
+            &["goal.distance_range_m"],
+        );
+    }
+    bad_set(&["goal.mode=fixed"], &["goal.position"]);
+    // #17: a goal at the start.
+    bad_set(
+        &["goal.mode=fixed", "goal.position=[0, 0, 0.6003]"],
+        &["goal"],
+    );
+    // #18: a goal key the mode does not read.
+    bad_set(&["goal.position=[9, 9, 0.6]"], &["goal.position", "fixed"]);
+    bad_set(
+        &[
+            "goal.mode=fixed",
+            "goal.position=[1, 1, 0.6]",
+            "goal.distance_m=9",
+        ],
+        &["goal.distance_m", "ahead"],
+    );
+    // #27, #28: spawn points beyond what rapier's f32 holds faithfully.
+    for s in ["[1e39, 0]", "[1e5, 0]"] {
+        bad_set(
+            &[&format!("reset.spawn_xy_m={s}")],
+            &["reset.spawn_xy_m", "f32"],
+        );
+    }
+    // #29: [reset] ranges.
+    for s in [
+        "reset.spawn_xy_m=[nan, 0]",
+        "reset.spawn_xy_m=[inf, 0]",
+        "reset.spawn_xy_m=[1, 2, 3]",
+        "reset.yaw_deg=nan",
+        "reset.yaw_deg=181",
+        "reset.yaw_noise_deg=-1",
+        "reset.yaw_noise_deg=nan",
+        "reset.joint_noise_rad=-1",
+        "reset.joint_noise_rad=nan",
+        "reset.joint_noise_rad=inf",
+        "reset.bogus=1",
+    ] {
+        let key = s.split('=').next().unwrap().rsplit('.').next().unwrap();
+        bad_set(&[s], &[key]);
+    }
+    // #30: joint noise that panicked the sampler.
+    bad_set(&["reset.joint_noise_rad=1e308"], &["reset.joint_noise_rad"]);
+}
+
+#[test]
+fn actions_control_and_physics_19_to_24() {
+    // #19.
+    bad_set(&["action.mode=bogus"], &["mode"]);
+    bad_set(&["action.out_of_range=bogus"], &["out_of_range"]);
+    for v in ["nan", "0", "-1", "inf"] {
+        bad_set(
+            &[&format!("action.max_delta_rad={v}")],
+            &["action.max_delta_rad"],
+        );
+    }
+    // #20.
+    for v in ["0", "1001", "-1", "4294967296", "1.5"] {
+        bad_set(
+            &[&format!("control.sim_steps_per_env_step={v}")],
+            &["sim_steps_per_env_step"],
+        );
+    }
+    // #21: gains, named without Rust's debug text.
+    for v in [
+        "-1",
+        "nan",
+        "inf",
+        "[1, 2]",
+        "[]",
+        "[-1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1]",
+    ] {
+        let out = hyq(&["run", "--set", &format!("control.kp={v}")]);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert!(err.contains("control.kp") || err.contains("kp"), "{err}");
+        assert!(!err.contains("All(") && !err.contains("PerJoint"), "{err}");
+    }
+    for v in ["-20", "nan"] {
+        bad_set(&[&format!("control.kd={v}")], &["control.kd"]);
+    }
+    // #23: absurd time steps.
+    for v in ["0", "-0.001", "nan", "inf", "0.1001"] {
+        bad_set(&[&format!("physics.dt={v}")], &["dt"]);
+    }
+    // #22, #23, #24: accepted extremes run, ending as diverged where the physics blows up.
+    let out = hyq_ok(&["run", "--json", "--set", "physics.dt=0.1"]);
+    assert!(out.contains("\"diverged\""), "{out}");
+    hyq_ok(&[
+        "run",
+        "--set",
+        "task.max_time_steps=20",
+        "--set",
+        "control.kp=1e308",
+    ]);
+    let out = hyq_ok(&["run", "--json", "--set", "physics.gravity=[0, 0, 1e308]"]);
+    assert!(out.contains("\"diverged\""), "{out}");
+}
+
+#[test]
+fn configuration_files_31_to_37() {
+    // #31: an empty file is the defaults.
+    let empty = write("empty.toml", b"");
+    hyq_ok(&["run", "--config", &empty, "--set", "task.max_time_steps=2"]);
+    // #32: malformed TOML, at its line.
+    let malformed = write("malformed.toml", b"[task\nfall_penalty=");
+    fails(
+        2,
+        &["run", "--config", &malformed],
+        &["malformed.toml", "line 1"],
+    );
+    // #33: binary garbage, NUL.
+    let garbage: Vec<u8> = (0..4096u32)
+        .map(|i| (i.wrapping_mul(2654435761) >> 13) as u8)
+        .collect();
+    let garbage = write("garbage.toml", &garbage);
+    fails(2, &["run", "--config", &garbage], &["garbage.toml"]);
+    let nul = write("nul.toml", b"[task]\n\0");
+    fails(2, &["run", "--config", &nul], &["nul.toml"]);
+    // #34: a directory, a missing file.
+    let dir = scratch("adir");
+    let _ = std::fs::remove_file(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    fails(2, &["run", "--config", dir.to_str().unwrap()], &["adir"]);
+    fails(
+        2,
+        &["run", "--config", "/nonexistent/missing.toml"],
+        &["missing.toml"],
+    );
+    // #35: a NaN literal, at the key's own line.
+    let nan = write(
+        "nan.toml",
+        b"[task]\nmax_time_steps = 10\nfall_penalty = nan\n",
+    );
+    fails(
+        2,
+        &["run", "--config", &nan],
+        &["line 3", "task.fall_penalty"],
+    );
+    let dup = write("dup.toml", b"[task]\nfall_penalty = 1\nfall_penalty = 2\n");
+    fails(2, &["run", "--config", &dup], &["dup.toml"]);
+    // #37: endless input.
+    fails(
+        2,
+        &["run", "--config", "/dev/zero"],
+        &["/dev/zero", "1 MiB"],
+    );
+}
+
+#[test]
+fn command_line_arguments_39_and_57() {
+    for args in [
+        &["run", "--episodes", "0"][..],
+        &["run", "--seed", "-1"],
+        &["run", "--seed", "18446744073709551616"],
+        &["run", "--policy", "walk"],
+        &["run", "--bogus"],
+        &["frobnicate"],
+        &["render", "--out", "r.png"],
+        &["render", "--fps", "0", "--out", "x.gif"],
+        &["render", "--width", "15", "--out", "x.gif"],
+        &["render", "--width", "4097", "--out", "x.gif"],
+        &["bench", "--steps", "0"],
+        &["bench", "--num-envs", "4097"],
+        &["bench", "--threads", "2"],
+        &["soak", "--steps", "0"],
+    ] {
+        fails(2, args, &[]);
+    }
+}
+
+/// A record of `steps` steps, written by `hyq run`.
+fn record(name: &str, steps: u32) -> String {
+    let path = scratch(name);
+    hyq_ok(&[
+        "run",
+        "--set",
+        &format!("task.max_time_steps={steps}"),
+        "--record",
+        path.to_str().unwrap(),
+    ]);
+    path.to_str().unwrap().to_owned()
+}
+
+#[test]
+fn records_and_plots_40_to_56() {
+    // #41: a record path in a missing directory, or a directory.
+    fails(
+        2,
+        &["run", "--record", "/nonexistent/sub/x.jsonl"],
+        &["--record"],
+    );
+    let dir = scratch("record-dir");
+    let _ = std::fs::remove_file(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    fails(
+        2,
+        &["run", "--record", dir.to_str().unwrap()],
+        &["--record"],
+    );
+
+    let good = record("plot-good.jsonl", 5);
+    let text = std::fs::read_to_string(&good).unwrap();
+    let out_dir = scratch("plot-out");
+    let out = out_dir.to_str().unwrap();
+    // #44: a torn last line is left out with a warning; the whole lines are plotted.
+    let torn = write("plot-torn.jsonl", &text.as_bytes()[..text.len() - 40]);
+    let run = hyq(&["plot", &torn, "--out", out]);
+    assert_eq!(run.status.code(), Some(0), "{}", stderr(&run));
+    assert!(stderr(&run).starts_with("hyq: warning: ") && stderr(&run).contains("line 5"));
+    // #47, #48: nothing to plot (empty, blank, or only a torn line).
+    for (name, bytes) in [
+        ("plot-empty.jsonl", &b""[..]),
+        ("plot-blank.jsonl", b"\n\n  \n"),
+        ("plot-trunc.jsonl", &text.as_bytes()[..700]),
+    ] {
+        let path = write(name, bytes);
+        let run = hyq(&["plot", &path, "--out", out]);
+        assert_eq!(run.status.code(), Some(2), "{name}: {}", stderr(&run));
+        assert!(stderr(&run).contains("no step"), "{name}: {}", stderr(&run));
+    }
+    // #49, #50: NaN, null, not JSON, an array, binary, missing, a directory.
+    let first = text.lines().next().unwrap();
+    let reward = first.find("\"reward\":").unwrap() + 9;
+    let end = reward + first[reward..].find(',').unwrap();
+    for (name, line) in [
+        (
+            "plot-nan.jsonl",
+            format!("{}NaN{}", &first[..reward], &first[end..]),
+        ),
+        (
+            "plot-null.jsonl",
+            format!("{}null{}", &first[..reward], &first[end..]),
+        ),
+        ("plot-notjson.jsonl", "hello".to_owned()),
+        ("plot-array.jsonl", "[1, 2, 3]".to_owned()),
+    ] {
+        let path = write(name, format!("{line}\n").as_bytes());
+        fails(2, &["plot", &path, "--out", out], &["line 1"]);
+    }
+    let binary = write("plot-binary.jsonl", &[0xff, 0xfe, 0x00, 0x01, b'\n']);
+    fails(2, &["plot", &binary, "--out", out], &[]);
+    fails(2, &["plot", "/nonexistent/x.jsonl"], &["x.jsonl"]);
+    fails(2, &["plot", dir.to_str().unwrap(), "--out", out], &[]);
+    // #52: endless input.
+    fails(2, &["plot", "/dev/zero", "--out", out], &["1 MiB"]);
+    // #53: values spanning more than f64 holds: the plot finishes (it used to hang).
+    let mut huge = String::new();
+    for (i, line) in text.lines().enumerate() {
+        let v = if i % 2 == 0 { "1e308" } else { "-1e308" };
+        let start = line.find("\"reward\":").unwrap() + 9;
+        let end = start + line[start..].find(',').unwrap();
+        huge.push_str(&format!("{}{v}{}\n", &line[..start], &line[end..]));
+    }
+    let huge = write("plot-huge.jsonl", huge.as_bytes());
+    hyq_ok(&["plot", &huge, "--out", out]);
+    // #56: --out an existing file.
+    fails(2, &["plot", &good, "--out", &good], &[]);
+    assert!(Path::new(&good).is_file());
+}

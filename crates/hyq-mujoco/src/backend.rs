@@ -1,0 +1,271 @@
+//! [`MujocoBackend`]: the `hyq-physics` [`Backend`] trait on a MuJoCo 4.0 world.
+//!
+//! The world is compiled from the MJCF that [`hyq_physics::mjcf`] writes for the shared
+//! [`RobotModel`] (same bodies, masses, inertias, joint frames, limits, damping and shapes as
+//! every other backend), without actuators: the shared PD actuator
+//! ([`hyq_physics::pd_substep`]) computes the joint torques, and the backend writes them into
+//! MuJoCo's applied generalized forces for one step.
+
+use std::sync::Arc;
+
+use hyq_physics::mjcf::{Actuators, Mjcf, MjcfOptions, to_mjcf};
+use hyq_physics::na::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3};
+use hyq_physics::{Backend, PhysicsError, PhysicsParams, RobotModel, RobotState, TrunkState};
+
+use crate::error::MujocoError;
+use crate::options::MujocoOptions;
+use crate::world::{Layout, StepError, World};
+
+fn backend_error(message: String) -> PhysicsError {
+    PhysicsError::Backend {
+        backend: MujocoBackend::NAME,
+        message,
+    }
+}
+
+impl From<MujocoError> for PhysicsError {
+    fn from(e: MujocoError) -> Self {
+        backend_error(e.to_string())
+    }
+}
+
+/// The MJCF the backend compiles for `model` under `params` and `options` (no actuators: the
+/// backend applies the shared actuator's torques itself). Useful to inspect, or to load the
+/// same world in MuJoCo from elsewhere.
+pub fn world_mjcf(
+    model: &RobotModel,
+    params: &PhysicsParams,
+    options: &MujocoOptions,
+) -> Result<Mjcf, PhysicsError> {
+    params.validate()?;
+    options.validate()?;
+    let mjcf_options = MjcfOptions {
+        actuators: Actuators::None,
+        solver: options.solver_settings(),
+        autoreset: false,
+        ..MjcfOptions::from_params(params)
+    };
+    to_mjcf(model, &mjcf_options).map_err(|e| backend_error(e.to_string()))
+}
+
+/// The layout the shim looks up in a compiled [`Mjcf`] of `model`.
+pub fn layout(model: &RobotModel, mjcf: &Mjcf) -> Layout {
+    let tracked_geoms = model
+        .tracked()
+        .iter()
+        .enumerate()
+        .flat_map(|(t, body)| {
+            body.shapes
+                .iter()
+                .map(move |&s| (mjcf.geoms[body.link][s].clone(), t))
+        })
+        .collect();
+    Layout {
+        joints: mjcf.joints.clone(),
+        bodies: mjcf.bodies.clone(),
+        num_tracked: model.tracked().len(),
+        tracked_geoms,
+        actuators: mjcf.actuators.clone(),
+    }
+}
+
+fn isometry(p: &[f64; 7]) -> Isometry3<f64> {
+    Isometry3::from_parts(
+        Translation3::new(p[0], p[1], p[2]),
+        UnitQuaternion::new_normalize(Quaternion::new(p[3], p[4], p[5], p[6])),
+    )
+}
+
+/// One HyQ (or any [`RobotModel`]) on flat ground in its own MuJoCo world.
+///
+/// `Send` (worlds can move between threads, and several worlds can step on several threads at
+/// once) but not `Sync`.
+#[derive(Debug)]
+pub struct MujocoBackend {
+    world: World,
+    model: Arc<RobotModel>,
+    params: PhysicsParams,
+    /// Contact flags of the last step, as the shim writes them and as reported.
+    contact_bytes: Vec<u8>,
+    contacts: Vec<bool>,
+    /// Set when the world cannot be stepped until the next state change (a failed state change
+    /// or a failed step).
+    blocked: Option<String>,
+}
+
+impl MujocoBackend {
+    /// Contacts in MuJoCo's current list whose shapes touch or penetrate the ground (all robot
+    /// shapes, tracked or not).
+    pub fn num_touching(&self) -> usize {
+        self.world.num_touching()
+    }
+
+    /// Simulated time since the last state change (s), as MuJoCo counts it.
+    pub fn time(&self) -> f64 {
+        self.world.time()
+    }
+}
+
+impl Backend for MujocoBackend {
+    type Options = MujocoOptions;
+    const NAME: &'static str = "mujoco";
+
+    fn build(
+        model: Arc<RobotModel>,
+        params: &PhysicsParams,
+        options: &Self::Options,
+    ) -> Result<Self, PhysicsError> {
+        let mjcf = world_mjcf(&model, params, options)?;
+        let world = World::new(&mjcf.xml, &layout(&model, &mjcf))?;
+        let tracked = model.tracked().len();
+        let mut backend = Self {
+            world,
+            contact_bytes: vec![0; tracked],
+            contacts: vec![false; tracked],
+            params: params.clone(),
+            blocked: None,
+            model,
+        };
+        let spawn = backend.model.spawn_state();
+        backend.set_state(&spawn)?;
+        if let Some(reason) = backend.blocked.take() {
+            return Err(backend_error(reason));
+        }
+        Ok(backend)
+    }
+
+    fn model(&self) -> &Arc<RobotModel> {
+        &self.model
+    }
+
+    fn params(&self) -> &PhysicsParams {
+        &self.params
+    }
+
+    fn apply_state(&mut self, state: &RobotState) {
+        self.contacts.fill(false);
+        let t = &state.trunk;
+        let p = t.pose.translation.vector;
+        let r = t.pose.rotation;
+        let q = r.quaternion();
+        // MuJoCo's free joint: angular velocity in the body's axes.
+        let w = r.inverse() * t.angvel;
+        let pose = [p.x, p.y, p.z, q.w, q.i, q.j, q.k];
+        let vel = [t.linvel.x, t.linvel.y, t.linvel.z, w.x, w.y, w.z];
+        match self.world.set_state(&pose, &vel, &state.q, &state.qd) {
+            Ok(()) => self.blocked = None,
+            // The state was validated, so MuJoCo refusing it is unexpected; the trait gives this
+            // method no error channel, so the next step reports it.
+            Err(e) => self.blocked = Some(format!("the last set_state failed: {e}")),
+        }
+    }
+
+    fn apply_joint_torques(&mut self, torques: &[f64]) {
+        self.world.set_joint_torques(torques);
+    }
+
+    fn step(&mut self) -> Result<(), PhysicsError> {
+        if let Some(reason) = &self.blocked {
+            return Err(backend_error(format!(
+                "{reason}; call set_state before stepping again"
+            )));
+        }
+        match self.world.step(&mut self.contact_bytes) {
+            Ok(()) => {
+                for (flag, &byte) in self.contacts.iter_mut().zip(&self.contact_bytes) {
+                    *flag = byte != 0;
+                }
+                Ok(())
+            }
+            Err(e) => {
+                self.contacts.fill(false);
+                Err(match e {
+                    StepError::Diverged(what) => {
+                        self.blocked = Some(format!("the simulation diverged ({what})"));
+                        PhysicsError::Diverged { what }
+                    }
+                    StepError::Failed(message) => {
+                        self.blocked = Some(message.clone());
+                        backend_error(message)
+                    }
+                })
+            }
+        }
+    }
+
+    fn joint_positions(&self, out: &mut [f64]) {
+        self.world.joint_positions(out);
+    }
+
+    fn joint_velocities(&self, out: &mut [f64]) {
+        self.world.joint_velocities(out);
+    }
+
+    fn trunk(&self) -> TrunkState {
+        let (pose, vel) = self.world.root_state();
+        let pose = isometry(&pose);
+        TrunkState {
+            linvel: Vector3::new(vel[0], vel[1], vel[2]),
+            angvel: pose.rotation * Vector3::new(vel[3], vel[4], vel[5]),
+            pose,
+        }
+    }
+
+    fn contacts(&self, out: &mut [bool]) {
+        out.copy_from_slice(&self.contacts);
+    }
+
+    fn link_poses(&self, out: &mut [Isometry3<f64>]) {
+        assert_eq!(
+            out.len(),
+            self.model.num_links(),
+            "link_poses: one pose per body"
+        );
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = isometry(&self.world.body_pose(i));
+        }
+    }
+
+    fn total_mass(&self) -> f64 {
+        self.world.total_mass()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    //! Which shapes report contacts: each foot only through its own shape (a shin on the
+    //! ground is not a foot contact), the trunk through its shapes, nothing else.
+    #![allow(clippy::unwrap_used)]
+
+    use super::*;
+
+    #[test]
+    fn only_tracked_shapes_report_contacts_each_to_its_own_flag() {
+        let model = hyq_physics::bundled::hyq();
+        let mjcf =
+            world_mjcf(&model, &PhysicsParams::default(), &MujocoOptions::default()).unwrap();
+        let l = layout(&model, &mjcf);
+        let mut expected = Vec::new();
+        for (t, body) in model.tracked().iter().enumerate() {
+            for &s in &body.shapes {
+                expected.push((mjcf.geoms[body.link][s].clone(), t));
+            }
+        }
+        assert_eq!(l.tracked_geoms, expected);
+        let names: Vec<&str> = l.tracked_geoms.iter().map(|(n, _)| n.as_str()).collect();
+        // The bundled HyQ: four foot spheres, then the trunk box.
+        assert_eq!(names, ["lf_foot", "lh_foot", "rf_foot", "rh_foot", "trunk"]);
+        let untracked: usize = model
+            .links()
+            .iter()
+            .map(|l| l.collisions.len())
+            .sum::<usize>()
+            - names.len();
+        assert_eq!(untracked, 8, "thighs and shins report nothing");
+        assert_eq!(l.num_tracked, model.num_feet() + 1);
+        assert!(
+            l.actuators.is_empty(),
+            "the backend's world has no actuator"
+        );
+    }
+}

@@ -1,0 +1,14 @@
+//! The shared backend conformance suite of hyq-physics, on MuJoCo, on every bundled robot
+//! (HyQ, the default, and ANYmal C).
+
+hyq_physics::conformance_tests!(hyq_mujoco::MujocoBackend);
+
+mod anymal_c {
+    use hyq_physics::conformance::fixtures::Robot;
+
+    hyq_physics::conformance_tests!(
+        hyq_mujoco::MujocoBackend,
+        <hyq_mujoco::MujocoBackend as hyq_physics::Backend>::Options::default(),
+        Robot::bundled("anymal_c")
+    );
+}

@@ -1,0 +1,65 @@
+//! A plot of values whose range spans more than f64 can hold (a reward of +1e308 on one step and
+//! −1e308 on another, a term near f64::MAX, D_n of 1e308) finishes and writes both PNGs: the
+//! axes are padded without overflowing to infinity, on which the plotting library never stops.
+
+// In tests and benches a failed unwrap is a failed run, with its location.
+#![allow(clippy::unwrap_used)]
+
+mod common;
+
+use std::sync::mpsc;
+use std::time::Duration;
+
+use common::scratch_dir;
+use hyq_render::{EpisodeSeries, PlotOptions, RewardTerms, StepRecord, plot_episode};
+
+/// Longer than any plot takes (well under a second each); a hang becomes a failure instead of a
+/// test run that never ends.
+const PATIENCE: Duration = Duration::from_secs(120);
+
+fn record(t: u64, reward: f64, r_e: f64, d_n: f64) -> StepRecord {
+    StepRecord {
+        t,
+        episode: Some(1),
+        reward,
+        terms: RewardTerms {
+            r_b: 0.0,
+            r_n: 0.0,
+            r_e,
+            r_reach: 0.0,
+            m_yaw: 1.0,
+            m_pitch: 1.0,
+            m_height: 1.0,
+            joint_penalty: 0.0,
+            fall_penalty: 0.0,
+        },
+        d_n: Some(d_n),
+        distance_to_goal: 1.0,
+    }
+}
+
+#[test]
+fn values_spanning_more_than_f64_are_plotted_and_the_plot_finishes() {
+    let records = [
+        record(1, 1e308, f64::MAX, 0.5),
+        record(2, -1e308, -f64::MAX, 1e308),
+        record(3, 0.0, 1.7e308, 1.0),
+    ];
+    let dir = scratch_dir("beyond-f64");
+    let (done, wait) = mpsc::channel();
+    let out = dir.clone();
+    std::thread::spawn(move || {
+        let series = EpisodeSeries::from_records(&records);
+        let options = PlotOptions {
+            k_exp: Some(5.0),
+            ..PlotOptions::default()
+        };
+        let _ = done.send(plot_episode(&series, &options, &out, "ep").map_err(|e| e.to_string()));
+    });
+    let plots = wait
+        .recv_timeout(PATIENCE)
+        .unwrap_or_else(|_| panic!("the plots did not finish within {PATIENCE:?}"))
+        .unwrap();
+    assert!(plots.rewards.is_file() && plots.distance.is_file());
+    std::fs::remove_dir_all(dir).unwrap();
+}
