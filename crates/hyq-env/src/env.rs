@@ -39,8 +39,8 @@ use hyq_spec::observation::trunk_acceleration;
 use hyq_spec::robot::Bounds;
 use hyq_spec::{
     Clipping, EpisodeError, EpisodeRules, JointDescription, JointRange, Observation,
-    ObservationLayout, RobotDescription, StepSnapshot, TaskConfig, TrunkDescription,
-    roll_pitch_yaw,
+    ObservationLayout, RewardBreakdown, RobotDescription, StepSnapshot, TaskConfig,
+    TrunkDescription, roll_pitch_yaw,
 };
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -49,7 +49,7 @@ use thiserror::Error;
 use crate::action::{ActionError, ActionScalar, ActionSpace};
 use crate::config::{ConfigError, EnvConfig, in_world, outside_world_reason};
 use crate::goal::{GoalSampler, sample_reset_state};
-use crate::info::{Reason, Reasons, StepInfo, ZERO_REWARD};
+use crate::info::{Reason, Reasons, StepInfo};
 
 /// Why the environment refused a call. Every variant names what was wrong.
 #[derive(Debug, Error)]
@@ -339,7 +339,7 @@ impl<B: Backend> Env<B> {
             info: StepInfo {
                 episode: 0,
                 t: 0,
-                reward: ZERO_REWARD,
+                reward: RewardBreakdown::NEUTRAL,
                 reasons: Reasons::NONE,
                 joint_at_limit: None,
                 divergence: None,
@@ -442,7 +442,7 @@ impl<B: Backend> Env<B> {
         let info = &mut self.info;
         info.episode = self.episodes;
         info.t = 0;
-        info.reward = ZERO_REWARD;
+        info.reward = RewardBreakdown::NEUTRAL;
         info.reasons = Reasons::NONE;
         info.joint_at_limit = None;
         info.divergence = None;
@@ -526,7 +526,7 @@ impl<B: Backend> Env<B> {
                 self.qd
                     .copy_from_slice(&self.obs[self.layout.joint_speeds()]);
                 let info = &mut self.info;
-                info.reward = ZERO_REWARD;
+                info.reward = RewardBreakdown::NEUTRAL;
                 info.reasons = Reasons::NONE;
                 info.reasons.insert(Reason::Diverged);
                 if t >= rules.config().max_time_steps {

@@ -163,9 +163,10 @@ pub use config::{
 pub use env::{
     DEFAULT_SEED, Env, EnvError, Reset, ResetOptions, Step, StepTiming, observation_layout_of,
 };
-pub use info::{Reason, Reasons, StepInfo, TermSums};
+pub use hyq_spec::TermSums;
+pub use info::{Reason, Reasons, StepInfo};
 pub use policy::{Policy, PolicyInput, RandomPolicy, Stand, Trot, TrotParams};
-pub use record::{RecordTerms, StepRecord};
+pub use record::StepRecord;
 pub use vec_env::{AutoReset, MAX_ENVS, MAX_THREADS, VecEnv, VecEnvError, VecStepOut};
 
 /// The repository README, whose Rust quickstart runs as a doctest of this crate so that it stays

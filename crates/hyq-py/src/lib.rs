@@ -58,5 +58,10 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("MAX_THREADS", hyq_env::MAX_THREADS)?;
     m.add("RENDER_SIDE_MIN", hyq_render::MIN_SIDE_PX)?;
     m.add("RENDER_SIDE_MAX", hyq_render::MAX_SIDE_PX)?;
+    // The reward terms' names in hyq-spec's table order: the info's term keys.
+    m.add(
+        "REWARD_TERMS",
+        pyo3::types::PyTuple::new(m.py(), hyq_spec::TERM_NAMES)?,
+    )?;
     Ok(())
 }

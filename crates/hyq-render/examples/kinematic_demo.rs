@@ -16,8 +16,8 @@ use std::path::PathBuf;
 
 use hyq_physics::na::{Isometry3, Point3, Translation3, UnitQuaternion};
 use hyq_render::{
-    GifWriter, Overlay, PlotOptions, PngSequence, RenderConfig, Renderer, RewardTerms, RobotPose,
-    Scene, StepRecord, plot_jsonl,
+    GifWriter, Overlay, PlotOptions, PngSequence, RenderConfig, Renderer, RobotPose, Scene,
+    StepRecord, TermValues, plot_jsonl,
 };
 use hyq_spec::{EpisodeRules, RobotDescription, StepSnapshot, TaskConfig};
 
@@ -110,7 +110,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             t: step,
             episode: Some(1),
             reward: b.total,
-            terms: RewardTerms::from(b),
+            terms: TermValues::all(&b),
             d_n: outcome.normalised_distance,
             distance_to_goal: outcome.distance,
         };

@@ -102,13 +102,15 @@ mod writer;
 pub use camera::{Camera, CameraConfig, NEAR_PLANE_M, REFERENCE_DISTANCE_M, REFERENCE_HEIGHT_M};
 pub use error::{PlotError, RenderError, WriteError};
 pub use frame::Frame;
+/// A record's reward terms by name (hyq-spec's type, which [`StepRecord::terms`] holds).
+pub use hyq_spec::TermValues;
 pub use plot::{
     DISTANCE_PLOT_SIZE, EpisodePlots, JsonlPlots, PlotOptions, REWARD_PLOT_SIZE, plot_distance,
-    plot_episode, plot_jsonl, plot_records, plot_reward_terms,
+    plot_episode, plot_jsonl, plot_records, plot_reward_terms, reward_plot_legend,
 };
 pub use records::{
-    EpisodeSeries, JsonlRecords, MAX_RECORD_LINE_BYTES, RewardTerms, StepRecord, cumulative,
-    parse_jsonl, read_jsonl, split_episodes,
+    EpisodeSeries, JsonlRecords, MAX_RECORD_LINE_BYTES, StepRecord, cumulative, parse_jsonl,
+    read_jsonl, split_episodes,
 };
 pub use renderer::{MAX_SIDE_PX, MIN_SIDE_PX, RenderConfig, Renderer};
 pub use scene::{Overlay, RobotPose, Scene};
