@@ -129,7 +129,9 @@ mod tests {
                 "README.md's reward table has no row for {name}"
             );
             assert!(
-                reward.lines().any(|l| l.starts_with("r = ") && l.contains(name)),
+                reward
+                    .lines()
+                    .any(|l| l.starts_with("r = ") && l.contains(name)),
                 "README.md's reward formula does not name {name}"
             );
             assert!(

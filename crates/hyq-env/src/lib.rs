@@ -146,6 +146,7 @@
 
 pub mod action;
 pub mod config;
+pub mod divergence;
 pub mod env;
 pub mod goal;
 pub mod info;
@@ -160,6 +161,7 @@ pub use config::{
     GoalConfig, GoalMode, JOINT_NOISE_MAX_RAD, OutOfRange, PhysicsConfig, REWARD_SCALE_MAX,
     ResetConfig, WORLD_HALF_EXTENT_M,
 };
+pub use divergence::Divergence;
 pub use env::{
     DEFAULT_SEED, Env, EnvError, Reset, ResetOptions, Step, StepTiming, observation_layout_of,
 };

@@ -91,7 +91,10 @@ fn string_values(info: &StepInfo, model: &RobotModel) -> [String; 4] {
         reasons_text(info.reasons),
         joint,
         side.to_owned(),
-        info.divergence.clone().unwrap_or_default(),
+        info.divergence
+            .as_ref()
+            .map(ToString::to_string)
+            .unwrap_or_default(),
     ]
 }
 
