@@ -452,6 +452,26 @@ impl Default for ResetConfig {
     }
 }
 
+/// Why [`EnvConfig::load`] failed: the file's error, or an override's; either reads as the
+/// [`ConfigError`] it holds.
+#[derive(Clone, Debug, PartialEq, Error)]
+pub enum LoadError {
+    /// The file could not be read, or its configuration is invalid.
+    #[error(transparent)]
+    File(ConfigError),
+    /// An override names an unknown key or a bad value, or leaves the configuration invalid.
+    #[error(transparent)]
+    Overrides(ConfigError),
+}
+
+impl From<LoadError> for ConfigError {
+    fn from(e: LoadError) -> Self {
+        match e {
+            LoadError::File(e) | LoadError::Overrides(e) => e,
+        }
+    }
+}
+
 /// An invalid configuration; every variant names the key and, where there is one, the value.
 #[derive(Clone, Debug, PartialEq, Error)]
 pub enum ConfigError {
@@ -552,6 +572,28 @@ impl EnvConfig {
             ConfigError::Invalid { key, .. } => at(key, e.to_string()),
             _ => e,
         })?;
+        Ok(config)
+    }
+
+    /// The configuration the fronts build (`hyq --config FILE --set KEY=VALUE`, and Python's
+    /// `config_file=` with keyword arguments): the defaults, or `file`'s, with `overrides`
+    /// (dotted key, TOML value) set on top by [`EnvConfig::set_all`], validated. The error says
+    /// which of the two was wrong.
+    pub fn load<K: AsRef<str>, V: AsRef<str>>(
+        file: Option<&Path>,
+        overrides: &[(K, V)],
+    ) -> Result<Self, LoadError> {
+        let mut config = match file {
+            Some(path) => Self::from_file(path).map_err(LoadError::File)?,
+            None => Self::default(),
+        };
+        if !overrides.is_empty() {
+            let pairs: Vec<(&str, &str)> = overrides
+                .iter()
+                .map(|(k, v)| (k.as_ref(), v.as_ref()))
+                .collect();
+            config.set_all(&pairs).map_err(LoadError::Overrides)?;
+        }
         Ok(config)
     }
 

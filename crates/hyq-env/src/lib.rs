@@ -158,8 +158,8 @@ pub mod vec_env;
 pub use action::{ActionError, ActionScalar, ActionSpace};
 pub use config::{
     ActionConfig, ActionMode, ConfigError, ControlConfig, EXP_REW_SCALING_MAX, EnvConfig, Gains,
-    GoalConfig, GoalMode, JOINT_NOISE_MAX_RAD, OutOfRange, PhysicsConfig, REWARD_SCALE_MAX,
-    ResetConfig, WORLD_HALF_EXTENT_M,
+    GoalConfig, GoalMode, JOINT_NOISE_MAX_RAD, LoadError, OutOfRange, PhysicsConfig,
+    REWARD_SCALE_MAX, ResetConfig, WORLD_HALF_EXTENT_M,
 };
 pub use divergence::Divergence;
 pub use env::{

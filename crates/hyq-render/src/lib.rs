@@ -16,8 +16,9 @@
 //!   the spec's §4.3 curve R_e(D_n) with the episode's points on it.
 //!
 //! The crate takes plain values: a [`hyq_physics::RobotModel`], poses, contact flags and
-//! numbers. It depends on no physics engine and no environment, so the environment, the CLI and
-//! the Python binding all call it the same way.
+//! numbers. It depends on no physics engine, and on no environment unless its `env` feature is
+//! on: then `env_scene` builds the scene of an hyq-env `Env`'s current state, the one helper
+//! the CLI's `hyq render` and the Python binding's `rgb_array` share.
 //!
 //! # Example: a frame, as `rgb_array` returns it
 //!
@@ -89,6 +90,8 @@
 //! - Text is DejaVu Sans cut to Latin, Greek and a few symbols (`assets/fonts/README.md`).
 
 mod camera;
+#[cfg(feature = "env")]
+mod env_scene;
 mod error;
 mod frame;
 mod geom;
@@ -100,6 +103,8 @@ mod text;
 mod writer;
 
 pub use camera::{Camera, CameraConfig, NEAR_PLANE_M, REFERENCE_DISTANCE_M, REFERENCE_HEIGHT_M};
+#[cfg(feature = "env")]
+pub use env_scene::env_scene;
 pub use error::{PlotError, RenderError, WriteError};
 pub use frame::Frame;
 /// A record's reward terms by name (hyq-spec's type, which [`StepRecord::terms`] holds).
@@ -112,7 +117,9 @@ pub use records::{
     EpisodeSeries, JsonlRecords, MAX_RECORD_LINE_BYTES, StepRecord, cumulative, parse_jsonl,
     read_jsonl, split_episodes,
 };
-pub use renderer::{MAX_SIDE_PX, MIN_SIDE_PX, RenderConfig, Renderer};
+pub use renderer::{
+    DEFAULT_HEIGHT_PX, DEFAULT_WIDTH_PX, MAX_SIDE_PX, MIN_SIDE_PX, RenderConfig, Renderer,
+};
 pub use scene::{Overlay, RobotPose, Scene};
 pub use text::{SANS, SANS_BOLD};
 pub use writer::{
