@@ -65,18 +65,9 @@
 //!
 //! # Speed
 //!
-//! Measured with `cargo bench -p hyq-render --bench render_frame` (criterion, the bench profile:
-//! release, thin LTO) on the project's 2-core AMD EPYC machine while other builds shared it:
-//! HyQ standing, the goal and the overlay in view, 480 × 360, criterion's median estimate.
-//!
-//! | what | time per frame |
-//! |---|---|
-//! | render (`Renderer::render_into`) | 2.8 ms |
-//! | encode as a GIF frame (NeuQuant speed 10, own palette) | 12.3 ms |
-//! | encode as a PNG (fast compression) | 0.27 ms |
-//!
-//! So `rgb_array` costs about 3 ms a frame, and writing a GIF is bound by its colour
-//! quantisation (about 15 ms a frame in all: a 10 s episode at 25 fps takes about 4 s).
+//! About 3 ms to render a 480 × 360 frame, and GIF writing bound by its colour quantisation:
+//! the figures, and the bench that measures them (`cargo bench -p hyq-render --bench
+//! render_frame`), are in `docs/benchmarks.md`.
 //!
 //! # Limits
 //!
