@@ -550,90 +550,107 @@ pub fn plot_distance(
             .map_err(|e| e.to_string())?;
         let (left, right) = body.split_horizontally(body.dim_in_pixel().0 / 2);
 
-        // D_n over time, with the start (1) and the goal (0).
-        let (t0, t1) = t_range(t);
-        let y_hi = d_n.iter().map(|p| p.1).fold(1.0, f64::max) * 1.08;
-        let mut chart = styled_chart(
-            &left,
-            "Normalised distance D_n = D / K (§4.2)",
-            t0..t1,
-            -0.04..y_hi,
-            (x_desc, "D_n"),
-        )?;
-        for (y, label, colour) in [
-            (1.0, "start (D_n = 1)", GREY),
-            (0.0, "goal (D_n = 0)", GREEN),
-        ] {
-            chart
-                .draw_series(DashedLineSeries::new(
-                    [(t0, y), (t1, y)],
-                    8,
-                    6,
-                    colour.stroke_width(2),
-                ))
-                .map_err(|e| e.to_string())?
-                .label(label)
-                .legend(move |(x, y)| {
-                    PathElement::new([(x, y), (x + 22, y)], colour.stroke_width(2))
-                });
-        }
-        chart
-            .draw_series(LineSeries::new(d_n.iter().copied(), BLUE.stroke_width(3)))
-            .map_err(|e| e.to_string())?
-            .label("D_n")
-            .legend(|(x, y)| PathElement::new([(x, y), (x + 22, y)], BLUE.stroke_width(3)));
-        draw_legend(&mut chart, SeriesLabelPosition::UpperRight)?;
-
-        // R_e(D_n) and the episode's points on it.
-        let x_hi = points.iter().map(|p| p.0).fold(1.2, f64::max) * 1.06;
-        let curve: Vec<(f64, f64)> = match options.k_exp {
-            Some(k) => (0..=600)
-                .map(|i| {
-                    let d = x_hi * f64::from(i) / 600.0;
-                    (d, cumulative_exponential_reward(d, k))
-                })
-                .collect(),
-            None => Vec::new(),
-        };
-        let (y_lo, y_hi) = padded_range(curve.iter().chain(&points).map(|p| &p.1), &[0.0]);
-        let caption = match options.k_exp {
-            Some(k) => format!("R_e(D_n), k_exp = {k} (§4.3), and this episode"),
-            None => "Σ r_e against D_n (r_e off: no curve)".to_owned(),
-        };
-        let mut chart = styled_chart(&right, caption, 0.0..x_hi, y_lo..y_hi, ("D_n", "R_e"))?;
-        if !curve.is_empty() {
-            chart
-                .draw_series(LineSeries::new(
-                    curve.iter().copied(),
-                    GREEN.stroke_width(3),
-                ))
-                .map_err(|e| e.to_string())?
-                .label("R_e(D_n), the spec's curve")
-                .legend(|(x, y)| PathElement::new([(x, y), (x + 22, y)], GREEN.stroke_width(3)));
-        }
-        let n = points.len().max(2) - 1;
-        chart
-            .draw_series(points.iter().enumerate().map(|(i, &p)| {
-                // Early steps light, late steps dark.
-                let s = i as f64 / n as f64;
-                let mix = |a: u8, b: u8| (f64::from(a) + (f64::from(b) - f64::from(a)) * s) as u8;
-                let c = RGBColor(mix(0xa6, 0x1f), mix(0xc8, 0x3a), mix(0xe8, 0x6b));
-                Circle::new(p, 4, c.filled())
-            }))
-            .map_err(|e| e.to_string())?
-            .label("(D_n^t, Σ r_e), light → dark with time")
-            .legend(|(x, y)| Circle::new((x + 11, y), 4, BLUE.filled()));
-        chart
-            .draw_series(std::iter::once(Circle::new(
-                (1.0, 0.0),
-                7,
-                INK.stroke_width(2),
-            )))
-            .map_err(|e| e.to_string())?
-            .label("start: D_n = 1, R_e = 0")
-            .legend(|(x, y)| Circle::new((x + 11, y), 6, INK.stroke_width(2)));
-        draw_legend(&mut chart, SeriesLabelPosition::UpperRight)
+        draw_distance_over_time(&left, t, x_desc, &d_n)?;
+        draw_exponential_curve(&right, &points, options.k_exp)
     })
+}
+
+/// The left panel of the distance plot: D_n over time (`t`, described by `x_desc`), with the
+/// start (1) and the goal (0).
+fn draw_distance_over_time(
+    left: &DrawingArea<BitMapBackend<'_>, Shift>,
+    t: &[f64],
+    x_desc: &str,
+    d_n: &[(f64, f64)],
+) -> Result<(), String> {
+    let (t0, t1) = t_range(t);
+    let y_hi = d_n.iter().map(|p| p.1).fold(1.0, f64::max) * 1.08;
+    let mut chart = styled_chart(
+        left,
+        "Normalised distance D_n = D / K (§4.2)",
+        t0..t1,
+        -0.04..y_hi,
+        (x_desc, "D_n"),
+    )?;
+    for (y, label, colour) in [
+        (1.0, "start (D_n = 1)", GREY),
+        (0.0, "goal (D_n = 0)", GREEN),
+    ] {
+        chart
+            .draw_series(DashedLineSeries::new(
+                [(t0, y), (t1, y)],
+                8,
+                6,
+                colour.stroke_width(2),
+            ))
+            .map_err(|e| e.to_string())?
+            .label(label)
+            .legend(move |(x, y)| PathElement::new([(x, y), (x + 22, y)], colour.stroke_width(2)));
+    }
+    chart
+        .draw_series(LineSeries::new(d_n.iter().copied(), BLUE.stroke_width(3)))
+        .map_err(|e| e.to_string())?
+        .label("D_n")
+        .legend(|(x, y)| PathElement::new([(x, y), (x + 22, y)], BLUE.stroke_width(3)));
+    draw_legend(&mut chart, SeriesLabelPosition::UpperRight)?;
+    Ok(())
+}
+
+/// The right panel of the distance plot: the §4.3 curve R_e(D_n) for `k_exp` (none when r_e
+/// is off) and the episode's points (D_n^t, Σ r_e) on it.
+fn draw_exponential_curve(
+    right: &DrawingArea<BitMapBackend<'_>, Shift>,
+    points: &[(f64, f64)],
+    k_exp: Option<f64>,
+) -> Result<(), String> {
+    let x_hi = points.iter().map(|p| p.0).fold(1.2, f64::max) * 1.06;
+    let curve: Vec<(f64, f64)> = match k_exp {
+        Some(k) => (0..=600)
+            .map(|i| {
+                let d = x_hi * f64::from(i) / 600.0;
+                (d, cumulative_exponential_reward(d, k))
+            })
+            .collect(),
+        None => Vec::new(),
+    };
+    let (y_lo, y_hi) = padded_range(curve.iter().chain(points).map(|p| &p.1), &[0.0]);
+    let caption = match k_exp {
+        Some(k) => format!("R_e(D_n), k_exp = {k} (§4.3), and this episode"),
+        None => "Σ r_e against D_n (r_e off: no curve)".to_owned(),
+    };
+    let mut chart = styled_chart(right, caption, 0.0..x_hi, y_lo..y_hi, ("D_n", "R_e"))?;
+    if !curve.is_empty() {
+        chart
+            .draw_series(LineSeries::new(
+                curve.iter().copied(),
+                GREEN.stroke_width(3),
+            ))
+            .map_err(|e| e.to_string())?
+            .label("R_e(D_n), the spec's curve")
+            .legend(|(x, y)| PathElement::new([(x, y), (x + 22, y)], GREEN.stroke_width(3)));
+    }
+    let n = points.len().max(2) - 1;
+    chart
+        .draw_series(points.iter().enumerate().map(|(i, &p)| {
+            // Early steps light, late steps dark.
+            let s = i as f64 / n as f64;
+            let mix = |a: u8, b: u8| (f64::from(a) + (f64::from(b) - f64::from(a)) * s) as u8;
+            let c = RGBColor(mix(0xa6, 0x1f), mix(0xc8, 0x3a), mix(0xe8, 0x6b));
+            Circle::new(p, 4, c.filled())
+        }))
+        .map_err(|e| e.to_string())?
+        .label("(D_n^t, Σ r_e), light → dark with time")
+        .legend(|(x, y)| Circle::new((x + 11, y), 4, BLUE.filled()));
+    chart
+        .draw_series(std::iter::once(Circle::new(
+            (1.0, 0.0),
+            7,
+            INK.stroke_width(2),
+        )))
+        .map_err(|e| e.to_string())?
+        .label("start: D_n = 1, R_e = 0")
+        .legend(|(x, y)| Circle::new((x + 11, y), 6, INK.stroke_width(2)));
+    draw_legend(&mut chart, SeriesLabelPosition::UpperRight)
 }
 
 /// The two files [`plot_episode`] writes.
