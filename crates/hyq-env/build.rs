@@ -1,7 +1,7 @@
 //! Puts the env card into the crate docs: the `## Env card` section of the workspace README
-//! (which xtask keeps true against the code) is written to `OUT_DIR/env_card.md`, and `lib.rs`
-//! includes it, so the card is written once. Links to the repository's files become their
-//! text, since they do not resolve from the crate docs.
+//! (which xtask keeps true against the code) is written to `env_card.md` in `OUT_DIR`, whose
+//! path `HYQ_ENV_CARD` gives `lib.rs` to include, so the card is written once. Links to the
+//! repository's files become their text, since they do not resolve from the crate docs.
 
 use std::path::PathBuf;
 
@@ -22,6 +22,7 @@ fn main() {
     let out = PathBuf::from(std::env::var_os("OUT_DIR").unwrap_or_default()).join("env_card.md");
     std::fs::write(&out, format!("# Env card\n{}\n", unlink_relative(card)))
         .unwrap_or_else(|e| panic!("{}: {e}", out.display()));
+    println!("cargo::rustc-env=HYQ_ENV_CARD={}", out.display());
 }
 
 /// `text` with every Markdown link to a relative path, `[label](path)`, replaced by its label.

@@ -25,7 +25,7 @@
 //!
 //! The env card below is the README's (one text, kept true against the code by xtask's tests).
 //!
-#![doc = include_str!(concat!(env!("OUT_DIR"), "/env_card.md"))]
+#![doc = include_str!(env!("HYQ_ENV_CARD"))]
 //!
 //! # Configuration
 //!
