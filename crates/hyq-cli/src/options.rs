@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use clap::Args;
-use hyq_env::{Env, EnvConfig, Policy, RandomPolicy, Stand, Trot};
+use hyq_env::{Env, EnvConfig, LoadError, Policy, RandomPolicy, Stand, Trot};
 use hyq_physics::{Backend, RobotModel};
 
 use crate::Failure;
@@ -94,10 +94,6 @@ impl EnvArgs {
 impl ConfigArgs {
     /// The configuration: the defaults, then the file, then the overrides, validated.
     pub fn config(&self) -> Result<EnvConfig, Failure> {
-        let mut config = match &self.config {
-            Some(path) => EnvConfig::from_file(path).map_err(|e| usage(e.to_string()))?,
-            None => EnvConfig::default(),
-        };
         let mut pairs = Vec::with_capacity(self.set.len());
         for item in &self.set {
             let (key, value) = item.split_once('=').ok_or_else(|| {
@@ -113,12 +109,10 @@ impl ConfigArgs {
             }
             pairs.push((key, value.trim()));
         }
-        if !pairs.is_empty() {
-            config
-                .set_all(&pairs)
-                .map_err(|e| usage(format!("--set: {e}")))?;
-        }
-        Ok(config)
+        EnvConfig::load(self.config.as_deref(), &pairs).map_err(|e| match e {
+            LoadError::File(e) => usage(e.to_string()),
+            LoadError::Overrides(e) => usage(format!("--set: {e}")),
+        })
     }
 }
 

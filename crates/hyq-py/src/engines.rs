@@ -13,7 +13,7 @@ use hyq_env::{
     ActionSpace, AutoReset, Env, EnvConfig, EnvError, ResetOptions, StepInfo, VecEnv, VecEnvError,
     VecStepOut,
 };
-use hyq_physics::{Backend, RobotModel, TrunkState};
+use hyq_physics::{Backend, RobotModel};
 use hyq_spec::ObservationLayout;
 use pyo3::PyResult;
 use pyo3::exceptions::PyValueError;
@@ -97,16 +97,15 @@ impl<T: ?Sized> Held<T> {
 /// What the Python classes read from one environment, whatever its backend.
 pub trait EnvView: Send {
     fn model(&self) -> &Arc<RobotModel>;
-    fn observation(&self) -> &[f64];
     fn observation_f32(&self) -> &[f32];
     fn observation_layout(&self) -> &ObservationLayout;
     fn action_space(&self) -> &ActionSpace;
     fn config(&self) -> &EnvConfig;
     fn env_dt(&self) -> f64;
     fn info(&self) -> &StepInfo;
-    fn trunk(&self) -> &TrunkState;
-    fn joint_angles(&self) -> &[f64];
     fn needs_reset(&self) -> bool;
+    /// The scene of the current state for the renderer (`hyq_render::env_scene`).
+    fn scene(&self, episode_return: f64) -> hyq_render::Scene<'_>;
     fn reset(&mut self, seed: Option<u64>, options: &ResetOptions) -> Result<(), EnvError>;
     /// One step: (reward, terminated, truncated).
     fn step(&mut self, action: &[f64]) -> Result<(f64, bool, bool), EnvError>;
@@ -115,9 +114,6 @@ pub trait EnvView: Send {
 impl<B: Backend> EnvView for Env<B> {
     fn model(&self) -> &Arc<RobotModel> {
         Env::model(self)
-    }
-    fn observation(&self) -> &[f64] {
-        Env::observation(self)
     }
     fn observation_f32(&self) -> &[f32] {
         Env::observation_f32(self)
@@ -137,14 +133,11 @@ impl<B: Backend> EnvView for Env<B> {
     fn info(&self) -> &StepInfo {
         Env::info(self)
     }
-    fn trunk(&self) -> &TrunkState {
-        Env::trunk(self)
-    }
-    fn joint_angles(&self) -> &[f64] {
-        Env::joint_angles(self)
-    }
     fn needs_reset(&self) -> bool {
         Env::needs_reset(self)
+    }
+    fn scene(&self, episode_return: f64) -> hyq_render::Scene<'_> {
+        hyq_render::env_scene(self, episode_return)
     }
     fn reset(&mut self, seed: Option<u64>, options: &ResetOptions) -> Result<(), EnvError> {
         Env::reset(self, seed, options).map(|_| ())
