@@ -56,6 +56,7 @@
 //! | `normalized` (default) | [−1, 1] | lo_i + (a_i + 1)/2 · (hi_i − lo_i) |
 //! | `absolute` | [lo_i, hi_i] rad | a_i |
 //! | `delta` | [−1, 1] | clip(θ_i + a_i · `max_delta_rad`, lo_i, hi_i) |
+//! | `offset` | [−1, 1] | clip(s_i + a_i · `max_offset_rad`, lo_i, hi_i), s_i standing |
 //!
 //! Finite values outside the space are clipped (reported in `info.action_clipped`) or refused
 //! (`action.out_of_range = "error"`); a NaN, an infinity or a wrong length is always an error,
