@@ -150,6 +150,7 @@ pub mod config;
 pub mod env;
 pub mod goal;
 pub mod info;
+pub mod mlp;
 pub mod policy;
 pub mod record;
 pub mod testing;
@@ -165,6 +166,7 @@ pub use env::{
     DEFAULT_SEED, Env, EnvError, Reset, ResetOptions, Step, StepTiming, observation_layout_of,
 };
 pub use info::{Reason, Reasons, StepInfo, TermSums};
+pub use mlp::{MlpError, MlpMetadata, MlpPolicy};
 pub use policy::{Policy, PolicyInput, RandomPolicy, Stand, Trot, TrotParams};
 pub use record::{RecordTerms, StepRecord};
 pub use vec_env::{AutoReset, MAX_ENVS, MAX_THREADS, VecEnv, VecEnvError, VecStepOut};
