@@ -186,7 +186,7 @@ fn open_output(args: &RenderArgs, plan: &Plan) -> Result<Output, Failure> {
 
 /// Runs `hyq render`.
 pub fn execute(args: RenderArgs) -> Result<(), Failure> {
-    let config = args.env.config()?;
+    let config = args.policy.config(&args.env)?;
     with_backend!(args.env.backend, B => {
         let env = make_env::<B>(robot(), config)?;
         render_episode(env, &args)
