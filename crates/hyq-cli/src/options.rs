@@ -161,7 +161,7 @@ fn parse_policy(text: &str) -> Result<PolicyChoice, String> {
 }
 
 /// Reads a trained policy file: a one-line usage error naming the file and the problem.
-fn read_mlp(file: &std::path::Path) -> Result<MlpPolicy, Failure> {
+pub fn read_mlp(file: &std::path::Path) -> Result<MlpPolicy, Failure> {
     MlpPolicy::from_file(file).map_err(|e| usage(format!("--policy mlp:{e}")))
 }
 

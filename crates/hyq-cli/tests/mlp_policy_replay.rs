@@ -191,3 +191,31 @@ fn a_non_finite_weight_is_refused_naming_the_tensor() {
         assert!(err.contains(word), "`{word}` not in: {err}");
     }
 }
+
+#[test]
+fn bench_runs_the_trained_policy_closed_loop_in_its_environment() {
+    let policy = policy_arg(&committed_policy());
+    let out = hyq_ok(&["bench", "--policy", &policy, "--steps", "200", "--json"]);
+    let report: serde_json::Value = serde_json::from_str(out.trim()).unwrap();
+    assert_eq!(report["workload"], "env_mlp", "{report}");
+    assert_eq!(report["action_mode"], "offset", "{report}");
+    assert_eq!(report["steps"], 200, "{report}");
+    assert!(
+        report["env_steps_per_s"].as_f64().unwrap() > 0.0,
+        "{report}"
+    );
+    usage_error_naming(
+        &["bench", "--policy", &policy, "--num-envs", "2"],
+        &["--num-envs", "one env"],
+    );
+    usage_error_naming(
+        &["bench", "--policy", "trot"],
+        &["trot", "random", "mlp:FILE"],
+    );
+    let text = scratch("bench_policy.txt");
+    std::fs::write(&text, "not a policy\n").unwrap();
+    usage_error_naming(
+        &["bench", "--policy", &policy_arg(&text)],
+        &["bench_policy.txt", "safetensors"],
+    );
+}
