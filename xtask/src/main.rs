@@ -15,6 +15,7 @@ mod soak;
 mod stages;
 #[cfg(test)]
 mod standalone;
+mod vendor;
 
 use std::process::ExitCode;
 
@@ -47,6 +48,11 @@ commands:
                                         the anchors' venv is target/anchor-venv (or --venv DIR,
                                         $HYQ_ANCHOR_VENV); prints medians, min/max and ratios
                                         and writes target/bench-vs-anchors.md
+  vendor-check [--no-tests]             vendor/rapier3d is the published rapier3d plus
+                                        vendor/patches (and the notices), and rapier's
+                                        multibody tests pass on it (also a stage of `test`)
+  vendor-diff                           prints what vendor/rapier3d holds beyond the published
+                                        crate and vendor/patches, as an upstream-ready patch
   help                                  this text
 ";
 
@@ -57,6 +63,8 @@ fn main() -> ExitCode {
         Some("setup") => mujoco::setup(&args[1..]),
         Some("soak") => soak::soak(&args[1..]),
         Some("bench-vs-anchors") => bench::bench_vs_anchors(&args[1..]),
+        Some("vendor-check") => vendor::vendor_check(&args[1..]),
+        Some("vendor-diff") => vendor::vendor_diff(&args[1..]),
         Some("help") | Some("--help") | Some("-h") | None => {
             print!("{HELP}");
             Ok(())

@@ -178,7 +178,7 @@ fn stream_stdout(
 }
 
 /// The number of passed tests on a libtest summary line (`test result: ok. 12 passed; ...`).
-fn passed_count(line: &str) -> u64 {
+pub fn passed_count(line: &str) -> u64 {
     let Some(rest) = line.trim().strip_prefix("test result:") else {
         return 0;
     };
@@ -211,6 +211,11 @@ pub fn test(args: &[String]) -> Result<(), String> {
     }
     let tests = cargo_test(&root, &args)?;
     results.push(("rust workspace (rapier backend)", Outcome::Passed { tests }));
+
+    // The patched rapier3d: its tree is the published crate plus vendor/patches, and its
+    // multibody tests pass.
+    let tests = crate::vendor::stage(&root)?;
+    results.push(("vendor/rapier3d (check, tests)", Outcome::Passed { tests }));
 
     // Stage 2: the DART backend and everything that runs on it.
     let dart = if !has("hyq-dart") {

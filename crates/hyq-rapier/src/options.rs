@@ -9,10 +9,11 @@ use serde::{Deserialize, Serialize};
 pub struct RapierOptions {
     /// Internal solver substeps per physics step (rapier's `num_solver_iterations`)
     /// (default: 2; rapier's own default is 4). The main cost knob: a HyQ sub-step costs about
-    /// 34–39, 59–64 and 107–115 µs at 1, 2 and 4 (see the crate's README). The conformance
-    /// suite passes at all three; fewer make joint limits softer under full torque (worst
-    /// overshoot 0.087 rad at 1, 0.032 at 2, 0.013 at 4) and free-floating momentum drift
-    /// larger (5.3, 2.3, 1.4 mm in a violent second). Standing is the same at 1 to 4.
+    /// 310, 480 and 820 thousand instructions at 1, 2 and 4 (random targets; see the crate's
+    /// README). The conformance suite passes at all three; fewer make joint limits softer under
+    /// full torque (worst overshoot 0.087 rad at 1, 0.032 at 2, 0.015 at 4) and free-floating
+    /// momentum drift larger (5.3, 2.3, 1.4 mm in a violent second). Standing is the same at 1
+    /// to 4.
     pub solver_iterations: usize,
     /// Natural frequency (Hz) of the ground-contact constraint (rapier's
     /// `static_contact_softness`) (default: 240; rapier's own default is 60). A standing HyQ's

@@ -1,0 +1,29 @@
+//! The rapier backend passes the backend conformance suite of `hyq-physics` at 1 and at 4
+//! solver iterations too, not only at its default of 2 (`tests/conformance.rs`): the option
+//! changes rapier's internal substeps, so every invariant must hold at each documented setting.
+
+mod one_iteration {
+    use hyq_physics::conformance::fixtures::Robot;
+
+    hyq_physics::conformance_tests!(
+        hyq_rapier::RapierBackend,
+        hyq_rapier::RapierOptions {
+            solver_iterations: 1,
+            ..Default::default()
+        },
+        Robot::bundled(hyq_physics::bundled::DEFAULT)
+    );
+}
+
+mod four_iterations {
+    use hyq_physics::conformance::fixtures::Robot;
+
+    hyq_physics::conformance_tests!(
+        hyq_rapier::RapierBackend,
+        hyq_rapier::RapierOptions {
+            solver_iterations: 4,
+            ..Default::default()
+        },
+        Robot::bundled(hyq_physics::bundled::DEFAULT)
+    );
+}
