@@ -12,7 +12,9 @@ environment (the file's configuration written as a --config file): `random` draw
 actions in the same action space, `zero` is the all-zero action, which in the offset mode holds
 the standing pose (hyq's `stand` policy). Writes OUT/<backend>_<policy>.jsonl (one summary per
 episode) and prints a Markdown table: mean distance walked toward the goal (K − D^T) with its
-standard deviation, mean return, and how the episodes ended.
+standard deviation and minimum, the trunk's travel along the start-to-goal direction (which,
+unlike K − D^T, keeps growing past the goal), the final distance to the goal D^T, the mean
+return, and how the episodes ended.
 """
 
 from __future__ import annotations
@@ -54,6 +56,14 @@ def run(hyq: str, backend: str, args: list[str], episodes: int, seed: int, out: 
     return [json.loads(line) for line in done.stdout.splitlines() if line.strip()]
 
 
+def travel(r: dict) -> float:
+    """How far the trunk moved along the start-to-goal direction (m): past the goal it keeps
+    counting, where K − D^T falls."""
+    d = [g - c for g, c in zip(r["goal"][:2], r["initial_position"][:2])]
+    m = [f - c for f, c in zip(r["final_position"][:2], r["initial_position"][:2])]
+    return (d[0] * m[0] + d[1] * m[1]) / max(1e-12, (d[0] ** 2 + d[1] ** 2) ** 0.5)
+
+
 def summarise(rows: list[dict]) -> dict:
     dist = [r["initial_distance_to_goal"] - r["final_distance_to_goal"] for r in rows]
     reasons: dict[str, int] = {}
@@ -65,6 +75,8 @@ def summarise(rows: list[dict]) -> dict:
         "distance_mean": statistics.fmean(dist),
         "distance_sd": statistics.stdev(dist) if len(dist) > 1 else 0.0,
         "distance_min": min(dist),
+        "travel_mean": statistics.fmean(travel(r) for r in rows),
+        "final_to_goal_mean": statistics.fmean(r["final_distance_to_goal"] for r in rows),
         "return_mean": statistics.fmean(r["return"] for r in rows),
         "steps_mean": statistics.fmean(r["steps"] for r in rows),
         "reasons": reasons,
@@ -98,12 +110,12 @@ def main() -> None:
     (args.out / "summary.json").write_text(json.dumps(
         {f"{b}/{p}": s for (b, p), s in results.items()}, indent=2) + "\n")
 
-    print("| engine | policy | distance walked (m), mean ± sd [min] | return | episode length (steps) | ended by |")
-    print("|---|---|---|---|---|---|")
+    print("| engine | policy | distance walked K − D^T (m), mean ± sd [min] | trunk travel toward the goal (m) | D^T (m) | return | episode length (steps) | ended by |")
+    print("|---|---|---|---|---|---|---|---|")
     for (backend, name), s in results.items():
         ended = ", ".join(f"{k} {v}" for k, v in sorted(s["reasons"].items()))
         print(f"| {backend} | {name} | {s['distance_mean']:.2f} ± {s['distance_sd']:.2f} "
-              f"[{s['distance_min']:.2f}] | {s['return_mean']:.2f} | {s['steps_mean']:.0f} | {ended} |")
+              f"[{s['distance_min']:.2f}] | {s['travel_mean']:.2f} | {s['final_to_goal_mean']:.2f} | {s['return_mean']:.2f} | {s['steps_mean']:.0f} | {ended} |")
 
 
 if __name__ == "__main__":
