@@ -982,77 +982,68 @@ fn write_models(hyq: &Path, root: &Path, dir: &Path) -> Result<(), String> {
     Ok(())
 }
 
-/// `cargo xtask bench-vs-anchors`.
-pub fn bench_vs_anchors(args: &[String]) -> Result<(), String> {
-    let root = workspace_root();
-    let args = parse(
-        args,
-        &root,
-        std::env::var_os("HYQ_ANCHOR_VENV").map(PathBuf::from),
-    )?;
-    let command = std::iter::once("cargo xtask bench-vs-anchors".to_string())
-        .chain(std::env::args().skip(2))
-        .collect::<Vec<_>>()
-        .join(" ");
-    let mut host = Host {
-        command,
-        date: shell("date -u '+%Y-%m-%d %H:%M UTC'"),
-        cpu: shell("grep -m1 'model name' /proc/cpuinfo | cut -d: -f2"),
-        cores: shell("getconf _NPROCESSORS_ONLN"),
-        load_start: shell("cut -d' ' -f1-3 /proc/loadavg"),
-        commit: shell("git rev-parse --short HEAD; git diff --quiet HEAD || echo -dirty")
-            .replace('\n', ""),
-        rustc: shell("rustc --version"),
-        ..Host::default()
-    };
-    let anchors = root.join(ANCHORS_DIR);
-    let requirements = anchors.join("requirements.txt");
-    let pins = parse_requirements(
-        &std::fs::read_to_string(&requirements)
-            .map_err(|e| format!("cannot read {}: {e}", requirements.display()))?,
-    )?;
+impl Host {
+    /// The machine, the load, the commit and the toolchain now, and the command being run.
+    fn now() -> Self {
+        let command = std::iter::once("cargo xtask bench-vs-anchors".to_string())
+            .chain(std::env::args().skip(2))
+            .collect::<Vec<_>>()
+            .join(" ");
+        Host {
+            command,
+            date: shell("date -u '+%Y-%m-%d %H:%M UTC'"),
+            cpu: shell("grep -m1 'model name' /proc/cpuinfo | cut -d: -f2"),
+            cores: shell("getconf _NPROCESSORS_ONLN"),
+            load_start: shell("cut -d' ' -f1-3 /proc/loadavg"),
+            commit: shell("git rev-parse --short HEAD; git diff --quiet HEAD || echo -dirty")
+                .replace('\n', ""),
+            rustc: shell("rustc --version"),
+            ..Host::default()
+        }
+    }
+}
 
-    // Python first: a missing interpreter or pip fails before the long build.
-    let (python, venv_notes) = setup_venv(&args.venv, &pins)?;
-    host.notes.extend(venv_notes);
-
-    // The backends this machine can measure, and the features that build them in.
+/// The backends this machine can measure, and the features that build them in; why any other
+/// was left out goes into `notes`.
+fn measurable_backends(
+    args: &BenchArgs,
+    root: &Path,
+    notes: &mut Vec<String>,
+) -> (Vec<&'static str>, Vec<&'static str>) {
     let mut features = Vec::new();
     let mut backends = Vec::new();
     for measure in SEQUENCE {
         let Measure::Hyq(b) = measure else { continue };
         if !args.wants(b.name) {
             if b.name == "mujoco" {
-                host.notes
-                    .push("--no-mujoco: the MuJoCo backend was not measured".into());
+                notes.push("--no-mujoco: the MuJoCo backend was not measured".into());
             }
             continue;
         }
-        match backend_missing(b.name, &root) {
-            Some(why) => host.notes.push(why),
+        match backend_missing(b.name, root) {
+            Some(why) => notes.push(why),
             None => {
                 backends.push(b.name);
                 features.extend(b.feature);
             }
         }
     }
-    let mut build = strings(&["build", "--release", "--locked", "-p", "hyq-cli"]);
-    if !features.is_empty() {
-        build.extend(strings(&["--features", &features.join(",")]));
-    }
-    let status = run_cargo(&root, &build)?;
-    if !status.success() {
-        return Err(format!("the release build of hyq failed ({status})"));
-    }
-    let hyq = root.join("target").join("release").join("hyq");
-    let models = root.join(MODELS_DIR);
-    write_models(&hyq, &root, &models)?;
+    (backends, features)
+}
 
+/// Which of the anchors' Python modules import in their virtual environment (`python`); a
+/// missing one is an error unless it is DART's, which is noted in `notes` instead.
+fn anchor_modules(
+    python: &Path,
+    anchors: &Path,
+    args: &BenchArgs,
+    notes: &mut Vec<String>,
+) -> Result<BTreeMap<&'static str, bool>, String> {
     let importable = |module: &str| {
         run(
-            &python,
+            python,
             &strings(&["-c", &format!("import {module}")]),
-            &anchors,
+            anchors,
             &[],
         )
         .is_ok()
@@ -1073,32 +1064,94 @@ pub fn bench_vs_anchors(args: &[String]) -> Result<(), String> {
         }
     }
     if !args.dart {
-        host.notes
-            .push("--no-dart: the DART backend and DART from Python were not measured".into());
-    } else if modules.get("dartpy") == Some(&false)
-        && !host.notes.iter().any(|n| n.contains("dartpy"))
-    {
-        host.notes.push(
+        notes.push("--no-dart: the DART backend and DART from Python were not measured".into());
+    } else if modules.get("dartpy") == Some(&false) && !notes.iter().any(|n| n.contains("dartpy")) {
+        notes.push(
             "dartpy does not import in the anchors' venv: DART from Python was not measured".into(),
         );
     }
+    Ok(modules)
+}
+
+/// Writes the report and the raw measurements into `target/`.
+fn write_reports(root: &Path, report: &str, raw: &str) -> Result<(), String> {
+    let target = root.join("target");
+    std::fs::create_dir_all(&target)
+        .map_err(|e| format!("cannot create {}: {e}", target.display()))?;
+    for (name, text) in [
+        ("bench-vs-anchors.md", report),
+        ("bench-vs-anchors.jsonl", raw),
+    ] {
+        let path = target.join(name);
+        std::fs::write(&path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        println!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
+/// The anchors' Python and the versions of the pinned packages `pins` installed for `python`.
+fn python_versions(python: &Path, anchors: &Path, pins: &[(String, String)]) -> String {
     let versions = format!(
         "import sys, importlib.metadata as m\nout = ['Python ' + sys.version.split()[0]]\n\
          for p in {:?}:\n    try: out.append(p + ' ' + m.version(p))\n    \
          except m.PackageNotFoundError: pass\nprint(', '.join(out))",
         pins.iter().map(|(p, _)| p.as_str()).collect::<Vec<_>>()
     );
-    host.anchors = run(&python, &strings(&["-c", &versions]), &anchors, &[])
+    run(python, &strings(&["-c", &versions]), anchors, &[])
         .map(|s| s.trim().to_string())
-        .unwrap_or_default();
-    // One thread for every numerical library; no bytecode written into the repository.
-    let python_env = [
-        ("OMP_NUM_THREADS", "1"),
-        ("OPENBLAS_NUM_THREADS", "1"),
-        ("MKL_NUM_THREADS", "1"),
-        ("NUMEXPR_NUM_THREADS", "1"),
-        ("PYTHONDONTWRITEBYTECODE", "1"),
-    ];
+        .unwrap_or_default()
+}
+
+/// The anchors' environment: one thread for every numerical library; no bytecode written into
+/// the repository.
+const PYTHON_ENV: [(&str, &str); 5] = [
+    ("OMP_NUM_THREADS", "1"),
+    ("OPENBLAS_NUM_THREADS", "1"),
+    ("MKL_NUM_THREADS", "1"),
+    ("NUMEXPR_NUM_THREADS", "1"),
+    ("PYTHONDONTWRITEBYTECODE", "1"),
+];
+
+/// The anchors' pinned packages (`requirements.txt` in `anchors`).
+fn read_pins(anchors: &Path) -> Result<Vec<(String, String)>, String> {
+    let requirements = anchors.join("requirements.txt");
+    parse_requirements(
+        &std::fs::read_to_string(&requirements)
+            .map_err(|e| format!("cannot read {}: {e}", requirements.display()))?,
+    )
+}
+
+/// `cargo xtask bench-vs-anchors`.
+pub fn bench_vs_anchors(args: &[String]) -> Result<(), String> {
+    let root = workspace_root();
+    let args = parse(
+        args,
+        &root,
+        std::env::var_os("HYQ_ANCHOR_VENV").map(PathBuf::from),
+    )?;
+    let mut host = Host::now();
+    let anchors = root.join(ANCHORS_DIR);
+    let pins = read_pins(&anchors)?;
+
+    // Python first: a missing interpreter or pip fails before the long build.
+    let (python, venv_notes) = setup_venv(&args.venv, &pins)?;
+    host.notes.extend(venv_notes);
+
+    let (backends, features) = measurable_backends(&args, &root, &mut host.notes);
+    let mut build = strings(&["build", "--release", "--locked", "-p", "hyq-cli"]);
+    if !features.is_empty() {
+        build.extend(strings(&["--features", &features.join(",")]));
+    }
+    let status = run_cargo(&root, &build)?;
+    if !status.success() {
+        return Err(format!("the release build of hyq failed ({status})"));
+    }
+    let hyq = root.join("target").join("release").join("hyq");
+    let models = root.join(MODELS_DIR);
+    write_models(&hyq, &root, &models)?;
+
+    let modules = anchor_modules(&python, &anchors, &args, &mut host.notes)?;
+    host.anchors = python_versions(&python, &anchors, &pins);
 
     let mut raw = String::new();
     let mut reps: Vec<Rep> = Vec::new();
@@ -1144,7 +1197,7 @@ pub fn bench_vs_anchors(args: &[String]) -> Result<(), String> {
                         "1",
                     ]);
                     argv.extend(strings(a.args));
-                    let out = run(&python, &argv, &anchors, &python_env)?;
+                    let out = run(&python, &argv, &anchors, &PYTHON_ENV)?;
                     raw.push_str(&out);
                     for f in a.figures {
                         r.insert(f.series, parse_anchor(&out, f.anchor, f.case, f.key)?);
@@ -1184,18 +1237,7 @@ pub fn bench_vs_anchors(args: &[String]) -> Result<(), String> {
 
     let report = markdown(&host, &reps);
     println!("\n{report}");
-    let target = root.join("target");
-    std::fs::create_dir_all(&target)
-        .map_err(|e| format!("cannot create {}: {e}", target.display()))?;
-    for (name, text) in [
-        ("bench-vs-anchors.md", &report),
-        ("bench-vs-anchors.jsonl", &raw),
-    ] {
-        let path = target.join(name);
-        std::fs::write(&path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-        println!("wrote {}", path.display());
-    }
-    Ok(())
+    write_reports(&root, &report, &raw)
 }
 
 #[cfg(test)]

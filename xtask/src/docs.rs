@@ -92,6 +92,59 @@ mod tests {
         );
     }
 
+    /// The text of the README's env card from `**{name}**` to the next bold paragraph heading.
+    fn env_card_part<'a>(readme: &'a str, name: &str) -> &'a str {
+        let start = readme
+            .find(&format!("\n**{name}**"))
+            .unwrap_or_else(|| panic!("README.md's env card has no **{name}** part"));
+        let rest = &readme[start + 1..];
+        let end = rest[2..].find("\n**").map_or(rest.len(), |i| i + 2);
+        &rest[..end]
+    }
+
+    /// The names in the first cell of every table row of `text` (`| r_b, r_n | …` or
+    /// `` | `r_b`, `r_n` | … ``).
+    fn first_cell_names(text: &str) -> Vec<String> {
+        text.lines()
+            .filter_map(|l| l.trim().strip_prefix('|')?.split('|').next())
+            .flat_map(|cell| cell.split(','))
+            .map(|name| name.trim().trim_matches('`').to_owned())
+            .collect()
+    }
+
+    #[test]
+    fn readme_env_card_names_every_reward_term() {
+        let readme = read("README.md");
+        let reward = env_card_part(&readme, "Reward");
+        let info = first_cell_names(env_card_part(&readme, "Info"));
+        let record = env_card_part(&readme, "Step record");
+        let terms_row = record
+            .lines()
+            .find(|l| l.starts_with("| `terms` |"))
+            .expect("the step record table has a `terms` row");
+        for term in &hyq_spec::REWARD_TERMS {
+            let name = term.name;
+            assert!(
+                first_cell_names(reward).iter().any(|n| n == name),
+                "README.md's reward table has no row for {name}"
+            );
+            assert!(
+                reward
+                    .lines()
+                    .any(|l| l.starts_with("r = ") && l.contains(name)),
+                "README.md's reward formula does not name {name}"
+            );
+            assert!(
+                info.iter().any(|n| n == name),
+                "README.md's info table has no {name}"
+            );
+            assert!(
+                terms_row.contains(&format!("`{name}`")),
+                "README.md's step record `terms` row does not name {name}"
+            );
+        }
+    }
+
     /// The sections of the original spec, each of which docs/spec.md must have as a heading.
     const ORIGINAL_SECTIONS: [&str; 20] = [
         "1", "2", "3", "4", "4.1", "4.2", "4.3", "4.4", "5", "5.1", "5.1.1", "5.1.2", "5.2", "5.3",

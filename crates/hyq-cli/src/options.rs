@@ -7,7 +7,9 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use clap::Args;
-use hyq_env::{Env, EnvConfig, MlpPolicy, Policy, RandomPolicy, Stand, Trot, TrotParams};
+use hyq_env::{
+    Env, EnvConfig, LoadError, MlpPolicy, Policy, RandomPolicy, Stand, Trot, TrotParams,
+};
 use hyq_physics::{Backend, RobotModel};
 
 use crate::Failure;
@@ -62,13 +64,9 @@ impl ConfigArgs {
     }
 
     /// The configuration with `base` (dotted keys and TOML values, e.g. a trained policy's
-    /// environment) applied first: the defaults, then `base` except the keys the file or an
-    /// override sets, then the overrides, validated once.
+    /// environment) applied too: the defaults, then the file, then `base` except the keys the
+    /// file or an override sets, then the overrides, validated once.
     pub fn config_over(&self, base: &[(String, String)]) -> Result<EnvConfig, Failure> {
-        let mut config = match &self.config {
-            Some(path) => EnvConfig::from_file(path).map_err(|e| usage(e.to_string()))?,
-            None => EnvConfig::default(),
-        };
         let mut pairs = Vec::with_capacity(self.set.len());
         for item in &self.set {
             let (key, value) = item.split_once('=').ok_or_else(|| {
@@ -87,6 +85,8 @@ impl ConfigArgs {
         if !base.is_empty() {
             let mut user_keys: Vec<String> = pairs.iter().map(|(k, _)| (*k).to_owned()).collect();
             if let Some(path) = &self.config {
+                // The file alone first, so that a bad file gets the loader's own error.
+                EnvConfig::load::<&str, &str>(Some(path), &[]).map_err(load_error)?;
                 user_keys.extend(file_keys(path)?);
             }
             let inherited: Vec<(&str, &str)> = base
@@ -96,12 +96,14 @@ impl ConfigArgs {
                 .collect();
             pairs.splice(0..0, inherited);
         }
-        if !pairs.is_empty() {
-            config
-                .set_all(&pairs)
-                .map_err(|e| usage(format!("--set: {e}")))?;
-        }
-        Ok(config)
+        EnvConfig::load(self.config.as_deref(), &pairs).map_err(load_error)
+    }
+}
+
+fn load_error(e: LoadError) -> Failure {
+    match e {
+        LoadError::File(e) => usage(e.to_string()),
+        LoadError::Overrides(e) => usage(format!("--set: {e}")),
     }
 }
 
@@ -120,8 +122,8 @@ fn file_keys(path: &std::path::Path) -> Result<Vec<String>, Failure> {
             }
         }
     }
-    // The file was read and validated by `EnvConfig::from_file` already; these errors are for
-    // a file changed in between.
+    // The loader has read and validated the file already; these errors are for a file changed
+    // in between.
     let text = std::fs::read_to_string(path)
         .map_err(|e| usage(format!("--config {}: {e}", path.display())))?;
     let table: toml::Table = text.parse().map_err(|e: toml::de::Error| {

@@ -17,7 +17,7 @@ use std::path::{Path, PathBuf};
 
 use clap::Args;
 use hyq_env::{EnvConfig, StepInfo};
-use hyq_render::{EpisodeSeries, PlotError, PlotOptions, RewardTerms, StepRecord};
+use hyq_render::{EpisodeSeries, PlotError, PlotOptions, StepRecord, TermValues};
 
 use crate::Failure;
 use crate::options::{ConfigArgs, usage};
@@ -152,7 +152,7 @@ impl LivePlots {
             t: info.t,
             episode: Some(info.episode),
             reward: info.reward.total,
-            terms: RewardTerms::from(info.reward),
+            terms: TermValues::all(&info.reward),
             d_n: Some(info.d_n),
             distance_to_goal: info.distance_to_goal,
         });

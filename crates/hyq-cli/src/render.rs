@@ -17,10 +17,8 @@ use std::path::{MAIN_SEPARATOR, Path, PathBuf};
 use clap::Args;
 use hyq_env::{Env, ResetOptions};
 use hyq_physics::Backend;
-use hyq_physics::na::Point3;
 use hyq_render::{
-    Frame, GifWriter, Overlay, PngSequence, RenderConfig, Renderer, RobotPose, Scene, WriteError,
-    gif_delay_cs,
+    Frame, GifWriter, PngSequence, RenderConfig, Renderer, WriteError, env_scene, gif_delay_cs,
 };
 
 use crate::Failure;
@@ -40,10 +38,10 @@ pub struct RenderArgs {
     #[arg(long, value_name = "T")]
     seconds: Option<f64>,
     /// Image width (pixels, 16 to 4096).
-    #[arg(long, default_value_t = 480, value_parser = clap::value_parser!(u32).range(16..=4096))]
+    #[arg(long, default_value_t = hyq_render::DEFAULT_WIDTH_PX, value_parser = side_px())]
     width: u32,
     /// Image height (pixels, 16 to 4096).
-    #[arg(long, default_value_t = 360, value_parser = clap::value_parser!(u32).range(16..=4096))]
+    #[arg(long, default_value_t = hyq_render::DEFAULT_HEIGHT_PX, value_parser = side_px())]
     height: u32,
     /// Frames per simulated second: at most the env step rate (100 by default), and at most 50
     /// for a GIF.
@@ -184,6 +182,12 @@ fn open_output(args: &RenderArgs, plan: &Plan) -> Result<Output, Failure> {
     })
 }
 
+/// The image sides the renderer accepts (pixels).
+fn side_px() -> clap::builder::RangedI64ValueParser<u32> {
+    clap::value_parser!(u32)
+        .range(i64::from(hyq_render::MIN_SIDE_PX)..=i64::from(hyq_render::MAX_SIDE_PX))
+}
+
 /// Runs `hyq render`.
 pub fn execute(args: RenderArgs) -> Result<(), Failure> {
     let config = args.policy.config(&args.env)?;
@@ -212,16 +216,6 @@ fn render_episode<B: Backend>(mut env: Env<B>, args: &RenderArgs) -> Result<(), 
             status: 1,
             message: format!("reset: {e}"),
         })?;
-    // The contact rows of the observation: latched over the env step's sub-steps, as the
-    // environment reports them (the feet, then the trunk: the model's tracked order).
-    let contact_rows: Vec<usize> = {
-        let layout = env.observation_layout();
-        layout
-            .foot_contacts()
-            .chain([layout.trunk_contact()])
-            .collect()
-    };
-    let mut contacts = vec![false; env.model().tracked().len()];
     let mut frame = Frame::new(args.width, args.height);
     let mut action = vec![0.0; env.action_space().len()];
     let steps_per_frame = 1.0 / (plan.fps * env.env_dt());
@@ -234,26 +228,8 @@ fn render_episode<B: Backend>(mut env: Env<B>, args: &RenderArgs) -> Result<(), 
         // Frame k shows step round(k · steps_per_frame); the rate is at most the step rate, so
         // each step is due for at most one frame.
         if t == (frames as f64 * steps_per_frame).round() as u64 {
-            let obs = env.observation();
-            for (flag, &row) in contacts.iter_mut().zip(&contact_rows) {
-                *flag = obs[row] > 0.5;
-            }
-            let info = env.info();
-            let scene = Scene::new(
-                RobotPose::Joints {
-                    trunk: &env.trunk().pose,
-                    q: env.joint_angles(),
-                },
-                &contacts,
-            )
-            .with_goal(Point3::from(info.goal))
-            .with_overlay(Overlay {
-                time_s: t as f64 * env.env_dt(),
-                distance_to_goal_m: info.distance_to_goal,
-                episode_return: ret,
-            });
             renderer
-                .render_into(&scene, &mut frame)
+                .render_into(&env_scene(&env, ret), &mut frame)
                 .map_err(|e| Failure {
                     status: 1,
                     message: format!("render at t = {t}: {e}"),

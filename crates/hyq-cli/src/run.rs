@@ -14,6 +14,8 @@ use std::path::PathBuf;
 use clap::Args;
 use hyq_env::{Env, Reason, ResetOptions, StepRecord, TermSums};
 use hyq_physics::Backend;
+use hyq_spec::terms::terms_of;
+use hyq_spec::{REWARD_TERMS, RewardTerm, TaskConfig, TermKind};
 use serde::Serialize;
 
 use crate::Failure;
@@ -107,12 +109,12 @@ pub struct EpisodeSummary {
     /// Σ reward.
     #[serde(rename = "return")]
     pub ret: f64,
-    /// Σ of each term.
+    /// Σ of each reward and penalty term.
     pub terms: TermSums,
-    /// The mean yaw and pitch multipliers over the steps.
-    pub mean_m_yaw: f64,
-    /// See `mean_m_yaw`.
-    pub mean_m_pitch: f64,
+    /// The mean of each multiplier over the steps, as `mean_<name>` (an opt-in one only when
+    /// it is on).
+    #[serde(flatten)]
+    pub multipliers: MultiplierMeans,
     /// Gymnasium's flags on the last step.
     pub terminated: bool,
     /// See `terminated`.
@@ -129,6 +131,35 @@ pub struct EpisodeSummary {
     pub final_position: [f64; 3],
     /// G (m).
     pub goal: [f64; 3],
+}
+
+/// The mean of each multiplier (`hyq_spec::REWARD_TERMS` of kind `Multiplier`) over an
+/// episode's steps, written as `mean_m_yaw`, `mean_m_pitch`, …; an opt-in multiplier (the
+/// height penalty) only when the configuration switches it on.
+#[derive(Clone, Debug)]
+pub struct MultiplierMeans {
+    sums: TermSums,
+    task: TaskConfig,
+}
+
+impl MultiplierMeans {
+    /// The multipliers reported under `task`, with their means.
+    pub fn iter(&self) -> impl Iterator<Item = (&'static RewardTerm, f64)> + '_ {
+        terms_of(TermKind::Multiplier)
+            .filter(|t| t.is_reported(&self.task))
+            .map(|t| (t, self.sums.mean(t.name).unwrap_or_default()))
+    }
+}
+
+impl Serialize for MultiplierMeans {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let mut map = s.serialize_map(None)?;
+        for (term, mean) in self.iter() {
+            map.serialize_entry(&format!("mean_{}", term.name), &mean)?;
+        }
+        map.end()
+    }
 }
 
 /// Runs `hyq run`.
@@ -164,6 +195,7 @@ fn run_episodes<B: Backend>(mut env: Env<B>, args: &RunArgs) -> Result<(), Failu
     let bar = progress_bar(args.episodes.saturating_mul(t_max));
     let mut action = vec![0.0; env.action_space().len()];
     let mut summaries = Vec::new();
+    let task = env.config().task;
     for episode in 0..args.episodes {
         let seed = (episode == 0).then_some(args.policy.seed);
         let reset = env
@@ -181,8 +213,10 @@ fn run_episodes<B: Backend>(mut env: Env<B>, args: &RunArgs) -> Result<(), Failu
             simulated_s: 0.0,
             ret: 0.0,
             terms: TermSums::default(),
-            mean_m_yaw: 0.0,
-            mean_m_pitch: 0.0,
+            multipliers: MultiplierMeans {
+                sums: TermSums::default(),
+                task,
+            },
             terminated: false,
             truncated: false,
             reasons: Vec::new(),
@@ -204,8 +238,6 @@ fn run_episodes<B: Backend>(mut env: Env<B>, args: &RunArgs) -> Result<(), Failu
             summary.steps = info.t;
             summary.ret += r.total;
             summary.terms.add(r);
-            summary.mean_m_yaw += r.m_yaw;
-            summary.mean_m_pitch += r.m_pitch;
             let done = step.terminated || step.truncated;
             if done {
                 summary.terminated = step.terminated;
@@ -234,9 +266,7 @@ fn run_episodes<B: Backend>(mut env: Env<B>, args: &RunArgs) -> Result<(), Failu
         if let Some(plots) = plots.as_mut() {
             plots.finish_episode(summary.episode)?;
         }
-        let n = summary.steps.max(1) as f64;
-        summary.mean_m_yaw /= n;
-        summary.mean_m_pitch /= n;
+        summary.multipliers.sums = summary.terms;
         summary.simulated_s = summary.steps as f64 * env.env_dt();
         bar.set_position((episode + 1) * t_max);
         if args.json {
@@ -283,37 +313,27 @@ pub fn compact(v: f64) -> String {
     }
 }
 
-/// The per-episode table of `hyq run`.
+/// The per-episode table of `hyq run`: the return and the sum of every reward and penalty term
+/// (`hyq_spec::REWARD_TERMS`), the end and the distance.
 pub fn summary_table(summaries: &[EpisodeSummary]) -> String {
-    let mut table = Table::new(&[
-        "episode",
-        "steps",
-        "time_s",
-        "return",
-        "r_b",
-        "r_n",
-        "r_e",
-        "r_reach",
-        "joint_penalty",
-        "fall_penalty",
-        "<end",
-        "distance_m",
-        "dx_m",
-    ]);
+    let summed = || REWARD_TERMS.iter().filter(|t| t.kind.is_summed());
+    let header: Vec<&str> = ["episode", "steps", "time_s", "return"]
+        .into_iter()
+        .chain(summed().map(|t| t.name))
+        .chain(["<end", "distance_m", "dx_m"])
+        .collect();
+    let mut table = Table::new(&header);
     let num = compact;
     for s in summaries {
         let end: Vec<&str> = s.reasons.iter().map(|r| r.as_str()).collect();
-        table.row(vec![
+        let mut row = vec![
             s.episode.to_string(),
             s.steps.to_string(),
             format!("{:.2}", s.simulated_s),
             num(s.ret),
-            num(s.terms.r_b),
-            num(s.terms.r_n),
-            num(s.terms.r_e),
-            num(s.terms.r_reach),
-            num(s.terms.joint_penalty),
-            num(s.terms.fall_penalty),
+        ];
+        row.extend(summed().map(|t| num(s.terms.get(t.name).unwrap_or_default())));
+        row.extend([
             end.join("+"),
             format!(
                 "{:.3} -> {:.3}",
@@ -321,6 +341,7 @@ pub fn summary_table(summaries: &[EpisodeSummary]) -> String {
             ),
             format!("{:.3}", s.final_position[0] - s.initial_position[0]),
         ]);
+        table.row(row);
     }
     table.render()
 }

@@ -103,22 +103,18 @@ fn first_non_finite(obs: &[f64], obs_f32: &[f32], info: &StepInfo) -> Option<(St
     }
     let r = &info.reward;
     let named = [
-        ("reward.total", r.total),
-        ("reward.r_b", r.r_b),
-        ("reward.r_n", r.r_n),
-        ("reward.r_e", r.r_e),
-        ("reward.r_reach", r.r_reach),
-        ("reward.m_yaw", r.m_yaw),
-        ("reward.m_pitch", r.m_pitch),
-        ("reward.m_height", r.m_height),
-        ("reward.joint_penalty", r.joint_penalty),
-        ("reward.fall_penalty", r.fall_penalty),
         ("distance_to_goal", info.distance_to_goal),
         ("d_n", info.d_n),
         ("roll", info.roll),
         ("pitch", info.pitch),
         ("yaw", info.yaw),
     ];
+    if !r.total.is_finite() {
+        return Some(("reward.total".to_owned(), r.total));
+    }
+    if let Some((term, v)) = r.terms().find(|(_, v)| !v.is_finite()) {
+        return Some((format!("reward.{}", term.name), v));
+    }
     if let Some((name, v)) = named.iter().find(|(_, v)| !v.is_finite()) {
         return Some(((*name).to_owned(), *v));
     }

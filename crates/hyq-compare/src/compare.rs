@@ -136,28 +136,8 @@ pub fn compare<A: Backend, B: Backend>(
     }
     let scenario = spec.scenario;
     let base = scenario.config(seconds)?;
-    let config_a = side_config(spec, &base, &[])?;
-    let config_b = side_config(spec, &base, &spec.overrides_b)?;
     let steps = base.task.max_time_steps;
-    // The episode length is the script's: an override of t_max would leave a side without
-    // actions (longer) or cut the comparison short on one side only (shorter).
-    for config in [&config_a, &config_b] {
-        if config.task.max_time_steps != steps {
-            return Err(CompareError::Override {
-                item: format!("task.max_time_steps={}", config.task.max_time_steps),
-                reason: "the episode length comes from the run length (seconds), not an override"
-                    .into(),
-            });
-        }
-    }
-    // The script is built from the first side's action space; the second side must read
-    // actions the same way or "the same actions" would mean different targets.
-    if config_a.action != config_b.action {
-        return Err(CompareError::Override {
-            item: "action.*".into(),
-            reason: "the two sides must share the action configuration".into(),
-        });
-    }
+    let (config_a, config_b) = side_configs(spec, &base)?;
     let script = scenario.actions(&model, &config_a, spec.seed, steps)?;
 
     let mut env_a = build_env::<A>(labels[0], model.clone(), config_a.clone())?;
@@ -201,21 +181,7 @@ pub fn compare<A: Backend, B: Backend>(
     );
     let series =
         Series::from_runs(&traj_a, &traj_b).with_divergences(&trajectory, config_a.env_dt());
-    let engines = [A::NAME, B::NAME];
-    let checks: Vec<Check> = values
-        .iter()
-        .map(|(metric, value)| {
-            let (tolerance, source) = ledger.tolerance(engines, scenario, *metric);
-            Check {
-                metric: *metric,
-                value: *value,
-                tolerance,
-                // A NaN never passes.
-                within: *value <= tolerance,
-                source,
-            }
-        })
-        .collect();
+    let checks = check_all(&values, ledger, [A::NAME, B::NAME], scenario);
     Ok(Report {
         scenario,
         description: scenario.description(),
@@ -241,6 +207,61 @@ pub fn compare<A: Backend, B: Backend>(
         checks,
         series,
     })
+}
+
+/// The two sides' configurations: `base` with the shared overrides, and the second side's own
+/// on top; an override may change neither the episode length (the script's) nor the action
+/// configuration (the script's actions must mean the same targets on both sides).
+fn side_configs(
+    spec: &ComparisonSpec,
+    base: &EnvConfig,
+) -> Result<(EnvConfig, EnvConfig), CompareError> {
+    let config_a = side_config(spec, base, &[])?;
+    let config_b = side_config(spec, base, &spec.overrides_b)?;
+    let steps = base.task.max_time_steps;
+    // The episode length is the script's: an override of t_max would leave a side without
+    // actions (longer) or cut the comparison short on one side only (shorter).
+    for config in [&config_a, &config_b] {
+        if config.task.max_time_steps != steps {
+            return Err(CompareError::Override {
+                item: format!("task.max_time_steps={}", config.task.max_time_steps),
+                reason: "the episode length comes from the run length (seconds), not an override"
+                    .into(),
+            });
+        }
+    }
+    // The script is built from the first side's action space; the second side must read
+    // actions the same way or "the same actions" would mean different targets.
+    if config_a.action != config_b.action {
+        return Err(CompareError::Override {
+            item: "action.*".into(),
+            reason: "the two sides must share the action configuration".into(),
+        });
+    }
+    Ok((config_a, config_b))
+}
+
+/// Every metric's value judged against its tolerance in `ledger` for `engines` and `scenario`.
+fn check_all(
+    values: &[(Metric, f64)],
+    ledger: &Ledger,
+    engines: [&str; 2],
+    scenario: Scenario,
+) -> Vec<Check> {
+    values
+        .iter()
+        .map(|(metric, value)| {
+            let (tolerance, source) = ledger.tolerance(engines, scenario, *metric);
+            Check {
+                metric: *metric,
+                value: *value,
+                tolerance,
+                // A NaN never passes.
+                within: *value <= tolerance,
+                source,
+            }
+        })
+        .collect()
 }
 
 /// The one-step comparison's part of the report.

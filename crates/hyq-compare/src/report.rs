@@ -13,6 +13,7 @@ use crate::ledger::ToleranceSource;
 use crate::metrics::TrajectoryComparison;
 use crate::run::{TermSums, Trajectory};
 use crate::scenario::Scenario;
+use hyq_spec::REWARD_TERMS;
 
 /// The JSON report's file name.
 pub const JSON_FILE: &str = "report.json";
@@ -208,8 +209,19 @@ impl Report {
     /// The Markdown report; `command` is the command line that produced it (shown verbatim).
     pub fn to_markdown(&self, command: &str) -> String {
         let mut m = String::new();
+        self.markdown_header(&mut m, command);
+        self.markdown_per_backend(&mut m);
+        self.markdown_trajectory(&mut m);
+        self.markdown_one_step(&mut m);
+        self.markdown_checks(&mut m);
+        // Writing into a String cannot fail.
+        let _ = writeln!(m, "\n## Plot\n\n![trunk x and z over time]({PLOT_FILE})");
+        m
+    }
+
+    /// The title, the command, the run's settings and the verdict.
+    fn markdown_header(&self, w: &mut String, command: &str) {
         let [a, b] = &self.sides;
-        let w = &mut m;
         // Writing into a String cannot fail.
         let _ = writeln!(
             w,
@@ -253,7 +265,11 @@ impl Report {
             )
         };
         let _ = writeln!(w, "\n{verdict}\n");
+    }
 
+    /// Each backend's end, return, reward-term sums and heights.
+    fn markdown_per_backend(&self, w: &mut String) {
+        let [a, b] = &self.sides;
         let _ = writeln!(w, "## Per backend\n");
         let _ = writeln!(w, "| | {} | {} |\n|---|---|---|", a.label, b.label);
         let reasons = |s: &SideReport| {
@@ -275,16 +291,12 @@ impl Report {
             format!("{} ({:.2} s)", s.end_step, s.end_time_s)
         });
         row("return Σr", &|s| format!("{:.4}", s.sums.ret));
-        row("Σ r_b", &|s| format!("{:.4}", s.sums.terms.r_b));
-        row("Σ r_n", &|s| format!("{:.4}", s.sums.terms.r_n));
-        row("Σ r_e", &|s| format!("{:.4}", s.sums.terms.r_e));
-        row("Σ r_reach", &|s| format!("{:.4}", s.sums.terms.r_reach));
-        row("Σ joint_penalty", &|s| {
-            format!("{:.4}", s.sums.terms.joint_penalty)
-        });
-        row("Σ fall_penalty", &|s| {
-            format!("{:.4}", s.sums.terms.fall_penalty)
-        });
+        // Σ of every reward and penalty term, in hyq-spec's table order.
+        for term in REWARD_TERMS.iter().filter(|t| t.kind.is_summed()) {
+            row(&format!("Σ {}", term.name), &|s| {
+                format!("{:.4}", s.sums.terms.get(term.name).unwrap_or_default())
+            });
+        }
         row("standing height (2 s stand)", &|s| {
             format!("{:.4} m", s.standing_height_m)
         });
@@ -295,7 +307,11 @@ impl Report {
                 s.final_position[0], s.final_position[1], s.final_position[2]
             )
         });
+    }
 
+    /// The divergence over time and the contact-flag agreement.
+    fn markdown_trajectory(&self, w: &mut String) {
+        let [a, b] = &self.sides;
         let t = &self.trajectory;
         let _ = writeln!(
             w,
@@ -336,7 +352,11 @@ impl Report {
                 c.link, c.agreement_pct, c.steps_in_contact[0], c.steps_in_contact[1]
             );
         }
+    }
 
+    /// The one-step comparison from shared states.
+    fn markdown_one_step(&self, w: &mut String) {
+        let [a, _] = &self.sides;
         let o = &self.one_step;
         let _ = writeln!(
             w,
@@ -361,7 +381,10 @@ impl Report {
                 u = s.unit
             );
         }
+    }
 
+    /// Every metric against the ledger.
+    fn markdown_checks(&self, w: &mut String) {
         let _ = writeln!(w, "\n## Checks against the ledger\n");
         let _ = writeln!(
             w,
@@ -384,8 +407,6 @@ impl Report {
                 source.replace('|', "/")
             );
         }
-        let _ = writeln!(w, "\n## Plot\n\n![trunk x and z over time]({PLOT_FILE})");
-        m
     }
 }
 

@@ -11,8 +11,8 @@ use serde::Serialize;
 
 use crate::error::CompareError;
 
-/// The sums of each additive reward term over a run (hyq-env's [`hyq_env::TermSums`], written
-/// flat beside it in the report) and the return.
+/// The sums of each reward and penalty term over a run (hyq-spec's [`hyq_env::TermSums`],
+/// written flat beside the return in the report) and the return.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
 pub struct TermSums {
     /// Σ of each term.

@@ -9,7 +9,7 @@ use std::sync::Arc;
 
 use hyq_physics::na::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3};
 use hyq_physics::{
-    Backend, PhysicsError, PhysicsParams, RobotModel, RobotState, Shape, TrunkState,
+    Backend, Link, PhysicsError, PhysicsParams, RobotModel, RobotState, Shape, TrunkState,
 };
 use serde::{Deserialize, Serialize};
 
@@ -105,58 +105,7 @@ fn describe(
     let mut bodies = Vec::with_capacity(model.num_links());
     let mut shapes = Vec::new();
     for (i, link) in model.links().iter().enumerate() {
-        let i3 = link.inertia;
-        let mut body = BodyDesc {
-            name: link.name.clone(),
-            parent: -1,
-            joint_kind: JointKind::Free,
-            joint_name: format!("{}_free", link.name),
-            joint_index: 0,
-            joint_origin: Pose::IDENTITY,
-            axis: [0.0; 3],
-            lower: 0.0,
-            upper: 0.0,
-            damping: 0.0,
-            mass: link.mass,
-            com: [link.com.x, link.com.y, link.com.z],
-            inertia: [
-                i3[(0, 0)],
-                i3[(1, 1)],
-                i3[(2, 2)],
-                i3[(0, 1)],
-                i3[(0, 2)],
-                i3[(1, 2)],
-            ],
-        };
-        match (link.parent, link.parent_joint) {
-            (None, _) => {}
-            (Some(parent), Some(j)) => {
-                let joint = &model.joints()[j];
-                body.parent = i32::try_from(parent).map_err(|_| {
-                    backend_error(format!(
-                        "link {}: parent index {parent} too large",
-                        link.name
-                    ))
-                })?;
-                body.joint_kind = JointKind::Revolute;
-                body.joint_name = joint.urdf_name.clone();
-                body.joint_index = u32::try_from(j).map_err(|_| {
-                    backend_error(format!("joint {}: index {j} too large", joint.name))
-                })?;
-                body.joint_origin = pose(&joint.origin);
-                body.axis = [joint.axis.x, joint.axis.y, joint.axis.z];
-                body.lower = joint.lower;
-                body.upper = joint.upper;
-                body.damping = joint.damping;
-            }
-            (Some(_), None) => {
-                return Err(backend_error(format!(
-                    "link {} has a parent but no actuated joint",
-                    link.name
-                )));
-            }
-        }
-        bodies.push(body);
+        bodies.push(body_desc(model, link)?);
 
         for (s, collision) in link.collisions.iter().enumerate() {
             let (kind, size) = match collision.shape {
@@ -206,6 +155,62 @@ fn describe(
             .map_err(|_| backend_error("too many tracked bodies".into()))?,
     };
     Ok((bodies, shapes, world))
+}
+
+/// The bridge's description of one body (`link`) and the joint to its parent (free for the
+/// root).
+fn body_desc(model: &RobotModel, link: &Link) -> Result<BodyDesc, PhysicsError> {
+    let i3 = link.inertia;
+    let mut body = BodyDesc {
+        name: link.name.clone(),
+        parent: -1,
+        joint_kind: JointKind::Free,
+        joint_name: format!("{}_free", link.name),
+        joint_index: 0,
+        joint_origin: Pose::IDENTITY,
+        axis: [0.0; 3],
+        lower: 0.0,
+        upper: 0.0,
+        damping: 0.0,
+        mass: link.mass,
+        com: [link.com.x, link.com.y, link.com.z],
+        inertia: [
+            i3[(0, 0)],
+            i3[(1, 1)],
+            i3[(2, 2)],
+            i3[(0, 1)],
+            i3[(0, 2)],
+            i3[(1, 2)],
+        ],
+    };
+    match (link.parent, link.parent_joint) {
+        (None, _) => {}
+        (Some(parent), Some(j)) => {
+            let joint = &model.joints()[j];
+            body.parent = i32::try_from(parent).map_err(|_| {
+                backend_error(format!(
+                    "link {}: parent index {parent} too large",
+                    link.name
+                ))
+            })?;
+            body.joint_kind = JointKind::Revolute;
+            body.joint_name = joint.urdf_name.clone();
+            body.joint_index = u32::try_from(j)
+                .map_err(|_| backend_error(format!("joint {}: index {j} too large", joint.name)))?;
+            body.joint_origin = pose(&joint.origin);
+            body.axis = [joint.axis.x, joint.axis.y, joint.axis.z];
+            body.lower = joint.lower;
+            body.upper = joint.upper;
+            body.damping = joint.damping;
+        }
+        (Some(_), None) => {
+            return Err(backend_error(format!(
+                "link {} has a parent but no actuated joint",
+                link.name
+            )));
+        }
+    }
+    Ok(body)
 }
 
 fn base_state(trunk: &TrunkState) -> BaseState {

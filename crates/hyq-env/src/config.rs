@@ -460,6 +460,26 @@ impl Default for ResetConfig {
     }
 }
 
+/// Why [`EnvConfig::load`] failed: the file's error, or an override's; either reads as the
+/// [`ConfigError`] it holds.
+#[derive(Clone, Debug, PartialEq, Error)]
+pub enum LoadError {
+    /// The file could not be read, or its configuration is invalid.
+    #[error(transparent)]
+    File(ConfigError),
+    /// An override names an unknown key or a bad value, or leaves the configuration invalid.
+    #[error(transparent)]
+    Overrides(ConfigError),
+}
+
+impl From<LoadError> for ConfigError {
+    fn from(e: LoadError) -> Self {
+        match e {
+            LoadError::File(e) | LoadError::Overrides(e) => e,
+        }
+    }
+}
+
 /// An invalid configuration; every variant names the key and, where there is one, the value.
 #[derive(Clone, Debug, PartialEq, Error)]
 pub enum ConfigError {
@@ -500,6 +520,188 @@ pub enum ConfigError {
         /// What was wrong.
         message: String,
     },
+}
+
+/// `reset.spawn_xy_m`: inside the world.
+fn validate_spawn(r: &ResetConfig) -> Result<(), ConfigError> {
+    if !r.spawn_xy_m.iter().all(|v| in_world(*v)) {
+        return Err(invalid(
+            "reset.spawn_xy_m",
+            r.spawn_xy_m,
+            &outside_world_reason(),
+        ));
+    }
+    Ok(())
+}
+
+/// `[goal]`: the keys of the mode only, each value in its range, and every goal the mode can
+/// give (from the spawn point `spawn_xy`) inside the world.
+fn validate_goal(g: &GoalConfig, spawn_xy: [f64; 2]) -> Result<(), ConfigError> {
+    goal_keys_match_mode(g)?;
+    goal_values(g)?;
+    goal_in_world(g, spawn_xy)
+}
+
+/// A key of another goal mode would be silently ignored: it is an error, unless it holds its
+/// default (as a written-out configuration holds it).
+fn goal_keys_match_mode(g: &GoalConfig) -> Result<(), ConfigError> {
+    let d = GoalConfig::default();
+    let (ahead, fixed, random) = (
+        g.mode == GoalMode::Ahead,
+        g.mode == GoalMode::Fixed,
+        g.mode == GoalMode::Random,
+    );
+    let misplaced = [
+        ("goal.position", !fixed && g.position.is_some(), "\"fixed\""),
+        (
+            "goal.distance_m",
+            !ahead && g.distance_m != d.distance_m,
+            "\"ahead\"",
+        ),
+        (
+            "goal.distance_range_m",
+            !random && g.distance_range_m != d.distance_range_m,
+            "\"random\"",
+        ),
+        (
+            "goal.heading_range_deg",
+            !random && g.heading_range_deg != d.heading_range_deg,
+            "\"random\"",
+        ),
+        (
+            "goal.height_m",
+            fixed && g.height_m.is_some(),
+            "\"ahead\" or \"random\"",
+        ),
+    ];
+    if let Some((key, _, modes)) = misplaced.iter().find(|(_, wrong, _)| *wrong) {
+        let value = match *key {
+            "goal.position" => format!("{:?}", g.position.unwrap_or_default()),
+            "goal.distance_m" => format!("{:?}", g.distance_m),
+            "goal.distance_range_m" => format!("{:?}", g.distance_range_m),
+            "goal.heading_range_deg" => format!("{:?}", g.heading_range_deg),
+            _ => format!("{:?}", g.height_m.unwrap_or_default()),
+        };
+        return Err(ConfigError::Invalid {
+            key: (*key).to_owned(),
+            value,
+            expected: format!(
+                "is only read when goal.mode = {modes}, and the mode is \"{}\": set \
+                 goal.mode, or remove the key",
+                g.mode.as_str()
+            ),
+        });
+    }
+    Ok(())
+}
+
+/// The goal's values in their ranges.
+fn goal_values(g: &GoalConfig) -> Result<(), ConfigError> {
+    finite_positive("goal.distance_m", g.distance_m)?;
+    match (g.mode, g.position) {
+        (GoalMode::Fixed, None) => {
+            return Err(invalid(
+                "goal.position",
+                "unset",
+                "goal.mode = \"fixed\" needs goal.position = [x, y, z] (m)",
+            ));
+        }
+        (_, Some(p)) if !p.iter().all(|v| v.is_finite()) => {
+            return Err(invalid("goal.position", p, "must be finite"));
+        }
+        _ => {}
+    }
+    let [dmin, dmax] = g.distance_range_m;
+    if !(dmin.is_finite() && dmax.is_finite() && dmin > 0.0 && dmin <= dmax) {
+        return Err(invalid(
+            "goal.distance_range_m",
+            g.distance_range_m,
+            "must be finite with 0 < min <= max (m)",
+        ));
+    }
+    let [hmin, hmax] = g.heading_range_deg;
+    if !((-180.0..=180.0).contains(&hmin) && (-180.0..=180.0).contains(&hmax) && hmin <= hmax) {
+        return Err(invalid(
+            "goal.heading_range_deg",
+            g.heading_range_deg,
+            "must be within [-180, 180] degrees with min <= max",
+        ));
+    }
+    if let Some(h) = g.height_m
+        && !in_world(h)
+    {
+        return Err(invalid("goal.height_m", h, &outside_world_reason()));
+    }
+    Ok(())
+}
+
+/// Every goal the mode can give, from the spawn point `spawn_xy`, lies in the world.
+fn goal_in_world(g: &GoalConfig, spawn_xy: [f64; 2]) -> Result<(), ConfigError> {
+    let [x, y] = spawn_xy;
+    let dmax = g.distance_range_m[1];
+    let outside = match g.mode {
+        GoalMode::Ahead => (!in_world(x + g.distance_m))
+            .then(|| invalid("goal.distance_m", g.distance_m, &outside_world_reason())),
+        GoalMode::Fixed => g
+            .position
+            .filter(|p| !p.iter().all(|v| in_world(*v)))
+            .map(|p| invalid("goal.position", p, &outside_world_reason())),
+        GoalMode::Random => (!(in_world(x.abs() + dmax) && in_world(y.abs() + dmax))).then(|| {
+            invalid(
+                "goal.distance_range_m",
+                g.distance_range_m,
+                &format!(
+                    "{} (from the spawn point [{x:?}, {y:?}], a goal {dmax:?} m away \
+                     can leave it)",
+                    outside_world_reason()
+                ),
+            )
+        }),
+    };
+    outside.map_or(Ok(()), Err)
+}
+
+/// `[control]`: the sub-step count and the gains.
+fn validate_control(c: &ControlConfig) -> Result<(), ConfigError> {
+    if !(1..=1000).contains(&c.sim_steps_per_env_step) {
+        return Err(invalid(
+            "control.sim_steps_per_env_step",
+            c.sim_steps_per_env_step,
+            "must be in 1..=1000",
+        ));
+    }
+    gains_ok("control.kp", &c.kp)?;
+    gains_ok("control.kd", &c.kd)?;
+    Ok(())
+}
+
+/// `[reset]`: the yaw and the noise in their ranges.
+fn validate_reset_noise(r: &ResetConfig) -> Result<(), ConfigError> {
+    if !(-180.0..=180.0).contains(&r.yaw_deg) {
+        return Err(invalid(
+            "reset.yaw_deg",
+            r.yaw_deg,
+            "must be in [-180, 180] degrees",
+        ));
+    }
+    if !(0.0..=180.0).contains(&r.yaw_noise_deg) {
+        return Err(invalid(
+            "reset.yaw_noise_deg",
+            r.yaw_noise_deg,
+            "must be in [0, 180] degrees",
+        ));
+    }
+    if !(0.0..=JOINT_NOISE_MAX_RAD).contains(&r.joint_noise_rad) {
+        return Err(invalid(
+            "reset.joint_noise_rad",
+            r.joint_noise_rad,
+            &format!(
+                "must be in [0, {JOINT_NOISE_MAX_RAD}] rad (a full turn; wider noise only \
+                 piles the angles up at the joint limits)"
+            ),
+        ));
+    }
+    Ok(())
 }
 
 fn invalid(key: &str, value: impl fmt::Debug, expected: &str) -> ConfigError {
@@ -560,6 +762,28 @@ impl EnvConfig {
             ConfigError::Invalid { key, .. } => at(key, e.to_string()),
             _ => e,
         })?;
+        Ok(config)
+    }
+
+    /// The configuration the fronts build (`hyq --config FILE --set KEY=VALUE`, and Python's
+    /// `config_file=` with keyword arguments): the defaults, or `file`'s, with `overrides`
+    /// (dotted key, TOML value) set on top by [`EnvConfig::set_all`], validated. The error says
+    /// which of the two was wrong.
+    pub fn load<K: AsRef<str>, V: AsRef<str>>(
+        file: Option<&Path>,
+        overrides: &[(K, V)],
+    ) -> Result<Self, LoadError> {
+        let mut config = match file {
+            Some(path) => Self::from_file(path).map_err(LoadError::File)?,
+            None => Self::default(),
+        };
+        if !overrides.is_empty() {
+            let pairs: Vec<(&str, &str)> = overrides
+                .iter()
+                .map(|(k, v)| (k.as_ref(), v.as_ref()))
+                .collect();
+            config.set_all(&pairs).map_err(LoadError::Overrides)?;
+        }
         Ok(config)
     }
 
@@ -675,6 +899,18 @@ impl EnvConfig {
     /// named by its dotted key. (The engine tables are checked when an environment on that
     /// engine is built, by the backend.)
     pub fn validate(&self) -> Result<(), ConfigError> {
+        self.validate_task()?;
+        validate_spawn(&self.reset)?;
+        validate_goal(&self.goal, self.reset.spawn_xy_m)?;
+        finite_positive("action.max_delta_rad", self.action.max_delta_rad)?;
+        finite_positive("action.max_offset_rad", self.action.max_offset_rad)?;
+        validate_control(&self.control)?;
+        self.validate_physics()?;
+        validate_reset_noise(&self.reset)
+    }
+
+    /// `[task]`: the spec's ranges (hyq-spec), then the bounds that keep every sum finite.
+    fn validate_task(&self) -> Result<(), ConfigError> {
         self.task.validate().map_err(|e| match e {
             hyq_spec::ConfigError::Real {
                 field,
@@ -732,142 +968,11 @@ impl EnvConfig {
                 ));
             }
         }
+        Ok(())
+    }
 
-        let r = &self.reset;
-        if !r.spawn_xy_m.iter().all(|v| in_world(*v)) {
-            return Err(invalid(
-                "reset.spawn_xy_m",
-                r.spawn_xy_m,
-                &outside_world_reason(),
-            ));
-        }
-
-        let g = &self.goal;
-        // A key of another mode would be silently ignored: it is an error, unless it holds its
-        // default (as a written-out configuration holds it).
-        let d = GoalConfig::default();
-        let (ahead, fixed, random) = (
-            g.mode == GoalMode::Ahead,
-            g.mode == GoalMode::Fixed,
-            g.mode == GoalMode::Random,
-        );
-        let misplaced = [
-            ("goal.position", !fixed && g.position.is_some(), "\"fixed\""),
-            (
-                "goal.distance_m",
-                !ahead && g.distance_m != d.distance_m,
-                "\"ahead\"",
-            ),
-            (
-                "goal.distance_range_m",
-                !random && g.distance_range_m != d.distance_range_m,
-                "\"random\"",
-            ),
-            (
-                "goal.heading_range_deg",
-                !random && g.heading_range_deg != d.heading_range_deg,
-                "\"random\"",
-            ),
-            (
-                "goal.height_m",
-                fixed && g.height_m.is_some(),
-                "\"ahead\" or \"random\"",
-            ),
-        ];
-        if let Some((key, _, modes)) = misplaced.iter().find(|(_, wrong, _)| *wrong) {
-            let value = match *key {
-                "goal.position" => format!("{:?}", g.position.unwrap_or_default()),
-                "goal.distance_m" => format!("{:?}", g.distance_m),
-                "goal.distance_range_m" => format!("{:?}", g.distance_range_m),
-                "goal.heading_range_deg" => format!("{:?}", g.heading_range_deg),
-                _ => format!("{:?}", g.height_m.unwrap_or_default()),
-            };
-            return Err(ConfigError::Invalid {
-                key: (*key).to_owned(),
-                value,
-                expected: format!(
-                    "is only read when goal.mode = {modes}, and the mode is \"{}\": set \
-                     goal.mode, or remove the key",
-                    g.mode.as_str()
-                ),
-            });
-        }
-        finite_positive("goal.distance_m", g.distance_m)?;
-        match (g.mode, g.position) {
-            (GoalMode::Fixed, None) => {
-                return Err(invalid(
-                    "goal.position",
-                    "unset",
-                    "goal.mode = \"fixed\" needs goal.position = [x, y, z] (m)",
-                ));
-            }
-            (_, Some(p)) if !p.iter().all(|v| v.is_finite()) => {
-                return Err(invalid("goal.position", p, "must be finite"));
-            }
-            _ => {}
-        }
-        let [dmin, dmax] = g.distance_range_m;
-        if !(dmin.is_finite() && dmax.is_finite() && dmin > 0.0 && dmin <= dmax) {
-            return Err(invalid(
-                "goal.distance_range_m",
-                g.distance_range_m,
-                "must be finite with 0 < min <= max (m)",
-            ));
-        }
-        let [hmin, hmax] = g.heading_range_deg;
-        if !((-180.0..=180.0).contains(&hmin) && (-180.0..=180.0).contains(&hmax) && hmin <= hmax) {
-            return Err(invalid(
-                "goal.heading_range_deg",
-                g.heading_range_deg,
-                "must be within [-180, 180] degrees with min <= max",
-            ));
-        }
-        if let Some(h) = g.height_m
-            && !in_world(h)
-        {
-            return Err(invalid("goal.height_m", h, &outside_world_reason()));
-        }
-        // Every goal the mode can give lies in the world.
-        let [x, y] = r.spawn_xy_m;
-        let outside = match g.mode {
-            GoalMode::Ahead => (!in_world(x + g.distance_m))
-                .then(|| invalid("goal.distance_m", g.distance_m, &outside_world_reason())),
-            GoalMode::Fixed => g
-                .position
-                .filter(|p| !p.iter().all(|v| in_world(*v)))
-                .map(|p| invalid("goal.position", p, &outside_world_reason())),
-            GoalMode::Random => {
-                (!(in_world(x.abs() + dmax) && in_world(y.abs() + dmax))).then(|| {
-                    invalid(
-                        "goal.distance_range_m",
-                        g.distance_range_m,
-                        &format!(
-                            "{} (from the spawn point [{x:?}, {y:?}], a goal {dmax:?} m away \
-                             can leave it)",
-                            outside_world_reason()
-                        ),
-                    )
-                })
-            }
-        };
-        if let Some(e) = outside {
-            return Err(e);
-        }
-
-        finite_positive("action.max_delta_rad", self.action.max_delta_rad)?;
-        finite_positive("action.max_offset_rad", self.action.max_offset_rad)?;
-
-        let c = &self.control;
-        if !(1..=1000).contains(&c.sim_steps_per_env_step) {
-            return Err(invalid(
-                "control.sim_steps_per_env_step",
-                c.sim_steps_per_env_step,
-                "must be in 1..=1000",
-            ));
-        }
-        gains_ok("control.kp", &c.kp)?;
-        gains_ok("control.kd", &c.kd)?;
-
+    /// `physics`: the engine-independent parameters (hyq-physics' ranges).
+    fn validate_physics(&self) -> Result<(), ConfigError> {
         self.physics.params.validate().map_err(|e| match e {
             hyq_physics::PhysicsError::InvalidParam {
                 field,
@@ -884,31 +989,6 @@ impl EnvConfig {
                 expected: other.to_string(),
             },
         })?;
-
-        if !(-180.0..=180.0).contains(&r.yaw_deg) {
-            return Err(invalid(
-                "reset.yaw_deg",
-                r.yaw_deg,
-                "must be in [-180, 180] degrees",
-            ));
-        }
-        if !(0.0..=180.0).contains(&r.yaw_noise_deg) {
-            return Err(invalid(
-                "reset.yaw_noise_deg",
-                r.yaw_noise_deg,
-                "must be in [0, 180] degrees",
-            ));
-        }
-        if !(0.0..=JOINT_NOISE_MAX_RAD).contains(&r.joint_noise_rad) {
-            return Err(invalid(
-                "reset.joint_noise_rad",
-                r.joint_noise_rad,
-                &format!(
-                    "must be in [0, {JOINT_NOISE_MAX_RAD}] rad (a full turn; wider noise only \
-                     piles the angles up at the joint limits)"
-                ),
-            ));
-        }
         Ok(())
     }
 

@@ -5,7 +5,8 @@
 //! 1. the action is checked (length, finiteness, range) before anything changes, then mapped to
 //!    joint targets q* ([`crate::action`]);
 //! 2. `sim_steps_per_env_step` physics sub-steps of `dt` run, the shared PD actuator
-//!    (`hyq_physics::pd_substep`) computing the joint torques before every one;
+//!    (`hyq_physics::apply_pd_to_valid_targets`: the targets were checked once, in step 1)
+//!    computing the joint torques before every one;
 //! 3. each tracked body's ground contact is OR-latched over all the sub-steps: a foot or trunk
 //!    that touched the ground in any sub-step reads 1 (rows 24–28), and the trunk's latched flag
 //!    is the §6.3 fall fact;
@@ -21,7 +22,7 @@
 //! # Divergence
 //! When a sub-step fails with a backend error (`PhysicsError::Diverged` or any other), or a
 //! reading after the step is not finite, the episode ends with the reason `diverged`
-//! (`terminated = true`) and nothing non-finite is emitted: the observation is the last finite
+//! (`terminated = true`; the typed cause, a [`Divergence`], in `info.divergence`) and nothing non-finite is emitted: the observation is the last finite
 //! one (the previous step's, unchanged), the reward is 0 with every term 0 and every multiplier
 //! 1, and distance, D_n, roll, pitch and yaw keep their previous values. `timeout` is reported too
 //! if t ≥ t_max. The env must then be reset.
@@ -31,16 +32,16 @@ use std::time::{Duration, Instant};
 
 use hyq_physics::na::{Point3, Vector3};
 use hyq_physics::{
-    Actuator, Backend, PdScratch, PhysicsError, RobotModel, RobotState, TrunkState, apply_pd,
-    pd_substep,
+    Actuator, Backend, PdScratch, PhysicsError, RobotModel, RobotState, TrunkState,
+    apply_pd_to_valid_targets,
 };
 use hyq_spec::distance::{MIN_START_GOAL_DISTANCE, StartGoalDistance};
 use hyq_spec::observation::trunk_acceleration;
 use hyq_spec::robot::Bounds;
 use hyq_spec::{
     Clipping, EpisodeError, EpisodeRules, JointDescription, JointRange, Observation,
-    ObservationLayout, RobotDescription, StepSnapshot, TaskConfig, TrunkDescription,
-    roll_pitch_yaw,
+    ObservationError, ObservationLayout, RewardBreakdown, RobotDescription, StepOutcome,
+    StepSnapshot, TaskConfig, TrunkDescription, roll_pitch_yaw,
 };
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -48,8 +49,9 @@ use thiserror::Error;
 
 use crate::action::{ActionError, ActionScalar, ActionSpace};
 use crate::config::{ConfigError, EnvConfig, in_world, outside_world_reason};
+use crate::divergence::Divergence;
 use crate::goal::{GoalSampler, sample_reset_state};
-use crate::info::{Reason, Reasons, StepInfo, ZERO_REWARD};
+use crate::info::{Reason, Reasons, StepInfo};
 
 /// Why the environment refused a call. Every variant names what was wrong.
 #[derive(Debug, Error)]
@@ -150,6 +152,36 @@ impl StepTiming {
     }
 }
 
+/// Laps of a step's parts for [`StepTiming`]: while timing is on, [`Stopwatch::lap`] adds the
+/// time since the previous lap to a part's sum; while it is off, a stopwatch reads no clock and
+/// does nothing, so one code path serves both (rapier's counters `Timer`, switched at run time
+/// rather than at compile time).
+#[derive(Clone, Copy, Debug)]
+struct Stopwatch(Option<Instant>);
+
+impl Stopwatch {
+    /// A stopwatch running from now if `on`, else one that does nothing.
+    fn start(on: bool) -> Self {
+        Self(on.then(Instant::now))
+    }
+
+    /// Adds the time since the start or the previous lap to `part`.
+    fn lap(&mut self, part: &mut Duration) {
+        if let Some(last) = &mut self.0 {
+            let now = Instant::now();
+            *part += now - *last;
+            *last = now;
+        }
+    }
+
+    /// Starts the next lap now, leaving the time since the previous one out of every part.
+    fn restart(&mut self) {
+        if let Some(last) = &mut self.0 {
+            *last = Instant::now();
+        }
+    }
+}
+
 /// The per-episode state.
 #[derive(Clone, Debug)]
 struct Episode {
@@ -181,11 +213,15 @@ pub struct Env<B: Backend> {
     episode: Option<Episode>,
 
     scratch: PdScratch,
-    q: Vec<f64>,
-    qd: Vec<f64>,
+    /// The robot's state at the end of the last step or reset (after a divergence, the last
+    /// finite one).
+    state: RobotState,
     substep_contacts: Vec<bool>,
-    latched: Vec<bool>,
-    trunk: TrunkState,
+    /// The contacts latched over the sub-steps of the step being taken.
+    latching: Vec<bool>,
+    /// The latched contacts of the last step (all false after reset), tracked order: what the
+    /// observation's contact rows hold.
+    contacts: Vec<bool>,
     obs: Vec<f64>,
     obs_next: Vec<f64>,
     obs_f32: Vec<f32>,
@@ -328,18 +364,17 @@ impl<B: Backend> Env<B> {
             episodes: 0,
             episode: None,
             scratch: PdScratch::new(n),
-            q: vec![0.0; n],
-            qd: vec![0.0; n],
+            state: backend.state(),
             substep_contacts: vec![false; tracked],
-            latched: vec![false; tracked],
-            trunk: backend.trunk(),
+            latching: vec![false; tracked],
+            contacts: vec![false; tracked],
             obs: vec![0.0; obs_len],
             obs_next: vec![0.0; obs_len],
             obs_f32: vec![0.0; obs_len],
             info: StepInfo {
                 episode: 0,
                 t: 0,
-                reward: ZERO_REWARD,
+                reward: RewardBreakdown::NEUTRAL,
                 reasons: Reasons::NONE,
                 joint_at_limit: None,
                 divergence: None,
@@ -365,7 +400,7 @@ impl<B: Backend> Env<B> {
             layout,
             goals,
         };
-        env.read_state();
+        env.backend.read_state(&mut env.state);
         Ok(env)
     }
 
@@ -419,7 +454,7 @@ impl<B: Backend> Env<B> {
         self.goal_rng = goal_rng;
         self.noise_rng = noise_rng;
         self.episodes += 1;
-        self.read_state();
+        self.backend.read_state(&mut self.state);
         // C^0 is where the engine put the trunk, as the reset observation reports it; it can
         // differ from the requested state by the engine's rounding (rapier stores f32: about
         // 1e-8 m). The first step measures D^{t-1} from this same point, so K, D^0 and that
@@ -427,22 +462,25 @@ impl<B: Backend> Env<B> {
         // rounding (from the requested point it was off by about 1e-9). The rules of the
         // requested start stand in only if this point is unusable (non-finite, which the
         // observation below reports as divergence).
-        let initial = Point3::from(self.trunk.pose.translation.vector);
+        let initial = Point3::from(self.state.trunk.pose.translation.vector);
         let (rules, k) = episode_rules(&self.config.task, initial, goal).unwrap_or(requested_rules);
         let initial = rules.initial();
-        self.latched.fill(false);
+        self.latching.fill(false);
         let accel = Vector3::zeros();
         self.write_observation(accel)
-            .map_err(|what| PhysicsError::Diverged { what })?;
+            .map_err(|e| PhysicsError::Diverged {
+                what: e.to_string(),
+            })?;
         std::mem::swap(&mut self.obs, &mut self.obs_next);
+        self.contacts.fill(false);
         self.fill_f32();
 
-        let attitude = roll_pitch_yaw(&self.trunk.pose.rotation);
+        let attitude = roll_pitch_yaw(&self.state.trunk.pose.rotation);
         let d0 = (goal - initial).norm();
         let info = &mut self.info;
         info.episode = self.episodes;
         info.t = 0;
-        info.reward = ZERO_REWARD;
+        info.reward = RewardBreakdown::NEUTRAL;
         info.reasons = Reasons::NONE;
         info.joint_at_limit = None;
         info.divergence = None;
@@ -453,7 +491,7 @@ impl<B: Backend> Env<B> {
         info.yaw = attitude.yaw;
         info.goal = goal.coords.into();
         info.initial_position = initial.coords.into();
-        info.joint_targets.copy_from_slice(&self.q);
+        info.joint_targets.copy_from_slice(&self.state.q);
         info.action_clipped = false;
         self.episode = Some(Episode {
             rules,
@@ -474,7 +512,7 @@ impl<B: Backend> Env<B> {
     /// `action.out_of_range = "error"`. A physics failure is not an error: it ends the episode
     /// with the reason `diverged` (see the module docs for what is emitted).
     pub fn step<A: ActionScalar>(&mut self, action: &[A]) -> Result<Step<'_>, EnvError> {
-        let start = self.timing_on.then(Instant::now);
+        let mut whole = Stopwatch::start(self.timing_on);
         let episode = self.episode.as_ref().ok_or(EnvError::NotReset)?;
         if episode.done {
             return Err(EnvError::EpisodeOver {
@@ -484,63 +522,29 @@ impl<B: Backend> Env<B> {
             });
         }
         let (rules, k) = (episode.rules, episode.k);
+        // The one check of the action: the joint targets mapped from it are finite and within
+        // the joint limits, so the sub-steps use them unchecked.
         self.space.check(action)?;
 
         // From here on the step happens.
         self.info.action_clipped =
             self.space
-                .targets(action, &self.q, &mut self.info.joint_targets);
+                .targets(action, &self.state.q, &mut self.info.joint_targets);
         self.info.t += 1;
-        let t = self.info.t;
-        let previous_trunk = self.trunk;
-        let previous_position = Point3::from(previous_trunk.pose.translation.vector);
-        let previous_velocity = previous_trunk.linvel;
-        self.latched.fill(false);
-        let failure = self.run_substeps();
-
-        let outcome = match failure {
-            Some(what) => Err(what),
-            None => self.finish_step(&rules, t, previous_position, previous_velocity),
-        };
+        let previous = self.state.trunk;
+        let mut watch = Stopwatch::start(self.timing_on);
+        let outcome = self
+            .run_substeps(&mut watch)
+            .and_then(|()| self.finish_step(&rules, &previous, &mut watch));
         match outcome {
-            Ok(outcome) => {
-                let info = &mut self.info;
-                info.reward = outcome.reward;
-                info.reasons = Reasons::from_spec(outcome.terminations);
-                info.joint_at_limit = outcome.joint_at_limit;
-                info.distance_to_goal = outcome.distance;
-                info.d_n = outcome
-                    .normalised_distance
-                    .unwrap_or_else(|| k.normalise(outcome.distance));
-                info.roll = outcome.attitude.roll;
-                info.pitch = outcome.attitude.pitch;
-                info.yaw = outcome.attitude.yaw;
-            }
-            Err(what) => {
-                // The last finite observation stays in `obs`; the distances and attitude keep
-                // their previous values, and so does the state the accessors report (the
-                // observation holds the joint angles and speeds exactly).
-                self.trunk = previous_trunk;
-                self.q
-                    .copy_from_slice(&self.obs[self.layout.joint_angles()]);
-                self.qd
-                    .copy_from_slice(&self.obs[self.layout.joint_speeds()]);
-                let info = &mut self.info;
-                info.reward = ZERO_REWARD;
-                info.reasons = Reasons::NONE;
-                info.reasons.insert(Reason::Diverged);
-                if t >= rules.config().max_time_steps {
-                    info.reasons.insert(Reason::Timeout);
-                }
-                info.joint_at_limit = None;
-                info.divergence = Some(what);
-            }
+            Ok(outcome) => self.report(&outcome, k),
+            Err(cause) => self.report_divergence(cause, previous, rules.config().max_time_steps),
         }
         if let Some(e) = self.episode.as_mut() {
             e.done = self.info.reasons.done();
         }
-        if let Some(start) = start {
-            self.timing.total += start.elapsed();
+        if self.timing_on {
+            whole.lap(&mut self.timing.total);
             self.timing.steps += 1;
         }
         Ok(Step {
@@ -553,158 +557,133 @@ impl<B: Backend> Env<B> {
         })
     }
 
-    /// Runs the sub-steps with the current joint targets, latching contacts; returns what
-    /// failed, if anything did.
-    fn run_substeps(&mut self) -> Option<String> {
+    /// Runs the sub-steps with the step's joint targets, latching contacts.
+    fn run_substeps(&mut self, watch: &mut Stopwatch) -> Result<(), Divergence> {
+        self.latching.fill(false);
         for _ in 0..self.config.control.sim_steps_per_env_step {
-            let result = if self.timing_on {
-                let t0 = Instant::now();
-                let r = apply_pd(
-                    &mut self.backend,
-                    &self.actuator,
-                    &self.info.joint_targets,
-                    &mut self.scratch,
-                );
-                let t1 = Instant::now();
-                let r = r.and_then(|()| self.backend.step());
-                self.timing.actuator += t1 - t0;
-                self.timing.physics += t1.elapsed();
-                r
-            } else {
-                pd_substep(
-                    &mut self.backend,
-                    &self.actuator,
-                    &self.info.joint_targets,
-                    &mut self.scratch,
-                )
-            };
-            if let Err(e) = result {
-                return Some(e.to_string());
-            }
-            let t0 = self.timing_on.then(Instant::now);
+            apply_pd_to_valid_targets(
+                &mut self.backend,
+                &self.actuator,
+                &self.info.joint_targets,
+                &mut self.scratch,
+            )?;
+            watch.lap(&mut self.timing.actuator);
+            self.backend.step()?;
             self.backend.contacts(&mut self.substep_contacts);
-            for (latched, now) in self.latched.iter_mut().zip(&self.substep_contacts) {
+            for (latched, now) in self.latching.iter_mut().zip(&self.substep_contacts) {
                 *latched |= *now;
             }
-            if let Some(t0) = t0 {
-                self.timing.physics += t0.elapsed();
-            }
+            watch.lap(&mut self.timing.physics);
         }
-        None
+        Ok(())
     }
 
-    /// Reads the state after the sub-steps, evaluates the rules and writes the observation.
+    /// Reads the state after the sub-steps, evaluates the rules and writes the observation
+    /// (step t = `info.t`, from the trunk state `previous`).
     fn finish_step(
         &mut self,
         rules: &EpisodeRules,
-        t: u64,
-        previous_position: Point3<f64>,
-        previous_velocity: Vector3<f64>,
-    ) -> Result<hyq_spec::StepOutcome, String> {
-        let t0 = self.timing_on.then(Instant::now);
-        self.read_state();
-        if let Some(t0) = t0 {
-            self.timing.physics += t0.elapsed();
+        previous: &TrunkState,
+        watch: &mut Stopwatch,
+    ) -> Result<StepOutcome, Divergence> {
+        self.backend.read_state(&mut self.state);
+        watch.lap(&mut self.timing.physics);
+        if let Some((what, value)) = self.state.first_non_finite(&self.model) {
+            return Err(Divergence::NonFiniteReading { what, value });
         }
-        if let Some(what) = self.first_non_finite_reading() {
-            return Err(format!("{what} is not finite after the step"));
-        }
-        let position = self.trunk.pose.translation.vector;
+        let position = Point3::from(self.state.trunk.pose.translation.vector);
         if let Some(axis) = position.iter().position(|v| !in_world(*v)) {
             let row = &self.layout.rows()[self.layout.trunk_position().start + axis];
-            return Err(format!(
-                "{} = {:?} m: the trunk left the world, which {}",
-                row.name,
-                position[axis],
-                outside_world_reason()
-            ));
+            return Err(Divergence::OutsideWorld {
+                row: row.name.to_string(),
+                value: position[axis],
+            });
         }
-        let t0 = self.timing_on.then(Instant::now);
-        let outcome = rules
-            .evaluate_step(&StepSnapshot {
-                step: t,
-                previous_position,
-                position: Point3::from(self.trunk.pose.translation.vector),
-                orientation: self.trunk.pose.rotation,
-                joint_angles: &self.q,
-                joint_ranges: self.robot.joint_ranges(),
-                trunk_contact: self.latched[self.trunk_tracked],
-            })
-            .map_err(|e| e.to_string())?;
-        let t1 = self.timing_on.then(Instant::now);
-        let accel = trunk_acceleration(&previous_velocity, &self.trunk.linvel, self.env_dt)
-            .map_err(|e| e.to_string())?;
+        watch.restart();
+        let outcome = rules.evaluate_step(&StepSnapshot {
+            step: self.info.t,
+            previous_position: Point3::from(previous.pose.translation.vector),
+            position,
+            orientation: self.state.trunk.pose.rotation,
+            joint_angles: &self.state.q,
+            joint_ranges: self.robot.joint_ranges(),
+            trunk_contact: self.latching[self.trunk_tracked],
+        })?;
+        watch.lap(&mut self.timing.spec);
+        let accel = trunk_acceleration(&previous.linvel, &self.state.trunk.linvel, self.env_dt)?;
         self.write_observation(accel)?;
         // The float32 observation must be finite too.
-        if let Some(i) = self
+        if let Some(index) = self
             .obs_next
             .iter()
             .position(|v| v.abs() > f64::from(f32::MAX))
         {
-            return Err(format!(
-                "observation row {i} ({}) = {:?} is beyond float32's range (±{:e})",
-                self.layout.rows()[i].name,
-                self.obs_next[i],
-                f32::MAX
-            ));
+            return Err(Divergence::BeyondFloat32 {
+                index,
+                name: self.layout.rows()[index].name.to_string(),
+                value: self.obs_next[index],
+            });
         }
         std::mem::swap(&mut self.obs, &mut self.obs_next);
+        std::mem::swap(&mut self.contacts, &mut self.latching);
         self.fill_f32();
-        if let (Some(t0), Some(t1)) = (t0, t1) {
-            self.timing.spec += t1 - t0;
-            self.timing.observation += t1.elapsed();
-        }
+        watch.lap(&mut self.timing.observation);
         Ok(outcome)
     }
 
-    fn read_state(&mut self) {
-        self.backend.joint_positions(&mut self.q);
-        self.backend.joint_velocities(&mut self.qd);
-        self.trunk = self.backend.trunk();
+    /// Reports a step the rules evaluated (`k`: the episode's K).
+    fn report(&mut self, outcome: &StepOutcome, k: StartGoalDistance) {
+        let info = &mut self.info;
+        info.reward = outcome.reward;
+        info.reasons = Reasons::from_spec(outcome.terminations);
+        info.joint_at_limit = outcome.joint_at_limit;
+        info.distance_to_goal = outcome.distance;
+        info.d_n = outcome
+            .normalised_distance
+            .unwrap_or_else(|| k.normalise(outcome.distance));
+        info.roll = outcome.attitude.roll;
+        info.pitch = outcome.attitude.pitch;
+        info.yaw = outcome.attitude.yaw;
     }
 
-    /// The first non-finite value read from the backend, named (allocation-free when none).
-    fn first_non_finite_reading(&self) -> Option<String> {
-        let t = &self.trunk;
-        let trunk = t
-            .pose
-            .translation
-            .vector
-            .iter()
-            .chain(t.pose.rotation.coords.iter())
-            .chain(t.linvel.iter())
-            .chain(t.angvel.iter())
-            .any(|v| !v.is_finite());
-        if trunk {
-            return Some(format!("trunk state {t:?}"));
+    /// Reports a diverged step: the last finite observation stays in `obs`, and so do its
+    /// contacts; the distances and attitude keep their previous values, and so does the state
+    /// the accessors report (`previous` trunk; the observation holds the joint angles and speeds
+    /// exactly). `timeout` holds too when t reached `max_time_steps`.
+    fn report_divergence(&mut self, cause: Divergence, previous: TrunkState, max_time_steps: u64) {
+        self.state.trunk = previous;
+        self.state
+            .q
+            .copy_from_slice(&self.obs[self.layout.joint_angles()]);
+        self.state
+            .qd
+            .copy_from_slice(&self.obs[self.layout.joint_speeds()]);
+        let info = &mut self.info;
+        info.reward = RewardBreakdown::NEUTRAL;
+        info.reasons = Reasons::NONE;
+        info.reasons.insert(Reason::Diverged);
+        if info.t >= max_time_steps {
+            info.reasons.insert(Reason::Timeout);
         }
-        let joint = |values: &[f64], what: &str| {
-            values
-                .iter()
-                .position(|v| !v.is_finite())
-                .map(|i| format!("{what} of joint {} ({})", self.space_joint(i), values[i]))
-        };
-        joint(&self.q, "angle").or_else(|| joint(&self.qd, "speed"))
+        info.joint_at_limit = None;
+        info.divergence = Some(cause);
     }
 
-    fn space_joint(&self, i: usize) -> &str {
-        &self.model.joints()[i].name
-    }
-
-    /// Writes the observation of the current state into `obs_next`.
-    fn write_observation(&mut self, accel: Vector3<f64>) -> Result<(), String> {
+    /// Writes the observation of the current state, with the contacts latched in `latching`,
+    /// into `obs_next`.
+    fn write_observation(&mut self, accel: Vector3<f64>) -> Result<(), ObservationError> {
+        let trunk = &self.state.trunk;
         let observation = Observation {
-            joint_angles: &self.q,
-            joint_speeds: &self.qd,
-            foot_contacts: &self.latched[..self.num_feet],
-            trunk_contact: self.latched[self.trunk_tracked],
-            trunk_rotation: self.trunk.pose.rotation,
+            joint_angles: &self.state.q,
+            joint_speeds: &self.state.qd,
+            foot_contacts: &self.latching[..self.num_feet],
+            trunk_contact: self.latching[self.trunk_tracked],
+            trunk_rotation: trunk.pose.rotation,
             trunk_acceleration: accel,
-            trunk_position: Point3::from(self.trunk.pose.translation.vector),
+            trunk_position: Point3::from(trunk.pose.translation.vector),
         };
         self.layout
             .write(&observation, Clipping::Off, &mut self.obs_next)
-            .map_err(|e| e.to_string())
     }
 
     fn fill_f32(&mut self) {
@@ -719,7 +698,7 @@ impl<B: Backend> Env<B> {
             t: self.info.t,
             env_dt: self.env_dt,
             observation: &self.obs,
-            joint_angles: &self.q,
+            joint_angles: &self.state.q,
             standing: self.model.standing_pose(),
             space: &self.space,
         }
@@ -788,12 +767,25 @@ impl<B: Backend> Env<B> {
 
     /// The joint angles at the end of the last step or reset (rad, action order).
     pub fn joint_angles(&self) -> &[f64] {
-        &self.q
+        &self.state.q
     }
 
     /// The trunk state at the end of the last step or reset.
     pub fn trunk(&self) -> &TrunkState {
-        &self.trunk
+        &self.state.trunk
+    }
+
+    /// The robot's whole state at the end of the last step or reset (after a divergence, the
+    /// last finite one, as the observation reports it).
+    pub fn state(&self) -> &RobotState {
+        &self.state
+    }
+
+    /// Which tracked bodies (feet, then the trunk: `RobotModel::tracked`'s order) touched the
+    /// ground in any sub-step of the last step, all false after reset: the flags the
+    /// observation's contact rows hold, as booleans.
+    pub fn contacts(&self) -> &[bool] {
+        &self.contacts
     }
 
     /// Whether the environment was ever reset with a seed.
@@ -813,8 +805,9 @@ impl<B: Backend> Env<B> {
         &mut self.backend
     }
 
-    /// Switches per-part timing of [`Env::step`] on or off (off by default; a few
-    /// `Instant::now` calls per sub-step when on). Results are bitwise the same either way.
+    /// Switches per-part timing of [`Env::step`] on or off (off by default; two
+    /// `Instant::now` calls per sub-step when on, none when off). Results are bitwise the same
+    /// either way.
     pub fn set_timing(&mut self, on: bool) {
         self.timing_on = on;
     }

@@ -3,7 +3,9 @@
 //! distances, the attitude, the goal, the start and the joint targets used.
 
 use hyq_spec::{JointLimitHit, RewardBreakdown, Termination, Terminations};
-use serde::{Deserialize, Serialize, Serializer, ser::SerializeSeq};
+
+use crate::divergence::Divergence;
+use serde::{Deserialize, Serialize, Serializer};
 use std::fmt;
 
 /// Why an episode ended: one of the spec's four conditions (§6.1–§6.4), or the environment's
@@ -34,19 +36,24 @@ impl Reason {
         Reason::Diverged,
     ];
 
-    /// The stable snake_case name used in JSON and logs.
-    pub const fn as_str(self) -> &'static str {
+    /// The spec's condition this reason is, or `None` for `diverged`.
+    pub const fn termination(self) -> Option<Termination> {
         match self {
-            Reason::Reached => "reached",
-            Reason::JointLimit => "joint_limit",
-            Reason::Fell => "fell",
-            Reason::Timeout => "timeout",
-            Reason::Diverged => "diverged",
+            Reason::Reached => Some(Termination::Reached),
+            Reason::JointLimit => Some(Termination::JointLimit),
+            Reason::Fell => Some(Termination::Fell),
+            Reason::Timeout => Some(Termination::Timeout),
+            Reason::Diverged => None,
         }
     }
 
-    const fn bit(self) -> u8 {
-        1 << self as u8
+    /// The stable snake_case name used in JSON and logs (the spec's conditions by hyq-spec's
+    /// names).
+    pub const fn as_str(self) -> &'static str {
+        match self.termination() {
+            Some(t) => t.as_str(),
+            None => "diverged",
+        }
     }
 }
 
@@ -67,38 +74,59 @@ impl From<Termination> for Reason {
     }
 }
 
-/// The set of reasons that hold at the end of a step (any number). Serialised as a list of
-/// names in [`Reason::ALL`]'s order, e.g. `["joint_limit", "fell"]`.
+/// The set of reasons that hold at the end of a step (any number): the spec's terminations
+/// (hyq-spec's [`Terminations`]) and whether the physics diverged. Serialised as a list of names
+/// in [`Reason::ALL`]'s order, e.g. `["joint_limit", "fell"]`.
 #[derive(Clone, Copy, Default, PartialEq, Eq, Hash)]
-pub struct Reasons(u8);
+pub struct Reasons {
+    spec: Terminations,
+    diverged: bool,
+}
 
 impl Reasons {
     /// No reason: the episode goes on.
-    pub const NONE: Reasons = Reasons(0);
+    pub const NONE: Reasons = Reasons {
+        spec: Terminations::NONE,
+        diverged: false,
+    };
 
     /// The spec's terminations that hold.
-    pub fn from_spec(t: Terminations) -> Self {
-        t.iter().map(Reason::from).collect()
+    pub const fn from_spec(spec: Terminations) -> Self {
+        Reasons {
+            spec,
+            diverged: false,
+        }
+    }
+
+    /// The spec's terminations among the reasons.
+    pub const fn spec(self) -> Terminations {
+        self.spec
     }
 
     /// Adds a reason.
     pub fn insert(&mut self, r: Reason) {
-        self.0 |= r.bit();
+        match r.termination() {
+            Some(t) => self.spec.insert(t),
+            None => self.diverged = true,
+        }
     }
 
     /// Whether `r` holds.
     pub const fn contains(self, r: Reason) -> bool {
-        self.0 & r.bit() != 0
+        match r.termination() {
+            Some(t) => self.spec.contains(t),
+            None => self.diverged,
+        }
     }
 
     /// Whether no reason holds.
     pub const fn is_empty(self) -> bool {
-        self.0 == 0
+        self.spec.is_empty() && !self.diverged
     }
 
     /// Gymnasium's `terminated`: reached, joint limit, fell or diverged.
     pub const fn terminated(self) -> bool {
-        self.0 & !Reason::Timeout.bit() != 0
+        self.spec.terminated() || self.diverged
     }
 
     /// Gymnasium's `truncated`: timeout and not terminated.
@@ -108,7 +136,7 @@ impl Reasons {
 
     /// Whether the episode is over.
     pub const fn done(self) -> bool {
-        self.0 != 0
+        !self.is_empty()
     }
 
     /// The reasons that hold, in [`Reason::ALL`]'s order.
@@ -135,11 +163,7 @@ impl fmt::Debug for Reasons {
 
 impl Serialize for Reasons {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        let mut seq = s.serialize_seq(Some(self.0.count_ones() as usize))?;
-        for r in self.iter() {
-            seq.serialize_element(&r)?;
-        }
-        seq.end()
+        s.collect_seq(self.iter())
     }
 }
 
@@ -160,8 +184,9 @@ pub struct StepInfo {
     pub reasons: Reasons,
     /// The first joint at a limit when `joint_limit` holds.
     pub joint_at_limit: Option<JointLimitHit>,
-    /// What diverged, when `diverged` holds (the backend's message).
-    pub divergence: Option<String>,
+    /// What diverged, when `diverged` holds; its text (`Display`) is the Python info's
+    /// `divergence`.
+    pub divergence: Option<Divergence>,
     /// D^t = ‖G − C^t‖ (m).
     pub distance_to_goal: f64,
     /// D_n^t = D^t / K (K is at least `hyq_spec::MIN_START_GOAL_DISTANCE` in every episode).
@@ -195,79 +220,35 @@ impl StepInfo {
     }
 }
 
-/// The breakdown reported where no reward is given (after reset, on a diverged step): every
-/// term 0, every multiplier 1, total 0.
-pub(crate) const ZERO_REWARD: RewardBreakdown = RewardBreakdown {
-    r_b: 0.0,
-    r_n: 0.0,
-    r_e: 0.0,
-    r_reach: 0.0,
-    m_yaw: 1.0,
-    m_pitch: 1.0,
-    m_height: 1.0,
-    joint_penalty: 0.0,
-    fall_penalty: 0.0,
-    total: 0.0,
-};
-
-/// The sums of each additive reward term over an episode or a run (the fixed penalties as the
-/// positive amounts subtracted), for summaries and reports. Serialised with the spec's term
-/// names.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
-pub struct TermSums {
-    /// Σ r_b.
-    pub r_b: f64,
-    /// Σ r_n.
-    pub r_n: f64,
-    /// Σ r_e.
-    pub r_e: f64,
-    /// Σ r_reach.
-    pub r_reach: f64,
-    /// Σ joint_penalty.
-    pub joint_penalty: f64,
-    /// Σ fall_penalty.
-    pub fall_penalty: f64,
-}
-
-impl TermSums {
-    /// Adds one step's terms.
-    pub fn add(&mut self, r: &RewardBreakdown) {
-        self.r_b += r.r_b;
-        self.r_n += r.r_n;
-        self.r_e += r.r_e;
-        self.r_reach += r.r_reach;
-        self.joint_penalty += r.joint_penalty;
-        self.fall_penalty += r.fall_penalty;
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
-    fn term_sums_add_each_term_to_its_own_sum() {
-        let mut step = ZERO_REWARD;
-        step.r_b = 1.0;
-        step.r_n = 2.0;
-        step.r_e = 3.0;
-        step.r_reach = 4.0;
-        step.joint_penalty = 5.0;
-        step.fall_penalty = 6.0;
-        step.m_yaw = 0.5;
-        let mut sums = TermSums::default();
-        sums.add(&step);
-        sums.add(&step);
+    fn reasons_are_the_spec_terminations_plus_diverged() {
+        for flags in 0u8..32 {
+            let holds = |i: u8| flags & (1 << i) != 0;
+            let reasons: Reasons = Reason::ALL
+                .into_iter()
+                .enumerate()
+                .filter(|(i, _)| holds(*i as u8))
+                .map(|(_, r)| r)
+                .collect();
+            let spec = Terminations::from_flags(holds(0), holds(1), holds(2), holds(3));
+            assert_eq!(reasons.spec(), spec);
+            assert_eq!(reasons.contains(Reason::Diverged), holds(4));
+            assert_eq!(reasons.terminated(), spec.terminated() || holds(4));
+            assert_eq!(reasons.truncated(), holds(3) && !reasons.terminated());
+            assert_eq!(reasons.done(), flags != 0);
+            assert_eq!(reasons.iter().count(), flags.count_ones() as usize);
+            let json = serde_json::to_string(&reasons).unwrap_or_else(|e| panic!("{e}"));
+            let names: Vec<&str> = reasons.iter().map(Reason::as_str).collect();
+            assert_eq!(json, serde_json::to_string(&names).unwrap_or_default());
+        }
+        let names: Vec<&str> = Reason::ALL.iter().map(|r| r.as_str()).collect();
         assert_eq!(
-            sums,
-            TermSums {
-                r_b: 2.0,
-                r_n: 4.0,
-                r_e: 6.0,
-                r_reach: 8.0,
-                joint_penalty: 10.0,
-                fall_penalty: 12.0,
-            }
+            names,
+            ["reached", "joint_limit", "fell", "timeout", "diverged"]
         );
     }
 }

@@ -9,7 +9,7 @@
 //! | `action` | 12 numbers | the action as given (before clipping) |
 //! | `joint_targets` | 12 numbers | the joint targets the actuator tracked (rad) |
 //! | `reward` | number | the step's reward (`terms` composed) |
-//! | `terms` | object | `r_b`, `r_n`, `r_e`, `r_reach`, `m_yaw`, `m_pitch`, `joint_penalty`, `fall_penalty`, and `m_height` only when the opt-in height penalty is configured |
+//! | `terms` | object | every reward term by name (`hyq_spec::REWARD_TERMS`: `r_b`, `r_n`, `r_e`, `r_reach`, `m_yaw`, `m_pitch`, `joint_penalty`, `fall_penalty`), an opt-in term (`m_height`) only when it is configured |
 //! | `yaw`, `pitch` | numbers | the trunk's yaw and pitch (rad, intrinsic Z-Y-X) |
 //! | `distance_to_goal` | number | D^t (m) |
 //! | `d_n` | number | D_n^t = D^t / K |
@@ -24,35 +24,11 @@
 use std::borrow::Cow;
 
 use hyq_physics::Backend;
+use hyq_spec::{TaskConfig, TermValues};
 use serde::{Deserialize, Serialize};
 
 use crate::env::Env;
 use crate::info::{Reason, Reasons, StepInfo};
-
-/// The reward terms of a record (see the module docs).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct RecordTerms {
-    /// Base reward r_b.
-    pub r_b: f64,
-    /// Normalised reward r_n.
-    pub r_n: f64,
-    /// Exponential reward r_e.
-    pub r_e: f64,
-    /// Reach bonus r_reach.
-    pub r_reach: f64,
-    /// Yaw multiplier.
-    pub m_yaw: f64,
-    /// Pitch multiplier.
-    pub m_pitch: f64,
-    /// Height multiplier, present only when the opt-in height penalty is configured.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub m_height: Option<f64>,
-    /// Joint-limit penalty subtracted.
-    pub joint_penalty: f64,
-    /// Fall penalty subtracted.
-    pub fall_penalty: f64,
-}
 
 /// One env step as written to a JSONL record (see the module docs for the schema). Borrows the
 /// environment's buffers when written; owns them when read back.
@@ -71,8 +47,9 @@ pub struct StepRecord<'a> {
     pub joint_targets: Cow<'a, [f64]>,
     /// The reward.
     pub reward: f64,
-    /// The reward's terms.
-    pub terms: RecordTerms,
+    /// The reward's terms, by name (hyq-spec's [`TermValues`]: every term of
+    /// `hyq_spec::REWARD_TERMS`, an opt-in one only when it is on).
+    pub terms: TermValues,
     /// Yaw (rad).
     pub yaw: f64,
     /// Pitch (rad).
@@ -94,9 +71,9 @@ pub struct StepRecord<'a> {
 }
 
 impl<'a> StepRecord<'a> {
-    /// The record of a step from its info, observation and action; `with_height` says whether
-    /// the height penalty is configured (then `terms.m_height` is written).
-    pub fn new(info: &'a StepInfo, obs: &'a [f64], action: &'a [f64], with_height: bool) -> Self {
+    /// The record of a step taken under `task` from its info, observation and action (`task`
+    /// says which opt-in terms are on, and so written).
+    pub fn new(info: &'a StepInfo, obs: &'a [f64], action: &'a [f64], task: &TaskConfig) -> Self {
         let r = &info.reward;
         Self {
             episode: info.episode,
@@ -105,17 +82,7 @@ impl<'a> StepRecord<'a> {
             action: Cow::Borrowed(action),
             joint_targets: Cow::Borrowed(&info.joint_targets),
             reward: r.total,
-            terms: RecordTerms {
-                r_b: r.r_b,
-                r_n: r.r_n,
-                r_e: r.r_e,
-                r_reach: r.r_reach,
-                m_yaw: r.m_yaw,
-                m_pitch: r.m_pitch,
-                m_height: with_height.then_some(r.m_height),
-                joint_penalty: r.joint_penalty,
-                fall_penalty: r.fall_penalty,
-            },
+            terms: TermValues::reported(r, task),
             yaw: info.yaw,
             pitch: info.pitch,
             distance_to_goal: info.distance_to_goal,
@@ -130,12 +97,7 @@ impl<'a> StepRecord<'a> {
 
     /// The record of `env`'s last step, taken with `action`.
     pub fn from_env<B: Backend>(env: &'a Env<B>, action: &'a [f64]) -> Self {
-        Self::new(
-            env.info(),
-            env.observation(),
-            action,
-            env.config().task.height_penalty.is_some(),
-        )
+        Self::new(env.info(), env.observation(), action, &env.config().task)
     }
 
     /// The reasons as a set.

@@ -7,7 +7,7 @@
 mod common;
 
 use common::{reset, scripted};
-use hyq_env::{EnvError, Reason, ResetOptions};
+use hyq_env::{Divergence, EnvError, Reason, ResetOptions};
 use hyq_physics::PhysicsError;
 
 fn check_diverged_step(env: &mut hyq_env::Env<hyq_env::testing::ScriptedBackend>) {
@@ -132,4 +132,91 @@ fn a_divergence_on_the_last_step_also_reports_the_timeout() {
     assert!(s.info.reasons.contains(Reason::Diverged));
     assert!(s.info.reasons.contains(Reason::Timeout));
     assert!(s.terminated && !s.truncated);
+}
+
+/// The info's `divergence` of a step whose sub-steps `script` corrupts, after one good step.
+fn divergence_of(
+    script: impl FnMut(&mut hyq_env::testing::ScriptedWorld<'_>) -> Result<(), PhysicsError>
+    + Send
+    + 'static,
+) -> Divergence {
+    let mut env = scripted(&[]);
+    reset(&mut env, 0);
+    env.step(&[0.0; 12]).unwrap_or_else(|e| panic!("{e}"));
+    env.backend_mut().set_script(script);
+    let s = env.step(&[0.0; 12]).unwrap_or_else(|e| panic!("{e}"));
+    assert!(s.info.reasons.contains(Reason::Diverged));
+    s.info
+        .divergence
+        .clone()
+        .unwrap_or_else(|| panic!("no divergence in {:?}", s.info))
+}
+
+#[test]
+fn the_divergence_cause_is_typed_and_reads_as_the_info_reports_it() {
+    let cause = divergence_of(|_| {
+        Err(PhysicsError::Diverged {
+            what: "angle of joint lf_haa".into(),
+        })
+    });
+    assert!(matches!(cause, Divergence::Substep(_)), "{cause:?}");
+    assert_eq!(
+        cause.to_string(),
+        "simulation diverged: angle of joint lf_haa is not finite after the step"
+    );
+
+    // In the last sub-step of the step (the first step took sub-steps 1-10).
+    let cause = divergence_of(|w| {
+        if w.substep == 20 {
+            w.qd[2] = f64::INFINITY;
+        }
+        Ok(())
+    });
+    assert!(
+        matches!(cause, Divergence::NonFiniteReading { .. }),
+        "{cause:?}"
+    );
+    assert_eq!(
+        cause.to_string(),
+        "speed of joint lf_kfe (inf) is not finite after the step"
+    );
+
+    let cause = divergence_of(|w| {
+        w.trunk.pose.translation.y = -250.0;
+        Ok(())
+    });
+    assert_eq!(
+        cause.to_string(),
+        format!(
+            "trunk_position_y = -250.0 m: the trunk left the world, which must lie within \
+             ±{} m of the origin on each axis (m), the world of every engine: beyond it \
+             rapier's f32 positions are too coarse for faithful physics",
+            hyq_env::WORLD_HALF_EXTENT_M
+        )
+    );
+
+    let cause = divergence_of(|w| {
+        w.qd[2] = 1e39;
+        Ok(())
+    });
+    assert_eq!(
+        cause,
+        Divergence::BeyondFloat32 {
+            index: 14,
+            name: "lf_kfe_speed".into(),
+            value: 1e39
+        }
+    );
+    assert_eq!(
+        cause.to_string(),
+        "observation row 14 (lf_kfe_speed) = 1e39 is beyond float32's range (±3.4028235e38)"
+    );
+
+    let cause = divergence_of(|w| {
+        if w.substep == 20 {
+            w.trunk.linvel.x = f64::MAX;
+        }
+        Ok(())
+    });
+    assert!(matches!(cause, Divergence::Observation(_)), "{cause:?}");
 }

@@ -24,7 +24,7 @@
 //! (implicitly, where the engine can). Friction is here because no engine applies it the same
 //! way, and every torque of an environment goes through this law.
 
-use crate::backend::{Backend, check_joint_values};
+use crate::backend::{Backend, check_finite_joint_values, check_joint_values};
 use crate::error::PhysicsError;
 use crate::model::RobotModel;
 
@@ -202,8 +202,8 @@ impl PdScratch {
 /// that time the actuator and the physics apart (an environment's profiling) call the two
 /// halves themselves.
 ///
-/// Errors if `targets` is not one finite value per joint, or if `scratch` or `actuator` was made
-/// for another robot.
+/// Errors if `targets` is not one finite value per joint, if `scratch` or `actuator` was made
+/// for another robot, or if a torque is not finite (see [`apply_pd_to_valid_targets`]).
 pub fn apply_pd<B: Backend>(
     backend: &mut B,
     actuator: &Actuator,
@@ -223,13 +223,32 @@ pub fn apply_pd<B: Backend>(
             },
         });
     }
+    apply_pd_to_valid_targets(backend, actuator, targets, scratch)
+}
+
+/// [`apply_pd`] for a caller that has already made sure of its inputs: `targets` holds one
+/// finite value per joint (an environment's targets, mapped from a checked action and clamped
+/// to the joint limits), and `scratch` and `actuator` were made for this robot. Only the
+/// torques are checked, since the law can overflow to a non-finite torque under extreme gains
+/// (the error names the joint, as [`Backend::set_joint_torques`]' would). Allocates nothing.
+///
+/// # Panics
+/// If a slice is shorter than the robot's joints (a broken promise of the caller's).
+pub fn apply_pd_to_valid_targets<B: Backend>(
+    backend: &mut B,
+    actuator: &Actuator,
+    targets: &[f64],
+    scratch: &mut PdScratch,
+) -> Result<(), PhysicsError> {
+    debug_assert_eq!(targets.len(), backend.model().num_joints());
+    debug_assert_eq!(scratch.q.len(), targets.len());
+    debug_assert_eq!(actuator.num_joints(), targets.len());
     backend.joint_positions(&mut scratch.q);
     backend.joint_velocities(&mut scratch.qd);
-    // Every length was checked above (the scratch's three buffers are built alike), so the
-    // law runs without `Actuator::torques`' second round of checks.
     actuator.fill_torques(targets, &scratch.q, &scratch.qd, &mut scratch.tau);
-    // Validated rather than trusted: extreme gains could overflow the law to NaN.
-    backend.set_joint_torques(&scratch.tau)
+    check_finite_joint_values(backend.model(), "torque", &scratch.tau)?;
+    backend.apply_joint_torques(&scratch.tau);
+    Ok(())
 }
 
 /// One actuated physics sub-step: reads `q` and `q̇`, computes the actuator torques for

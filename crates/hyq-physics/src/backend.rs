@@ -318,6 +318,16 @@ pub fn check_joint_values(
             got: values.len(),
         });
     }
+    check_finite_joint_values(model, each, values)
+}
+
+/// Checks that every one of `values` (one per joint, a length the caller guarantees) is
+/// finite; `each` names one value in the error, with its joint (e.g. "torque for joint lf_kfe").
+pub(crate) fn check_finite_joint_values(
+    model: &RobotModel,
+    each: &str,
+    values: &[f64],
+) -> Result<(), PhysicsError> {
     if let Some((i, v)) = values.iter().enumerate().find(|(_, v)| !v.is_finite()) {
         return Err(PhysicsError::NonFinite {
             what: format!("{each} for joint {}", model.joints()[i].name),

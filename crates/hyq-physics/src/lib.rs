@@ -34,7 +34,7 @@ pub mod model;
 pub mod profile;
 pub mod urdf_export;
 
-pub use actuator::{Actuator, PdScratch, apply_pd, pd_substep};
+pub use actuator::{Actuator, PdScratch, apply_pd, apply_pd_to_valid_targets, pd_substep};
 pub use backend::{Backend, PhysicsParams, RobotState, TrunkState, check_joint_values};
 pub use bundled::resolve as resolve_robot;
 pub use error::{ModelError, PhysicsError};

@@ -442,9 +442,29 @@ fn names(model: &RobotModel, actuators: Actuators) -> Mjcf {
 pub fn to_mjcf(model: &RobotModel, options: &MjcfOptions) -> Result<Mjcf, MjcfError> {
     options.validate()?;
     let mut out = names(model, options.actuators);
-    let s = &options.solver;
     let mut x = String::with_capacity(16 * 1024);
-    // Writing to a String cannot fail: every `write!` result below is ignored for that reason.
+    write_header(&mut x, model, options);
+    x.push_str("  <worldbody>\n");
+    let _ = writeln!(
+        x,
+        "    <geom name=\"{}\" class=\"ground\" type=\"plane\" size=\"0 0 1\"/>",
+        attr(&out.ground)
+    );
+
+    let children = children_of(model)?;
+    write_bodies(&mut x, model, &out, &children)?;
+    x.push_str("  </worldbody>\n");
+    write_actuators(&mut x, model, options, &out);
+    write_keyframe(&mut x, model, &children);
+    out.xml = x;
+    Ok(out)
+}
+
+// Writing to a String cannot fail: every `write!` result below is ignored for that reason.
+
+/// The document's head: the compiler settings, the solver options and the defaults.
+fn write_header(x: &mut String, model: &RobotModel, options: &MjcfOptions) {
+    let s = &options.solver;
     let _ = writeln!(
         x,
         "<mujoco model=\"{}\">\n  <!-- Generated from the robot model (URDF + robot profile); do not edit. -->",
@@ -493,14 +513,10 @@ pub fn to_mjcf(model: &RobotModel, options: &MjcfOptions) -> Result<Mjcf, MjcfEr
         nums(&s.limit_solref),
         nums(&s.limit_solimp),
     );
-    x.push_str("  <worldbody>\n");
-    let _ = writeln!(
-        x,
-        "    <geom name=\"{}\" class=\"ground\" type=\"plane\" size=\"0 0 1\"/>",
-        attr(&out.ground)
-    );
+}
 
-    // Children of every body, in model order (parents come before children).
+/// The children of every body, in model order (parents come before children).
+fn children_of(model: &RobotModel) -> Result<Vec<Vec<usize>>, MjcfError> {
     let links = model.links();
     let mut children: Vec<Vec<usize>> = vec![Vec::new(); links.len()];
     for (i, link) in links.iter().enumerate() {
@@ -514,7 +530,16 @@ pub fn to_mjcf(model: &RobotModel, options: &MjcfOptions) -> Result<Mjcf, MjcfEr
             children[p].push(i);
         }
     }
-    let spawn = model.spawn_state();
+    Ok(children)
+}
+
+/// Every body, nested depth first from the trunk (children in model order).
+fn write_bodies(
+    x: &mut String,
+    model: &RobotModel,
+    out: &Mjcf,
+    children: &[Vec<usize>],
+) -> Result<(), MjcfError> {
     let mut stack: Vec<(usize, bool)> = vec![(0, false)];
     let mut depth = 0usize;
     while let Some((i, closing)) = stack.pop() {
@@ -524,87 +549,103 @@ pub fn to_mjcf(model: &RobotModel, options: &MjcfOptions) -> Result<Mjcf, MjcfEr
             let _ = writeln!(x, "{}</body>", "  ".repeat(depth + 2));
             continue;
         }
-        let link = &links[i];
-        let frame = match link.parent_joint {
-            None => spawn.trunk.pose,
-            Some(j) => model.joints()[j].origin,
-        };
-        let _ = writeln!(
-            x,
-            "{indent}<body name=\"{}\" {}>",
-            attr(&out.bodies[i]),
-            pos_quat(&frame)
-        );
-        let inner = format!("{indent}  ");
-        match link.parent_joint {
-            None => {
-                let _ = writeln!(
-                    x,
-                    "{inner}<freejoint name=\"{}\"/>",
-                    attr(&format!("{}_root", link.name))
-                );
-            }
-            Some(j) => {
-                let joint = &model.joints()[j];
-                let a = joint.axis;
-                let _ = writeln!(
-                    x,
-                    "{inner}<joint name=\"{}\" type=\"hinge\" axis=\"{}\" range=\"{}\" damping=\"{}\"/>",
-                    attr(&out.joints[j]),
-                    nums(&[a.x, a.y, a.z]),
-                    nums(&[joint.lower, joint.upper]),
-                    nums(&[joint.damping])
-                );
-            }
-        }
-        let c = link.com;
-        let _ = writeln!(
-            x,
-            "{inner}<inertial pos=\"{}\" mass=\"{}\" fullinertia=\"{}\"/>",
-            nums(&[c.x, c.y, c.z]),
-            nums(&[link.mass]),
-            full_inertia(&link.inertia)
-        );
-        for (k, collision) in link.collisions.iter().enumerate() {
-            let (kind, size) = match collision.shape {
-                Shape::Box { half_extents } => (
-                    "box",
-                    nums(&[half_extents.x, half_extents.y, half_extents.z]),
-                ),
-                Shape::Sphere { radius } => ("sphere", nums(&[radius])),
-                Shape::Capsule {
-                    radius,
-                    half_length,
-                } => ("capsule", nums(&[radius, half_length])),
-                Shape::Cylinder {
-                    radius,
-                    half_length,
-                } => ("cylinder", nums(&[radius, half_length])),
-                // `Shape` is non-exhaustive: a shape added to the model later must be mapped
-                // here before MuJoCo can simulate it.
-                #[allow(unreachable_patterns)]
-                ref other => {
-                    return Err(MjcfError::Unsupported(format!(
-                        "link {}: collision shape {other:?}",
-                        link.name
-                    )));
-                }
-            };
-            let _ = writeln!(
-                x,
-                "{inner}<geom name=\"{}\" type=\"{kind}\" size=\"{size}\" {}/>",
-                attr(&out.geoms[i][k]),
-                pos_quat(&collision.origin)
-            );
-        }
+        write_body(x, model, out, i, &indent)?;
         stack.push((i, true));
         for &child in children[i].iter().rev() {
             stack.push((child, false));
         }
         depth += 1;
     }
-    x.push_str("  </worldbody>\n");
+    Ok(())
+}
 
+/// One body's opening tag, its joint, its inertia and its collision geoms (`indent`: the body
+/// tag's).
+fn write_body(
+    x: &mut String,
+    model: &RobotModel,
+    out: &Mjcf,
+    i: usize,
+    indent: &str,
+) -> Result<(), MjcfError> {
+    let link = &model.links()[i];
+    let frame = match link.parent_joint {
+        None => model.spawn_state().trunk.pose,
+        Some(j) => model.joints()[j].origin,
+    };
+    let _ = writeln!(
+        x,
+        "{indent}<body name=\"{}\" {}>",
+        attr(&out.bodies[i]),
+        pos_quat(&frame)
+    );
+    let inner = format!("{indent}  ");
+    match link.parent_joint {
+        None => {
+            let _ = writeln!(
+                x,
+                "{inner}<freejoint name=\"{}\"/>",
+                attr(&format!("{}_root", link.name))
+            );
+        }
+        Some(j) => {
+            let joint = &model.joints()[j];
+            let a = joint.axis;
+            let _ = writeln!(
+                x,
+                "{inner}<joint name=\"{}\" type=\"hinge\" axis=\"{}\" range=\"{}\" damping=\"{}\"/>",
+                attr(&out.joints[j]),
+                nums(&[a.x, a.y, a.z]),
+                nums(&[joint.lower, joint.upper]),
+                nums(&[joint.damping])
+            );
+        }
+    }
+    let c = link.com;
+    let _ = writeln!(
+        x,
+        "{inner}<inertial pos=\"{}\" mass=\"{}\" fullinertia=\"{}\"/>",
+        nums(&[c.x, c.y, c.z]),
+        nums(&[link.mass]),
+        full_inertia(&link.inertia)
+    );
+    for (k, collision) in link.collisions.iter().enumerate() {
+        let (kind, size) = match collision.shape {
+            Shape::Box { half_extents } => (
+                "box",
+                nums(&[half_extents.x, half_extents.y, half_extents.z]),
+            ),
+            Shape::Sphere { radius } => ("sphere", nums(&[radius])),
+            Shape::Capsule {
+                radius,
+                half_length,
+            } => ("capsule", nums(&[radius, half_length])),
+            Shape::Cylinder {
+                radius,
+                half_length,
+            } => ("cylinder", nums(&[radius, half_length])),
+            // `Shape` is non-exhaustive: a shape added to the model later must be mapped
+            // here before MuJoCo can simulate it.
+            #[allow(unreachable_patterns)]
+            ref other => {
+                return Err(MjcfError::Unsupported(format!(
+                    "link {}: collision shape {other:?}",
+                    link.name
+                )));
+            }
+        };
+        let _ = writeln!(
+            x,
+            "{inner}<geom name=\"{}\" type=\"{kind}\" size=\"{size}\" {}/>",
+            attr(&out.geoms[i][k]),
+            pos_quat(&collision.origin)
+        );
+    }
+    Ok(())
+}
+
+/// The actuators of `options.actuators`, one per joint.
+fn write_actuators(x: &mut String, model: &RobotModel, options: &MjcfOptions, out: &Mjcf) {
     match options.actuators {
         Actuators::None => {}
         Actuators::Motor | Actuators::Position => {
@@ -631,15 +672,19 @@ pub fn to_mjcf(model: &RobotModel, options: &MjcfOptions) -> Result<Mjcf, MjcfEr
             x.push_str("  </actuator>\n");
         }
     }
+}
 
-    // The spawn keyframe: the free joint's position and orientation, then the hinge angles in
-    // MuJoCo's order, which is the depth-first order the bodies were written in.
+/// The spawn keyframe: the free joint's position and orientation, then the hinge angles in
+/// MuJoCo's order, which is the depth-first order the bodies were written in.
+fn write_keyframe(x: &mut String, model: &RobotModel, children: &[Vec<usize>]) {
+    let links = model.links();
+    let spawn = model.spawn_state();
     let mut qpos = {
         let t = spawn.trunk.pose.translation.vector;
         let q = spawn.trunk.pose.rotation.quaternion();
         vec![t.x, t.y, t.z, q.w, q.i, q.j, q.k]
     };
-    for i in depth_first(&children) {
+    for i in depth_first(children) {
         if let Some(j) = links[i].parent_joint {
             qpos.push(spawn.q[j]);
         }
@@ -649,8 +694,6 @@ pub fn to_mjcf(model: &RobotModel, options: &MjcfOptions) -> Result<Mjcf, MjcfEr
         "  <keyframe>\n    <key name=\"spawn\" qpos=\"{}\"/>\n  </keyframe>\n</mujoco>",
         nums(&qpos)
     );
-    out.xml = x;
-    Ok(out)
 }
 
 /// Body indices in the order the bodies are written (depth first, children in model order).

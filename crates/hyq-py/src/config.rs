@@ -1,24 +1,19 @@
 //! Building an [`EnvConfig`] from what Python gives: an optional TOML file, then dotted
 //! `(key, TOML value)` pairs (the Python package turns keyword arguments into these), applied
-//! together by [`EnvConfig::set_all`], the same code path as `hyq run --set`.
+//! together by [`EnvConfig::load`], the loader of `hyq run --config --set`.
 
-use hyq_env::{ActionMode, EnvConfig};
+use std::path::Path;
+
+use hyq_env::{ActionMode, ConfigError, EnvConfig};
 use pyo3::PyResult;
 
 use crate::errors::env_error;
 
-/// The configuration: the file's (or the defaults), with `pairs` set on top and validated.
+/// The configuration: the file's (or the defaults), with `pairs` set on top and validated, by
+/// the loader `hyq --config --set` uses.
 pub fn build(config_file: Option<&str>, pairs: &[(String, String)]) -> PyResult<EnvConfig> {
-    let mut config = match config_file {
-        Some(path) => EnvConfig::from_file(path).map_err(|e| env_error(e.into()))?,
-        None => EnvConfig::default(),
-    };
-    let pairs: Vec<(&str, &str)> = pairs
-        .iter()
-        .map(|(k, v)| (k.as_str(), v.as_str()))
-        .collect();
-    config.set_all(&pairs).map_err(|e| env_error(e.into()))?;
-    Ok(config)
+    EnvConfig::load(config_file.map(Path::new), pairs)
+        .map_err(|e| env_error(ConfigError::from(e).into()))
 }
 
 /// The configuration's action mode as written in TOML.

@@ -15,7 +15,7 @@
 
 use hyq_env::{Reason, Reasons, StepInfo};
 use hyq_physics::RobotModel;
-use hyq_spec::LimitSide;
+use hyq_spec::{LimitSide, TERM_NAMES};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1};
 use pyo3::prelude::*;
@@ -24,17 +24,8 @@ use pyo3::types::{PyDict, PyString};
 /// A key of the info and how to read its value from a [`StepInfo`].
 type Key<T> = (&'static str, fn(&StepInfo) -> T);
 
-/// The scalar float keys, in the order written.
-const FLOAT_KEYS: [Key<f64>; 15] = [
-    ("r_b", |i| i.reward.r_b),
-    ("r_n", |i| i.reward.r_n),
-    ("r_e", |i| i.reward.r_e),
-    ("r_reach", |i| i.reward.r_reach),
-    ("m_yaw", |i| i.reward.m_yaw),
-    ("m_pitch", |i| i.reward.m_pitch),
-    ("m_height", |i| i.reward.m_height),
-    ("joint_penalty", |i| i.reward.joint_penalty),
-    ("fall_penalty", |i| i.reward.fall_penalty),
+/// The scalar float keys besides the reward terms, in the order written.
+const FLOAT_KEYS: [Key<f64>; 6] = [
     ("reward", |i| i.reward.total),
     ("distance_to_goal", |i| i.distance_to_goal),
     ("d_n", |i| i.d_n),
@@ -42,6 +33,20 @@ const FLOAT_KEYS: [Key<f64>; 15] = [
     ("pitch", |i| i.pitch),
     ("yaw", |i| i.yaw),
 ];
+
+/// Every scalar float key with its value: each reward term of hyq-spec's table
+/// ([`hyq_spec::REWARD_TERMS`]) by its name, then [`FLOAT_KEYS`].
+fn float_values(info: &StepInfo) -> impl Iterator<Item = (&'static str, f64)> + '_ {
+    let terms = info.reward.terms().map(|(t, v)| (t.name, v));
+    terms.chain(FLOAT_KEYS.iter().map(move |(key, read)| (*key, read(info))))
+}
+
+/// The scalar float keys, in [`float_values`]' order.
+fn float_keys() -> impl Iterator<Item = &'static str> {
+    TERM_NAMES
+        .into_iter()
+        .chain(FLOAT_KEYS.iter().map(|(key, _)| *key))
+}
 
 /// The 3-vector keys, with how to read each.
 const VECTOR_KEYS: [Key<[f64; 3]>; 2] = [
@@ -86,7 +91,10 @@ fn string_values(info: &StepInfo, model: &RobotModel) -> [String; 4] {
         reasons_text(info.reasons),
         joint,
         side.to_owned(),
-        info.divergence.clone().unwrap_or_default(),
+        info.divergence
+            .as_ref()
+            .map(ToString::to_string)
+            .unwrap_or_default(),
     ]
 }
 
@@ -106,8 +114,8 @@ pub fn info_dict<'py>(
     // be a function of the seed and the actions (Gymnasium's step-determinism check), and
     // that count is not.
     d.set_item("t", info.t)?;
-    for (key, read) in FLOAT_KEYS {
-        d.set_item(key, read(info))?;
+    for (key, value) in float_values(info) {
+        d.set_item(key, value)?;
     }
     for reason in Reason::ALL {
         d.set_item(reason.as_str(), info.reasons.contains(reason))?;
@@ -165,15 +173,14 @@ pub fn vector_info_dict<'py>(
         d.set_item(key, PyArray1::from_vec(py, values))?;
         mask(&d, key)?;
     }
-    for (key, read) in FLOAT_KEYS {
-        d.set_item(
-            key,
-            infos
-                .iter()
-                .map(|i| read(i))
-                .collect::<Vec<_>>()
-                .into_pyarray(py),
-        )?;
+    // One row of float values per env, its columns in the keys' order.
+    let floats: Vec<Vec<f64>> = infos
+        .iter()
+        .map(|i| float_values(i).map(|(_, v)| v).collect())
+        .collect();
+    for (k, key) in float_keys().enumerate() {
+        let column: Vec<f64> = floats.iter().map(|row| row[k]).collect();
+        d.set_item(key, column.into_pyarray(py))?;
         mask(&d, key)?;
     }
     for reason in Reason::ALL {

@@ -31,6 +31,10 @@ mod vector;
 
 use pyo3::prelude::*;
 
+/// Whether observations are clipped to the spec's table unless `clip_observations=` says
+/// otherwise (they are not: see the README's env card).
+pub const CLIP_OBSERVATIONS_DEFAULT: bool = false;
+
 /// The default t_max (`task.max_time_steps`): the `max_episode_steps` `HyQ-v0` is registered
 /// with.
 #[pyfunction]
@@ -58,5 +62,14 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("MAX_THREADS", hyq_env::MAX_THREADS)?;
     m.add("RENDER_SIDE_MIN", hyq_render::MIN_SIDE_PX)?;
     m.add("RENDER_SIDE_MAX", hyq_render::MAX_SIDE_PX)?;
+    // The defaults of the options that are not configuration keys, defined once.
+    m.add("CLIP_OBSERVATIONS_DEFAULT", CLIP_OBSERVATIONS_DEFAULT)?;
+    m.add("RENDER_WIDTH_DEFAULT", hyq_render::DEFAULT_WIDTH_PX)?;
+    m.add("RENDER_HEIGHT_DEFAULT", hyq_render::DEFAULT_HEIGHT_PX)?;
+    // The reward terms' names in hyq-spec's table order: the info's term keys.
+    m.add(
+        "REWARD_TERMS",
+        pyo3::types::PyTuple::new(m.py(), hyq_spec::TERM_NAMES)?,
+    )?;
     Ok(())
 }

@@ -61,7 +61,7 @@ impl Core {
     /// Builds the environment from an optional TOML file and dotted `(key, TOML value)` pairs
     /// (`("task.fall_penalty", "1.5")`); errors name the key and value.
     #[new]
-    #[pyo3(signature = (pairs, config_file=None, clip_observations=true, render_width=480, render_height=360))]
+    #[pyo3(signature = (pairs, config_file=None, clip_observations=crate::CLIP_OBSERVATIONS_DEFAULT, render_width=hyq_render::DEFAULT_WIDTH_PX, render_height=hyq_render::DEFAULT_HEIGHT_PX))]
     fn new(
         pairs: Vec<(String, String)>,
         config_file: Option<String>,

@@ -113,7 +113,7 @@ impl VecCore {
     /// `"next_step"`, `"same_step"` or `"disabled"`, on rayon's global pool or on a pool of
     /// `threads` threads.
     #[new]
-    #[pyo3(signature = (pairs, num_envs, autoreset_mode="next_step", config_file=None, threads=None, clip_observations=true, render_width=480, render_height=360))]
+    #[pyo3(signature = (pairs, num_envs, autoreset_mode="next_step", config_file=None, threads=None, clip_observations=crate::CLIP_OBSERVATIONS_DEFAULT, render_width=hyq_render::DEFAULT_WIDTH_PX, render_height=hyq_render::DEFAULT_HEIGHT_PX))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         pairs: Vec<(String, String)>,

@@ -187,3 +187,16 @@ def test_dict_info_to_list_over_the_projects_vector_env() -> None:
                 check_single(info)
                 ended |= bool(info[reason])
         assert ended, reason
+
+
+def test_every_reward_term_of_the_core_is_an_info_key_with_the_steps_value() -> None:
+    """The info's term keys are hyq-spec's table of reward terms (``_core.REWARD_TERMS``), so a
+    term added there reaches Python without another edit."""
+    terms = hyq._core.REWARD_TERMS
+    assert len(terms) == len(set(terms)) and "r_e" in terms and "fall_penalty" in terms
+    env = hyq.HyQEnv()
+    env.reset(seed=0)
+    *_, info = env.step(np.zeros(12, dtype=np.float32))
+    for term in terms:
+        assert hyq.INFO_SCHEMA[term] == "float", term
+        assert isinstance(info[term], float), (term, info[term])

@@ -16,8 +16,8 @@ use std::path::PathBuf;
 
 use hyq_physics::na::{Isometry3, Point3, Translation3, UnitQuaternion};
 use hyq_render::{
-    GifWriter, Overlay, PlotOptions, PngSequence, RenderConfig, Renderer, RewardTerms, RobotPose,
-    Scene, StepRecord, plot_jsonl,
+    GifWriter, Overlay, PlotOptions, PngSequence, RenderConfig, Renderer, RobotPose, Scene,
+    StepRecord, TermValues, plot_jsonl,
 };
 use hyq_spec::{EpisodeRules, RobotDescription, StepSnapshot, TaskConfig};
 
@@ -63,32 +63,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
     for step in 1..=steps {
         let t = step as f64 * DT;
-        let phase = std::f64::consts::TAU * GAIT_HZ * t;
-        // Trot: diagonal pairs (left front with right hind, right front with left hind) swing
-        // half a cycle apart. Each leg sweeps its hip forward and back and bends its knee
-        // while swinging.
-        for (leg, chunk) in q.chunks_mut(3).enumerate() {
-            let pair_phase = if leg == 0 || leg == 3 {
-                phase
-            } else {
-                phase + std::f64::consts::PI
-            };
-            let base = &standing[leg * 3..leg * 3 + 3];
-            let lift = pair_phase.sin().max(0.0);
-            chunk[0] = base[0];
-            chunk[1] = base[1] - 0.22 * pair_phase.cos() * base[1].signum();
-            chunk[2] = base[2] + 0.45 * lift * base[2].signum();
-        }
-        let yaw = 0.06 * (0.5 * phase).sin();
-        let position = Point3::new(
-            SPEED * t,
-            0.05 * (0.25 * phase).sin(),
-            height + 0.01 * (2.0 * phase).cos(),
-        );
-        let trunk = Isometry3::from_parts(
-            Translation3::from(position.coords),
-            UnitQuaternion::from_euler_angles(0.0, 0.015 * phase.cos(), yaw),
-        );
+        let (trunk, position) = trot_pose(&standing, t, height, &mut q);
         model.link_poses(&trunk, &q, &mut poses)?;
         for (i, c) in contacts.iter_mut().enumerate() {
             *c = model.tracked_lowest_z(i, &poses) < 0.012;
@@ -110,7 +85,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             t: step,
             episode: Some(1),
             reward: b.total,
-            terms: RewardTerms::from(b),
+            terms: TermValues::all(&b),
             d_n: outcome.normalised_distance,
             distance_to_goal: outcome.distance,
         };
@@ -149,4 +124,41 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         plots.len()
     );
     Ok(())
+}
+
+/// The scripted trot at time `t` (s): the joint angles into `q` (from the `standing` pose),
+/// and the trunk's pose and position at trunk height about `height`.
+fn trot_pose(
+    standing: &[f64],
+    t: f64,
+    height: f64,
+    q: &mut [f64],
+) -> (Isometry3<f64>, Point3<f64>) {
+    let phase = std::f64::consts::TAU * GAIT_HZ * t;
+    // Trot: diagonal pairs (left front with right hind, right front with left hind) swing
+    // half a cycle apart. Each leg sweeps its hip forward and back and bends its knee
+    // while swinging.
+    for (leg, chunk) in q.chunks_mut(3).enumerate() {
+        let pair_phase = if leg == 0 || leg == 3 {
+            phase
+        } else {
+            phase + std::f64::consts::PI
+        };
+        let base = &standing[leg * 3..leg * 3 + 3];
+        let lift = pair_phase.sin().max(0.0);
+        chunk[0] = base[0];
+        chunk[1] = base[1] - 0.22 * pair_phase.cos() * base[1].signum();
+        chunk[2] = base[2] + 0.45 * lift * base[2].signum();
+    }
+    let yaw = 0.06 * (0.5 * phase).sin();
+    let position = Point3::new(
+        SPEED * t,
+        0.05 * (0.25 * phase).sin(),
+        height + 0.01 * (2.0 * phase).cos(),
+    );
+    let trunk = Isometry3::from_parts(
+        Translation3::from(position.coords),
+        UnitQuaternion::from_euler_angles(0.0, 0.015 * phase.cos(), yaw),
+    );
+    (trunk, position)
 }

@@ -16,8 +16,9 @@
 //!   the spec's §4.3 curve R_e(D_n) with the episode's points on it.
 //!
 //! The crate takes plain values: a [`hyq_physics::RobotModel`], poses, contact flags and
-//! numbers. It depends on no physics engine and no environment, so the environment, the CLI and
-//! the Python binding all call it the same way.
+//! numbers. It depends on no physics engine, and on no environment unless its `env` feature is
+//! on: then `env_scene` builds the scene of an hyq-env `Env`'s current state, the one helper
+//! the CLI's `hyq render` and the Python binding's `rgb_array` share.
 //!
 //! # Example: a frame, as `rgb_array` returns it
 //!
@@ -64,18 +65,9 @@
 //!
 //! # Speed
 //!
-//! Measured with `cargo bench -p hyq-render --bench render_frame` (criterion, the bench profile:
-//! release, thin LTO) on the project's 2-core AMD EPYC machine while other builds shared it:
-//! HyQ standing, the goal and the overlay in view, 480 × 360, criterion's median estimate.
-//!
-//! | what | time per frame |
-//! |---|---|
-//! | render (`Renderer::render_into`) | 2.8 ms |
-//! | encode as a GIF frame (NeuQuant speed 10, own palette) | 12.3 ms |
-//! | encode as a PNG (fast compression) | 0.27 ms |
-//!
-//! So `rgb_array` costs about 3 ms a frame, and writing a GIF is bound by its colour
-//! quantisation (about 15 ms a frame in all: a 10 s episode at 25 fps takes about 4 s).
+//! About 3 ms to render a 480 × 360 frame, and GIF writing bound by its colour quantisation:
+//! the figures, and the bench that measures them (`cargo bench -p hyq-render --bench
+//! render_frame`), are in `docs/benchmarks.md`.
 //!
 //! # Limits
 //!
@@ -89,6 +81,8 @@
 //! - Text is DejaVu Sans cut to Latin, Greek and a few symbols (`assets/fonts/README.md`).
 
 mod camera;
+#[cfg(feature = "env")]
+mod env_scene;
 mod error;
 mod frame;
 mod geom;
@@ -100,17 +94,23 @@ mod text;
 mod writer;
 
 pub use camera::{Camera, CameraConfig, NEAR_PLANE_M, REFERENCE_DISTANCE_M, REFERENCE_HEIGHT_M};
+#[cfg(feature = "env")]
+pub use env_scene::env_scene;
 pub use error::{PlotError, RenderError, WriteError};
 pub use frame::Frame;
+/// A record's reward terms by name (hyq-spec's type, which [`StepRecord::terms`] holds).
+pub use hyq_spec::TermValues;
 pub use plot::{
     DISTANCE_PLOT_SIZE, EpisodePlots, JsonlPlots, PlotOptions, REWARD_PLOT_SIZE, plot_distance,
-    plot_episode, plot_jsonl, plot_records, plot_reward_terms,
+    plot_episode, plot_jsonl, plot_records, plot_reward_terms, reward_plot_legend,
 };
 pub use records::{
-    EpisodeSeries, JsonlRecords, MAX_RECORD_LINE_BYTES, RewardTerms, StepRecord, cumulative,
-    parse_jsonl, read_jsonl, split_episodes,
+    EpisodeSeries, JsonlRecords, MAX_RECORD_LINE_BYTES, StepRecord, cumulative, parse_jsonl,
+    read_jsonl, split_episodes,
 };
-pub use renderer::{MAX_SIDE_PX, MIN_SIDE_PX, RenderConfig, Renderer};
+pub use renderer::{
+    DEFAULT_HEIGHT_PX, DEFAULT_WIDTH_PX, MAX_SIDE_PX, MIN_SIDE_PX, RenderConfig, Renderer,
+};
 pub use scene::{Overlay, RobotPose, Scene};
 pub use text::{SANS, SANS_BOLD};
 pub use writer::{

@@ -17,6 +17,8 @@ use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
 use hyq_spec::reward::exponential::cumulative_exponential_reward;
+use hyq_spec::terms::terms_of;
+use hyq_spec::{RewardTerm, TermKind};
 use plotters::coord::Shift;
 use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
@@ -185,11 +187,11 @@ fn t_range(t: &[f64]) -> (f64, f64) {
 }
 
 /// Points drawn as dots, with their legend label and colour.
-type Markers<'a> = (&'a str, RGBColor, Vec<(f64, f64)>);
+type Markers<'a> = (String, RGBColor, Vec<(f64, f64)>);
 
 /// One line of a panel.
 struct Line<'a> {
-    label: &'a str,
+    label: String,
     colour: RGBColor,
     ys: &'a [f64],
     width: u32,
@@ -281,7 +283,7 @@ fn line_panel(
                 colour.stroke_width(line.width),
             ))
             .map_err(|e| e.to_string())?
-            .label(line.label)
+            .label(line.label.as_str())
             .legend(move |(x, y)| PathElement::new([(x, y), (x + 22, y)], colour.stroke_width(3)));
     }
     for (label, colour, points) in markers {
@@ -293,10 +295,157 @@ fn line_panel(
                     .map(|&(x, y)| Circle::new((x, y), 5, colour.filled())),
             )
             .map_err(|e| e.to_string())?
-            .label(*label)
+            .label(label.as_str())
             .legend(move |(x, y)| Circle::new((x + 11, y), 5, colour.filled()));
     }
     draw_legend(&mut chart, SeriesLabelPosition::UpperLeft)
+}
+
+/// The colours of a kind's lines, given in the table's order (cycled past the last).
+const REWARD_COLOURS: [RGBColor; 4] = [BLUE, ORANGE, GREEN, RED];
+const MULTIPLIER_COLOURS: [RGBColor; 3] = [TEAL, YELLOW, PURPLE];
+const PENALTY_COLOURS: [RGBColor; 2] = [PURPLE, BROWN];
+
+/// The terms of `kind` with a colour each, from `palette` in the table's order.
+fn coloured(
+    kind: TermKind,
+    palette: &'static [RGBColor],
+) -> impl Iterator<Item = (&'static RewardTerm, RGBColor)> {
+    terms_of(kind)
+        .enumerate()
+        .map(move |(i, t)| (t, palette[i % palette.len()]))
+}
+
+/// One panel of the reward-terms plot: what it draws, before any drawing.
+struct Panel<'a> {
+    caption: &'static str,
+    lines: Vec<Line<'a>>,
+    y_desc: &'static str,
+    /// Fixed y range, or `None` for the padded range of the lines, the markers and 0.
+    y_range: Option<(f64, f64)>,
+    markers: Vec<Markers<'a>>,
+}
+
+/// The four panels of the reward-terms plot, every term of `hyq_spec::REWARD_TERMS` in the
+/// panel of its kind: rewards per step; multipliers; the step reward with each penalty's
+/// steps as markers; the cumulative reward with each reward's sum (`cumulative` holds Σ r, then
+/// Σ of each reward term in the table's order).
+fn reward_panels<'a>(
+    series: &'a EpisodeSeries,
+    t: &[f64],
+    cumulative: &'a [Vec<f64>],
+) -> [Panel<'a>; 4] {
+    let column = |term: &RewardTerm| series.term(term.name).unwrap_or_default();
+    let rewards = coloured(TermKind::Reward, &REWARD_COLOURS)
+        .map(|(term, colour)| Line {
+            label: term.name.to_owned(),
+            colour,
+            ys: column(term),
+            width: 2,
+        })
+        .collect();
+    // The multipliers are often all 1 at once: the first is drawn widest, so that the lines
+    // drawn over it leave it visible.
+    let multipliers = coloured(TermKind::Multiplier, &MULTIPLIER_COLOURS)
+        .enumerate()
+        .map(|(i, (term, colour))| Line {
+            label: term.name.to_owned(),
+            colour,
+            ys: column(term),
+            width: if i == 0 { 3 } else { 2 },
+        })
+        .collect();
+    let penalties = coloured(TermKind::Penalty, &PENALTY_COLOURS)
+        .map(|(term, colour)| {
+            let points = t
+                .iter()
+                .zip(column(term))
+                .filter(|(_, p)| **p != 0.0)
+                .map(|(&x, &p)| (x, -p))
+                .collect();
+            (format!("− {}", term.name), colour, points)
+        })
+        .collect();
+    let (sum_of_rewards, sums_of_terms) = cumulative.split_first().unzip();
+    let sums = std::iter::once(Line {
+        label: "Σ r (return)".to_owned(),
+        colour: INK,
+        ys: sum_of_rewards.map_or(&[][..], Vec::as_slice),
+        width: 3,
+    })
+    .chain(
+        coloured(TermKind::Reward, &REWARD_COLOURS)
+            .zip(sums_of_terms.unwrap_or_default())
+            .map(|((term, colour), ys)| Line {
+                label: match term.sum_name {
+                    Some(sum) => format!("Σ {} = {sum}", term.name),
+                    None => format!("Σ {}", term.name),
+                },
+                colour,
+                ys,
+                width: 2,
+            }),
+    )
+    .collect();
+    [
+        Panel {
+            caption: "Reward terms per step (§4)",
+            lines: rewards,
+            y_desc: "reward",
+            y_range: None,
+            markers: Vec::new(),
+        },
+        Panel {
+            caption: "Penalty multipliers (§5.1, §5.2)",
+            lines: multipliers,
+            y_desc: "multiplier",
+            y_range: Some((-0.05, 1.12)),
+            markers: Vec::new(),
+        },
+        Panel {
+            caption: "Step reward and fixed penalties (§5.3, §5.4)",
+            lines: vec![Line {
+                label: "r (step reward)".to_owned(),
+                colour: INK,
+                ys: &series.reward,
+                width: 2,
+            }],
+            y_desc: "reward",
+            y_range: None,
+            markers: penalties,
+        },
+        Panel {
+            caption: "Cumulative reward",
+            lines: sums,
+            y_desc: "cumulative reward",
+            y_range: None,
+            markers: Vec::new(),
+        },
+    ]
+}
+
+/// Σ r, then Σ of each reward term, per step (the cumulative panel's lines).
+fn cumulative_rewards(series: &EpisodeSeries) -> Vec<Vec<f64>> {
+    std::iter::once(cumulative(&series.reward))
+        .chain(
+            terms_of(TermKind::Reward).map(|t| cumulative(series.term(t.name).unwrap_or_default())),
+        )
+        .collect()
+}
+
+/// The legend labels of the reward-terms plot of `series`, panel by panel, as
+/// [`plot_reward_terms`] draws them.
+pub fn reward_plot_legend(series: &EpisodeSeries) -> Vec<String> {
+    let cumulative = cumulative_rewards(series);
+    reward_panels(series, &series.t, &cumulative)
+        .into_iter()
+        .flat_map(|p| {
+            p.lines
+                .into_iter()
+                .map(|l| l.label)
+                .chain(p.markers.into_iter().map(|m| m.0))
+        })
+        .collect()
 }
 
 /// Writes the reward-terms plot of one episode ([`REWARD_PLOT_SIZE`]) to `path`.
@@ -321,19 +470,8 @@ pub fn plot_reward_terms(
             series.len()
         ),
     );
-    let penalty_points = |values: &[f64]| -> Vec<(f64, f64)> {
-        t.iter()
-            .zip(values)
-            .filter(|(_, p)| **p != 0.0)
-            .map(|(&x, &p)| (x, -p))
-            .collect()
-    };
-    let joint = penalty_points(&series.joint_penalty);
-    let fall = penalty_points(&series.fall_penalty);
-    let cum_reward = cumulative(&series.reward);
-    let cum_b = cumulative(&series.r_b);
-    let cum_n = cumulative(&series.r_n);
-    let cum_e = cumulative(&series.r_e);
+    let cumulative = cumulative_rewards(series);
+    let panels = reward_panels(series, t, &cumulative);
 
     render_png(path.as_ref(), REWARD_PLOT_SIZE, "reward terms", |root| {
         let body = root
@@ -342,136 +480,29 @@ pub fn plot_reward_terms(
                 (FAMILY, 24, FontStyle::Bold).into_font().color(&INK),
             )
             .map_err(|e| e.to_string())?;
-        let panels = body.split_evenly((2, 2));
-        let terms = [
-            Line {
-                label: "r_b",
-                colour: BLUE,
-                ys: &series.r_b,
-                width: 2,
-            },
-            Line {
-                label: "r_n",
-                colour: ORANGE,
-                ys: &series.r_n,
-                width: 2,
-            },
-            Line {
-                label: "r_e",
-                colour: GREEN,
-                ys: &series.r_e,
-                width: 2,
-            },
-            Line {
-                label: "r_reach",
-                colour: RED,
-                ys: &series.r_reach,
-                width: 2,
-            },
-        ];
-        let range = padded_range(terms.iter().flat_map(|l| l.ys), &[0.0]);
-        line_panel(
-            &panels[0],
-            "Reward terms per step (§4)",
-            (t, x_desc),
-            &terms,
-            "reward",
-            range,
-            &[],
-        )?;
-
-        let multipliers = [
-            Line {
-                label: "m_yaw",
-                colour: TEAL,
-                ys: &series.m_yaw,
-                width: 3,
-            },
-            Line {
-                label: "m_pitch",
-                colour: YELLOW,
-                ys: &series.m_pitch,
-                width: 2,
-            },
-            Line {
-                label: "m_height",
-                colour: PURPLE,
-                ys: &series.m_height,
-                width: 2,
-            },
-        ];
-        line_panel(
-            &panels[1],
-            "Penalty multipliers (§5.1, §5.2)",
-            (t, x_desc),
-            &multipliers,
-            "multiplier",
-            (-0.05, 1.12),
-            &[],
-        )?;
-
-        let step = [Line {
-            label: "r (step reward)",
-            colour: INK,
-            ys: &series.reward,
-            width: 2,
-        }];
-        let range = padded_range(
-            series
-                .reward
-                .iter()
-                .chain(joint.iter().chain(&fall).map(|(_, y)| y)),
-            &[0.0],
-        );
-        line_panel(
-            &panels[2],
-            "Step reward and fixed penalties (§5.3, §5.4)",
-            (t, x_desc),
-            &step,
-            "reward",
-            range,
-            &[
-                ("− joint_penalty", PURPLE, joint.clone()),
-                ("− fall_penalty", BROWN, fall.clone()),
-            ],
-        )?;
-
-        let sums = [
-            Line {
-                label: "Σ r (return)",
-                colour: INK,
-                ys: &cum_reward,
-                width: 3,
-            },
-            Line {
-                label: "Σ r_b",
-                colour: BLUE,
-                ys: &cum_b,
-                width: 2,
-            },
-            Line {
-                label: "Σ r_n = R_n",
-                colour: ORANGE,
-                ys: &cum_n,
-                width: 2,
-            },
-            Line {
-                label: "Σ r_e = R_e(D_n)",
-                colour: GREEN,
-                ys: &cum_e,
-                width: 2,
-            },
-        ];
-        let range = padded_range(sums.iter().flat_map(|l| l.ys), &[0.0]);
-        line_panel(
-            &panels[3],
-            "Cumulative reward",
-            (t, x_desc),
-            &sums,
-            "cumulative reward",
-            range,
-            &[],
-        )
+        for (area, panel) in body.split_evenly((2, 2)).iter().zip(&panels) {
+            let y_range = panel.y_range.unwrap_or_else(|| {
+                padded_range(
+                    panel.lines.iter().flat_map(|l| l.ys).chain(
+                        panel
+                            .markers
+                            .iter()
+                            .flat_map(|m| m.2.iter().map(|(_, y)| y)),
+                    ),
+                    &[0.0],
+                )
+            });
+            line_panel(
+                area,
+                panel.caption,
+                (t, x_desc),
+                &panel.lines,
+                panel.y_desc,
+                y_range,
+                &panel.markers,
+            )?;
+        }
+        Ok(())
     })
 }
 
@@ -497,7 +528,8 @@ pub fn plot_distance(
         .iter()
         .zip(&series.distance_to_goal)
         .find_map(|(d, &dist)| d.filter(|d| *d > 1e-9).map(|d| dist / d));
-    let cum_e = cumulative(&series.r_e);
+    // The exponential reward against its §4.3 curve: Σ r_e is R_e(D_n).
+    let cum_e = cumulative(series.term("r_e").unwrap_or_default());
     let points: Vec<(f64, f64)> = series
         .d_n
         .iter()
@@ -518,90 +550,107 @@ pub fn plot_distance(
             .map_err(|e| e.to_string())?;
         let (left, right) = body.split_horizontally(body.dim_in_pixel().0 / 2);
 
-        // D_n over time, with the start (1) and the goal (0).
-        let (t0, t1) = t_range(t);
-        let y_hi = d_n.iter().map(|p| p.1).fold(1.0, f64::max) * 1.08;
-        let mut chart = styled_chart(
-            &left,
-            "Normalised distance D_n = D / K (§4.2)",
-            t0..t1,
-            -0.04..y_hi,
-            (x_desc, "D_n"),
-        )?;
-        for (y, label, colour) in [
-            (1.0, "start (D_n = 1)", GREY),
-            (0.0, "goal (D_n = 0)", GREEN),
-        ] {
-            chart
-                .draw_series(DashedLineSeries::new(
-                    [(t0, y), (t1, y)],
-                    8,
-                    6,
-                    colour.stroke_width(2),
-                ))
-                .map_err(|e| e.to_string())?
-                .label(label)
-                .legend(move |(x, y)| {
-                    PathElement::new([(x, y), (x + 22, y)], colour.stroke_width(2))
-                });
-        }
-        chart
-            .draw_series(LineSeries::new(d_n.iter().copied(), BLUE.stroke_width(3)))
-            .map_err(|e| e.to_string())?
-            .label("D_n")
-            .legend(|(x, y)| PathElement::new([(x, y), (x + 22, y)], BLUE.stroke_width(3)));
-        draw_legend(&mut chart, SeriesLabelPosition::UpperRight)?;
-
-        // R_e(D_n) and the episode's points on it.
-        let x_hi = points.iter().map(|p| p.0).fold(1.2, f64::max) * 1.06;
-        let curve: Vec<(f64, f64)> = match options.k_exp {
-            Some(k) => (0..=600)
-                .map(|i| {
-                    let d = x_hi * f64::from(i) / 600.0;
-                    (d, cumulative_exponential_reward(d, k))
-                })
-                .collect(),
-            None => Vec::new(),
-        };
-        let (y_lo, y_hi) = padded_range(curve.iter().chain(&points).map(|p| &p.1), &[0.0]);
-        let caption = match options.k_exp {
-            Some(k) => format!("R_e(D_n), k_exp = {k} (§4.3), and this episode"),
-            None => "Σ r_e against D_n (r_e off: no curve)".to_owned(),
-        };
-        let mut chart = styled_chart(&right, caption, 0.0..x_hi, y_lo..y_hi, ("D_n", "R_e"))?;
-        if !curve.is_empty() {
-            chart
-                .draw_series(LineSeries::new(
-                    curve.iter().copied(),
-                    GREEN.stroke_width(3),
-                ))
-                .map_err(|e| e.to_string())?
-                .label("R_e(D_n), the spec's curve")
-                .legend(|(x, y)| PathElement::new([(x, y), (x + 22, y)], GREEN.stroke_width(3)));
-        }
-        let n = points.len().max(2) - 1;
-        chart
-            .draw_series(points.iter().enumerate().map(|(i, &p)| {
-                // Early steps light, late steps dark.
-                let s = i as f64 / n as f64;
-                let mix = |a: u8, b: u8| (f64::from(a) + (f64::from(b) - f64::from(a)) * s) as u8;
-                let c = RGBColor(mix(0xa6, 0x1f), mix(0xc8, 0x3a), mix(0xe8, 0x6b));
-                Circle::new(p, 4, c.filled())
-            }))
-            .map_err(|e| e.to_string())?
-            .label("(D_n^t, Σ r_e), light → dark with time")
-            .legend(|(x, y)| Circle::new((x + 11, y), 4, BLUE.filled()));
-        chart
-            .draw_series(std::iter::once(Circle::new(
-                (1.0, 0.0),
-                7,
-                INK.stroke_width(2),
-            )))
-            .map_err(|e| e.to_string())?
-            .label("start: D_n = 1, R_e = 0")
-            .legend(|(x, y)| Circle::new((x + 11, y), 6, INK.stroke_width(2)));
-        draw_legend(&mut chart, SeriesLabelPosition::UpperRight)
+        draw_distance_over_time(&left, t, x_desc, &d_n)?;
+        draw_exponential_curve(&right, &points, options.k_exp)
     })
+}
+
+/// The left panel of the distance plot: D_n over time (`t`, described by `x_desc`), with the
+/// start (1) and the goal (0).
+fn draw_distance_over_time(
+    left: &DrawingArea<BitMapBackend<'_>, Shift>,
+    t: &[f64],
+    x_desc: &str,
+    d_n: &[(f64, f64)],
+) -> Result<(), String> {
+    let (t0, t1) = t_range(t);
+    let y_hi = d_n.iter().map(|p| p.1).fold(1.0, f64::max) * 1.08;
+    let mut chart = styled_chart(
+        left,
+        "Normalised distance D_n = D / K (§4.2)",
+        t0..t1,
+        -0.04..y_hi,
+        (x_desc, "D_n"),
+    )?;
+    for (y, label, colour) in [
+        (1.0, "start (D_n = 1)", GREY),
+        (0.0, "goal (D_n = 0)", GREEN),
+    ] {
+        chart
+            .draw_series(DashedLineSeries::new(
+                [(t0, y), (t1, y)],
+                8,
+                6,
+                colour.stroke_width(2),
+            ))
+            .map_err(|e| e.to_string())?
+            .label(label)
+            .legend(move |(x, y)| PathElement::new([(x, y), (x + 22, y)], colour.stroke_width(2)));
+    }
+    chart
+        .draw_series(LineSeries::new(d_n.iter().copied(), BLUE.stroke_width(3)))
+        .map_err(|e| e.to_string())?
+        .label("D_n")
+        .legend(|(x, y)| PathElement::new([(x, y), (x + 22, y)], BLUE.stroke_width(3)));
+    draw_legend(&mut chart, SeriesLabelPosition::UpperRight)?;
+    Ok(())
+}
+
+/// The right panel of the distance plot: the §4.3 curve R_e(D_n) for `k_exp` (none when r_e
+/// is off) and the episode's points (D_n^t, Σ r_e) on it.
+fn draw_exponential_curve(
+    right: &DrawingArea<BitMapBackend<'_>, Shift>,
+    points: &[(f64, f64)],
+    k_exp: Option<f64>,
+) -> Result<(), String> {
+    let x_hi = points.iter().map(|p| p.0).fold(1.2, f64::max) * 1.06;
+    let curve: Vec<(f64, f64)> = match k_exp {
+        Some(k) => (0..=600)
+            .map(|i| {
+                let d = x_hi * f64::from(i) / 600.0;
+                (d, cumulative_exponential_reward(d, k))
+            })
+            .collect(),
+        None => Vec::new(),
+    };
+    let (y_lo, y_hi) = padded_range(curve.iter().chain(points).map(|p| &p.1), &[0.0]);
+    let caption = match k_exp {
+        Some(k) => format!("R_e(D_n), k_exp = {k} (§4.3), and this episode"),
+        None => "Σ r_e against D_n (r_e off: no curve)".to_owned(),
+    };
+    let mut chart = styled_chart(right, caption, 0.0..x_hi, y_lo..y_hi, ("D_n", "R_e"))?;
+    if !curve.is_empty() {
+        chart
+            .draw_series(LineSeries::new(
+                curve.iter().copied(),
+                GREEN.stroke_width(3),
+            ))
+            .map_err(|e| e.to_string())?
+            .label("R_e(D_n), the spec's curve")
+            .legend(|(x, y)| PathElement::new([(x, y), (x + 22, y)], GREEN.stroke_width(3)));
+    }
+    let n = points.len().max(2) - 1;
+    chart
+        .draw_series(points.iter().enumerate().map(|(i, &p)| {
+            // Early steps light, late steps dark.
+            let s = i as f64 / n as f64;
+            let mix = |a: u8, b: u8| (f64::from(a) + (f64::from(b) - f64::from(a)) * s) as u8;
+            let c = RGBColor(mix(0xa6, 0x1f), mix(0xc8, 0x3a), mix(0xe8, 0x6b));
+            Circle::new(p, 4, c.filled())
+        }))
+        .map_err(|e| e.to_string())?
+        .label("(D_n^t, Σ r_e), light → dark with time")
+        .legend(|(x, y)| Circle::new((x + 11, y), 4, BLUE.filled()));
+    chart
+        .draw_series(std::iter::once(Circle::new(
+            (1.0, 0.0),
+            7,
+            INK.stroke_width(2),
+        )))
+        .map_err(|e| e.to_string())?
+        .label("start: D_n = 1, R_e = 0")
+        .legend(|(x, y)| Circle::new((x + 11, y), 6, INK.stroke_width(2)));
+    draw_legend(&mut chart, SeriesLabelPosition::UpperRight)
 }
 
 /// The two files [`plot_episode`] writes.

@@ -4,9 +4,9 @@
 //! The schema is `hyq-env`'s record (its `record` module); this crate reads the keys it plots
 //! and ignores the others, so it needs no environment. The keys read: `t` (env steps since
 //! reset, 1 for the first step), `reward` (the step's total reward),
-//! `terms` (`r_b`, `r_n`, `r_e`, `r_reach`, `m_yaw`, `m_pitch`, optional `m_height`,
-//! `joint_penalty`, `fall_penalty`: the spec's per-term breakdown, penalties as the positive
-//! amounts subtracted), `d_n` (D_n^t; `null` is read as unknown, as older records held it) and
+//! `terms` (every reward term of `hyq_spec::REWARD_TERMS` by name, an opt-in one such as
+//! `m_height` optional: the spec's per-term breakdown, penalties as the positive amounts
+//! subtracted), `d_n` (D_n^t; `null` is read as unknown, as older records held it) and
 //! `distance_to_goal` (D^t, m), and `episode` (the episode's number; optional here). Other keys
 //! (`obs`, `action`, `goal`, …) are ignored, so the environment can log more without breaking
 //! the plots.
@@ -25,58 +25,10 @@
 use std::io::BufRead;
 use std::path::Path;
 
-use hyq_spec::RewardBreakdown;
+use hyq_spec::{NUM_REWARD_TERMS, REWARD_TERMS, TermValues, terms::term_index};
 use serde::{Deserialize, Serialize};
 
 use crate::error::PlotError;
-
-fn one() -> f64 {
-    1.0
-}
-
-/// One step's reward terms, with the spec's names (`hyq_spec::RewardBreakdown` serialises to
-/// these keys).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct RewardTerms {
-    /// Base reward r_b (§4.1).
-    pub r_b: f64,
-    /// Normalised reward r_n (§4.2).
-    pub r_n: f64,
-    /// Exponential reward r_e (§4.3), before multipliers: its sum over an episode is
-    /// R_e(D_n^t).
-    pub r_e: f64,
-    /// Reach bonus r_reach (§4.4).
-    pub r_reach: f64,
-    /// Yaw multiplier m_yaw in [0, 1] (§5.1.1).
-    pub m_yaw: f64,
-    /// Pitch multiplier m_pitch in [0, 1] (§5.1.2).
-    pub m_pitch: f64,
-    /// Height multiplier m_height in [0, 1] (§5.2, opt-in; 1 when absent).
-    #[serde(default = "one")]
-    pub m_height: f64,
-    /// Joint-limit penalty subtracted (§5.3), ≥ 0.
-    pub joint_penalty: f64,
-    /// Fall penalty subtracted (§5.4), ≥ 0.
-    pub fall_penalty: f64,
-}
-
-impl From<RewardBreakdown> for RewardTerms {
-    /// The terms of a step the spec's rules scored (`total` is the record's `reward`). An off
-    /// height penalty is already m_height = 1 there, as an absent `m_height` reads here.
-    fn from(b: RewardBreakdown) -> Self {
-        Self {
-            r_b: b.r_b,
-            r_n: b.r_n,
-            r_e: b.r_e,
-            r_reach: b.r_reach,
-            m_yaw: b.m_yaw,
-            m_pitch: b.m_pitch,
-            m_height: b.m_height,
-            joint_penalty: b.joint_penalty,
-            fall_penalty: b.fall_penalty,
-        }
-    }
-}
 
 /// One line of the environment's JSONL log.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -88,8 +40,11 @@ pub struct StepRecord {
     pub episode: Option<u64>,
     /// The step's total reward.
     pub reward: f64,
-    /// The step's reward terms.
-    pub terms: RewardTerms,
+    /// The step's reward terms by name (hyq-spec's [`TermValues`], read leniently: keys that
+    /// name no term are ignored; an absent opt-in term such as `m_height` reads as its neutral
+    /// value, 1).
+    #[serde(deserialize_with = "TermValues::deserialize_lenient")]
+    pub terms: TermValues,
     /// D_n^t, the distance to the goal over the start's (`None` for a `null`, which older
     /// records held when K was too small; records written now always hold a number).
     pub d_n: Option<f64>,
@@ -208,24 +163,9 @@ pub struct EpisodeSeries {
     pub t: Vec<f64>,
     /// Total reward per step.
     pub reward: Vec<f64>,
-    /// r_b per step.
-    pub r_b: Vec<f64>,
-    /// r_n per step.
-    pub r_n: Vec<f64>,
-    /// r_e per step.
-    pub r_e: Vec<f64>,
-    /// r_reach per step.
-    pub r_reach: Vec<f64>,
-    /// m_yaw per step.
-    pub m_yaw: Vec<f64>,
-    /// m_pitch per step.
-    pub m_pitch: Vec<f64>,
-    /// m_height per step.
-    pub m_height: Vec<f64>,
-    /// Joint-limit penalty per step (≥ 0, subtracted).
-    pub joint_penalty: Vec<f64>,
-    /// Fall penalty per step (≥ 0, subtracted).
-    pub fall_penalty: Vec<f64>,
+    /// Each reward term per step, one column per row of `hyq_spec::REWARD_TERMS` (penalties as
+    /// the positive amounts subtracted); see [`EpisodeSeries::term`].
+    pub terms: [Vec<f64>; NUM_REWARD_TERMS],
     /// D_n per step (`None` where unavailable).
     pub d_n: Vec<Option<f64>>,
     /// D per step (m).
@@ -252,17 +192,16 @@ impl EpisodeSeries {
         // Step counts are far below 2^53, so the conversion is exact.
         self.t.push(r.t as f64);
         self.reward.push(r.reward);
-        self.r_b.push(r.terms.r_b);
-        self.r_n.push(r.terms.r_n);
-        self.r_e.push(r.terms.r_e);
-        self.r_reach.push(r.terms.r_reach);
-        self.m_yaw.push(r.terms.m_yaw);
-        self.m_pitch.push(r.terms.m_pitch);
-        self.m_height.push(r.terms.m_height);
-        self.joint_penalty.push(r.terms.joint_penalty);
-        self.fall_penalty.push(r.terms.fall_penalty);
+        for (column, term) in self.terms.iter_mut().zip(&REWARD_TERMS) {
+            column.push((term.get)(&r.terms.values));
+        }
         self.d_n.push(r.d_n);
         self.distance_to_goal.push(r.distance_to_goal);
+    }
+
+    /// The column of the term named `name` (`None` for a name that is no term).
+    pub fn term(&self, name: &str) -> Option<&[f64]> {
+        term_index(name).map(|i| self.terms[i].as_slice())
     }
 
     /// Number of steps.
@@ -276,21 +215,12 @@ impl EpisodeSeries {
     }
 
     /// The plain columns with their names.
-    pub(crate) fn columns(&self) -> [(&'static str, &[f64]); 12] {
-        [
-            ("t", &self.t),
-            ("reward", &self.reward),
-            ("r_b", &self.r_b),
-            ("r_n", &self.r_n),
-            ("r_e", &self.r_e),
-            ("r_reach", &self.r_reach),
-            ("m_yaw", &self.m_yaw),
-            ("m_pitch", &self.m_pitch),
-            ("m_height", &self.m_height),
-            ("joint_penalty", &self.joint_penalty),
-            ("fall_penalty", &self.fall_penalty),
-            ("distance_to_goal", &self.distance_to_goal),
-        ]
+    pub(crate) fn columns(&self) -> impl Iterator<Item = (&'static str, &[f64])> + Clone + '_ {
+        [("t", &self.t), ("reward", &self.reward)]
+            .into_iter()
+            .chain(REWARD_TERMS.iter().map(|t| t.name).zip(&self.terms))
+            .chain([("distance_to_goal", &self.distance_to_goal)])
+            .map(|(name, column)| (name, column.as_slice()))
     }
 
     /// Checks that the series is non-empty, every column has one value per step and every
@@ -305,8 +235,7 @@ impl EpisodeSeries {
         let d_n_len = self.d_n.len();
         for (field, len) in self
             .columns()
-            .iter()
-            .map(|(f, c)| (*f, c.len()))
+            .map(|(f, c)| (f, c.len()))
             .chain([("d_n", d_n_len)])
         {
             if len != n {

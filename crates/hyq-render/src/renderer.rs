@@ -47,13 +47,18 @@ pub struct RenderConfig {
 impl Default for RenderConfig {
     fn default() -> Self {
         Self {
-            width: 480,
-            height: 360,
+            width: DEFAULT_WIDTH_PX,
+            height: DEFAULT_HEIGHT_PX,
             camera: CameraConfig::default(),
             grid_spacing_m: 1.0,
         }
     }
 }
+
+/// The default image width (pixels), of `hyq render` and Python's `rgb_array` alike.
+pub const DEFAULT_WIDTH_PX: u32 = 480;
+/// The default image height (pixels), of `hyq render` and Python's `rgb_array` alike.
+pub const DEFAULT_HEIGHT_PX: u32 = 360;
 
 /// The largest image side the renderer accepts.
 pub const MAX_SIDE_PX: u32 = 4096;

@@ -10,8 +10,8 @@ mod common;
 
 use common::*;
 use hyq_render::{
-    DISTANCE_PLOT_SIZE, EpisodeSeries, PlotError, PlotOptions, REWARD_PLOT_SIZE, RewardTerms,
-    StepRecord, cumulative, parse_jsonl, plot_distance, plot_episode, plot_jsonl, split_episodes,
+    DISTANCE_PLOT_SIZE, EpisodeSeries, PlotError, PlotOptions, REWARD_PLOT_SIZE, StepRecord,
+    TermValues, cumulative, parse_jsonl, plot_distance, plot_episode, plot_jsonl, split_episodes,
 };
 use hyq_spec::nalgebra::{Point3, UnitQuaternion};
 use hyq_spec::reward::exponential::cumulative_exponential_reward;
@@ -59,7 +59,7 @@ fn spec_episode() -> Vec<StepRecord> {
             t: step,
             episode: None,
             reward: b.total,
-            terms: RewardTerms::from(b),
+            terms: TermValues::all(&b),
             d_n: outcome.normalised_distance,
             distance_to_goal: outcome.distance,
         });
@@ -109,7 +109,7 @@ fn episode_plots_are_written_with_their_size_and_real_content() {
 #[test]
 fn r_e_points_of_a_spec_episode_sit_on_the_spec_curve() {
     let series = EpisodeSeries::from_records(&spec_episode());
-    let sum_r_e = cumulative(&series.r_e);
+    let sum_r_e = cumulative(series.term("r_e").unwrap());
     for (d_n, r_e) in series.d_n.iter().zip(&sum_r_e) {
         let d_n = d_n.unwrap();
         let curve = cumulative_exponential_reward(d_n, K_EXP);
@@ -119,8 +119,8 @@ fn r_e_points_of_a_spec_episode_sit_on_the_spec_curve() {
         );
     }
     // The episode exercises the multiplier and the fall penalty panels.
-    assert!(series.m_yaw.iter().any(|&m| m < 1.0));
-    assert_eq!(series.fall_penalty.last(), Some(&20.0));
+    assert!(series.term("m_yaw").unwrap().iter().any(|&m| m < 1.0));
+    assert_eq!(series.term("fall_penalty").unwrap().last(), Some(&20.0));
 }
 
 #[test]
@@ -174,13 +174,13 @@ fn records_in_the_environments_schema_parse_with_extra_keys_ignored() {
     assert_eq!(records.len(), 1);
     let r = &records[0];
     assert_eq!((r.episode, r.t, r.d_n), (Some(3), 1, None));
-    assert_eq!(r.terms.m_height, 1.0);
-    assert_eq!(r.terms.r_n, 0.2);
+    assert_eq!(r.terms.values.m_height, 1.0);
+    assert_eq!(r.terms.values.r_n, 0.2);
     let with_height = line.replace(r#""m_pitch":1.0,"#, r#""m_pitch":1.0,"m_height":0.5,"#);
     let records = parse_jsonl(with_height.as_bytes(), "input")
         .unwrap()
         .records;
-    assert_eq!(records[0].terms.m_height, 0.5);
+    assert_eq!(records[0].terms.values.m_height, 0.5);
 }
 
 #[test]
@@ -213,7 +213,7 @@ fn bad_series_and_options_are_refused_by_name() {
     assert!(matches!(err, PlotError::Empty { .. }), "{err}");
 
     let mut nan = good.clone();
-    nan.r_n[17] = f64::NAN;
+    nan.terms[hyq_spec::terms::term_index("r_n").unwrap()][17] = f64::NAN;
     let err = plot_distance(&nan, &PlotOptions::default(), dir.join("b.png")).unwrap_err();
     assert!(
         matches!(
@@ -228,7 +228,7 @@ fn bad_series_and_options_are_refused_by_name() {
     );
 
     let mut short = good.clone();
-    short.m_pitch.pop();
+    short.terms[hyq_spec::terms::term_index("m_pitch").unwrap()].pop();
     let err = plot_distance(&short, &PlotOptions::default(), dir.join("c.png")).unwrap_err();
     assert!(
         matches!(

@@ -11,7 +11,8 @@ use std::sync::mpsc;
 use std::time::Duration;
 
 use common::scratch_dir;
-use hyq_render::{EpisodeSeries, PlotOptions, RewardTerms, StepRecord, plot_episode};
+use hyq_render::{EpisodeSeries, PlotOptions, StepRecord, TermValues, plot_episode};
+use hyq_spec::RewardBreakdown;
 
 /// Longer than any plot takes (well under a second each); a hang becomes a failure instead of a
 /// test run that never ends.
@@ -22,17 +23,10 @@ fn record(t: u64, reward: f64, r_e: f64, d_n: f64) -> StepRecord {
         t,
         episode: Some(1),
         reward,
-        terms: RewardTerms {
-            r_b: 0.0,
-            r_n: 0.0,
+        terms: TermValues::all(&RewardBreakdown {
             r_e,
-            r_reach: 0.0,
-            m_yaw: 1.0,
-            m_pitch: 1.0,
-            m_height: 1.0,
-            joint_penalty: 0.0,
-            fall_penalty: 0.0,
-        },
+            ..RewardBreakdown::NEUTRAL
+        }),
         d_n: Some(d_n),
         distance_to_goal: 1.0,
     }

@@ -24,6 +24,7 @@
 //! | [`reward`] | §4, eqs. (1)–(5) | r_b, r_n, r_e (continuous R_e), r_reach |
 //! | [`penalty`] | §5 | m_yaw, m_pitch, opt-in m_height, fixed penalties |
 //! | [`termination`] | §6 | reached, joint limit, fell, timeout; [`Terminations`] |
+//! | [`terms`] | §4 eq. (1), §5 | [`REWARD_TERMS`]: every reward term, its kind and section |
 //! | [`step`] | §4–§6 composed | [`EpisodeRules::evaluate_step`] |
 //! | [`printed`] | eqs. (2), (4), §6.2 | the printed forms the rulings replace (tests only) |
 //! | [`spec_page`] | all | the rules as implemented, every ruling, why, and its test |
@@ -71,6 +72,7 @@ pub mod reward;
 pub mod robot;
 pub mod step;
 pub mod termination;
+pub mod terms;
 
 /// The spec as the project implements it (`docs/spec.md`), included here so that it reads beside
 /// the code it describes.
@@ -90,3 +92,6 @@ pub use robot::{JointDescription, RobotDescription, RobotError, TrunkDescription
 pub use step::{EpisodeError, EpisodeRules, RewardBreakdown, StepError, StepOutcome, StepSnapshot};
 pub use termination::joint_limit::{JointLimitHit, JointRange, LimitSide};
 pub use termination::{Termination, Terminations};
+pub use terms::{
+    NUM_REWARD_TERMS, REWARD_TERMS, RewardTerm, TERM_NAMES, TermKind, TermSums, TermValues,
+};

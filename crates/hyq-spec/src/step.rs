@@ -21,12 +21,13 @@ use crate::penalty::{
 };
 use crate::reward::{
     base::base_reward, exponential::exponential_reward, normalised::normalised_reward,
-    reach::reach_reward, reward_before_penalties,
+    reach::reach_reward,
 };
 use crate::termination::joint_limit::{
     JointCountMismatch, JointLimitHit, JointRange, first_joint_at_limit,
 };
 use crate::termination::{Terminations, reach::goal_reached, timeout::timed_out};
+use crate::terms::{REWARD_TERMS, RewardTerm, TermKind, terms_of};
 use nalgebra::{Point3, UnitQuaternion};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
@@ -131,7 +132,8 @@ pub enum StepError {
 /// Every term of one step's reward, kept apart (keys as in the spec: r_b, r_n, r_e, r_reach,
 /// m_yaw, m_pitch, m_height, joint_penalty, fall_penalty, total).
 ///
-/// `total` is [`RewardBreakdown::compose`] of the other fields, to the bit.
+/// Each field but `total` is a row of [`crate::terms::REWARD_TERMS`], which says how it enters
+/// the reward; `total` is [`RewardBreakdown::compose`] of the other fields, to the bit.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RewardBreakdown {
     /// Base reward r_b (§4.1), 0 when `base_rew_scaling` is unset.
@@ -157,15 +159,40 @@ pub struct RewardBreakdown {
 }
 
 impl RewardBreakdown {
-    /// (r_b + r_n + r_e + r_reach) · m_yaw · m_pitch · m_height − joint_penalty − fall_penalty,
-    /// evaluated left to right in exactly this order.
+    /// The breakdown where no reward is given (after reset, on a diverged step): every term at
+    /// its kind's neutral value ([`TermKind::neutral`]: rewards and penalties 0, multipliers 1),
+    /// total 0.
+    pub const NEUTRAL: RewardBreakdown = RewardBreakdown {
+        r_b: 0.0,
+        r_n: 0.0,
+        r_e: 0.0,
+        r_reach: 0.0,
+        m_yaw: 1.0,
+        m_pitch: 1.0,
+        m_height: 1.0,
+        joint_penalty: 0.0,
+        fall_penalty: 0.0,
+        total: 0.0,
+    };
+
+    /// (r_b + r_n + r_e + r_reach) · m_yaw · m_pitch · m_height − joint_penalty − fall_penalty:
+    /// the rewards summed, then multiplied by each multiplier, then each penalty subtracted,
+    /// left to right in the order of [`crate::terms::REWARD_TERMS`] (so eq. (1)'s sum is
+    /// [`crate::reward::reward_before_penalties`] to the bit).
     pub fn compose(&self) -> f64 {
-        reward_before_penalties(self.r_b, self.r_n, self.r_e, self.r_reach)
-            * self.m_yaw
-            * self.m_pitch
-            * self.m_height
-            - self.joint_penalty
-            - self.fall_penalty
+        let mut rewards = terms_of(TermKind::Reward).map(|t| (t.get)(self));
+        let sum = match rewards.next() {
+            // Starting from the first term, not from 0.0, keeps a sum of −0.0 terms −0.0.
+            Some(first) => rewards.fold(first, |sum, r| sum + r),
+            None => 0.0,
+        };
+        let scaled = terms_of(TermKind::Multiplier).fold(sum, |r, t| r * (t.get)(self));
+        terms_of(TermKind::Penalty).fold(scaled, |r, t| r - (t.get)(self))
+    }
+
+    /// Every term with its value, in the order of [`crate::terms::REWARD_TERMS`].
+    pub fn terms(&self) -> impl Iterator<Item = (&'static RewardTerm, f64)> + '_ {
+        REWARD_TERMS.iter().map(move |t| (t, (t.get)(self)))
     }
 }
 

@@ -22,7 +22,7 @@ spec_tests::for_each_backend! {
             assert!((env.info().yaw - yaw0).abs() < 1e-6, "spawned at yaw {}", env.info().yaw);
             let action = stand_action(&env);
             let r = step(&mut env, &action);
-            let t = &r.terms;
+            let t = &r.terms.values;
             assert!((r.yaw - yaw0).abs() < 0.1f64.to_radians(), "yaw {} after one step", r.yaw);
             assert_eq!(t.m_yaw, r.yaw.cos());
             assert!((t.m_yaw - 10f64.to_radians().cos()).abs() < 1e-4, "m_yaw {}", t.m_yaw);
@@ -41,10 +41,10 @@ spec_tests::for_each_backend! {
             let action = stand_action(&env);
             let r = step(&mut env, &action);
             if penalised {
-                assert_eq!(r.terms.m_yaw, r.yaw.cos());
-                assert!(r.terms.m_yaw < 1.0);
+                assert_eq!(r.terms.values.m_yaw, r.yaw.cos());
+                assert!(r.terms.values.m_yaw < 1.0);
             } else {
-                assert_eq!(r.terms.m_yaw, 1.0, "yaw {} within 2.5 degrees", r.yaw.to_degrees());
+                assert_eq!(r.terms.values.m_yaw, 1.0, "yaw {} within 2.5 degrees", r.yaw.to_degrees());
             }
         }
     }
@@ -63,7 +63,7 @@ spec_tests::for_each_backend! {
         assert!((env.info().pitch - pitch0).abs() < 1e-9);
         let action = stand_action(&env);
         let r = step(&mut env, &action);
-        let t = &r.terms;
+        let t = &r.terms.values;
         assert!((r.pitch - pitch0).abs() < 0.5f64.to_radians(), "pitch {} after one step", r.pitch);
         assert_eq!(t.m_pitch, r.pitch.cos());
         assert!((t.m_pitch - pitch0.cos()).abs() < 2e-3, "m_pitch {}", t.m_pitch);

@@ -37,7 +37,7 @@ spec_tests::for_each_backend! {
                     LimitSide::Lower => assert!(angle <= joint.lower + eps, "{what}: {angle}"),
                     LimitSide::Upper => assert!(angle >= joint.upper - eps, "{what}: {angle}"),
                 }
-                let t = &last.terms;
+                let t = &last.terms.values;
                 assert_eq!(t.joint_penalty, PENALTY, "{what}");
                 assert_eq!(t.fall_penalty, 0.0, "{what}");
                 assert_eq!(
@@ -46,9 +46,9 @@ spec_tests::for_each_backend! {
                     "{what}"
                 );
                 for r in &records[..records.len() - 1] {
-                    assert_eq!(r.terms.joint_penalty, 0.0, "{what}: penalised at t = {}", r.t);
+                    assert_eq!(r.terms.values.joint_penalty, 0.0, "{what}: penalised at t = {}", r.t);
                 }
-                let total: f64 = records.iter().map(|r| r.terms.joint_penalty).sum();
+                let total: f64 = records.iter().map(|r| r.terms.values.joint_penalty).sum();
                 assert_eq!(total, PENALTY, "{what}: penalised once");
                 assert!(matches!(env.step(&action), Err(EnvError::EpisodeOver { .. })), "{what}");
             }

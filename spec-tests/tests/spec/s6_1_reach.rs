@@ -32,7 +32,7 @@ spec_tests::for_each_backend! {
         assert_eq!(r.t, 1);
         assert_eq!(r.reasons, [Reason::Reached]);
         assert!(r.terminated && !r.truncated);
-        let t = &r.terms;
+        let t = &r.terms.values;
         assert_eq!(t.r_reach, BONUS);
         assert!(t.m_yaw < 0.99, "yawed 10°: m_yaw {}", t.m_yaw);
         assert_eq!(r.reward, (t.r_b + t.r_n + t.r_e + BONUS) * t.m_yaw * t.m_pitch);
@@ -51,7 +51,7 @@ spec_tests::for_each_backend! {
         for _ in 0..50 {
             let r = step(&mut env, &action);
             assert!(r.reasons.is_empty(), "t = {}: {:?}", r.t, r.reasons);
-            assert_eq!(r.terms.r_reach, 0.0);
+            assert_eq!(r.terms.values.r_reach, 0.0);
         }
     }
 }

@@ -53,12 +53,12 @@ spec_tests::for_each_backend! {
         assert!(last.terminated && !last.truncated);
         assert!(last.t <= 30, "a 6 cm drop lands within 0.3 s (t = {})", last.t);
         assert_eq!(last.obs[layout.trunk_contact()], 1.0);
-        let t = &last.terms;
+        let t = &last.terms.values;
         assert_eq!(t.fall_penalty, 3.0);
         assert_eq!(t.joint_penalty, 0.0);
         assert_eq!(last.reward, (t.r_b + t.r_n + t.r_e + t.r_reach) * t.m_yaw * t.m_pitch - 3.0);
         for r in &records[..records.len() - 1] {
-            assert_eq!(r.terms.fall_penalty, 0.0);
+            assert_eq!(r.terms.values.fall_penalty, 0.0);
             assert_eq!(r.obs[layout.trunk_contact()], 0.0);
         }
         assert!(matches!(env.step(&zero), Err(EnvError::EpisodeOver { .. })));
@@ -74,7 +74,7 @@ spec_tests::for_each_backend! {
             last = step(&mut env, &zero);
         }
         assert_eq!(last.reasons, [Reason::JointLimit], "t = {}", last.t);
-        assert_eq!(last.terms.fall_penalty, 0.0);
+        assert_eq!(last.terms.values.fall_penalty, 0.0);
         let z = env.trunk().pose.translation.z;
         assert!(z > 0.2, "the legs folded to a limit with the trunk still {z} m up");
 
@@ -121,7 +121,7 @@ fn a_trunk_contact_in_any_single_substep_is_a_fall_scripted() {
             "a contact in sub-step {touch} of 10"
         );
         assert_eq!(second.obs[layout.trunk_contact()], 1.0);
-        assert_eq!(second.terms.fall_penalty, 3.0);
+        assert_eq!(second.terms.values.fall_penalty, 3.0);
         assert_eq!(env.backend().substeps(), 20);
     }
 }

@@ -28,7 +28,7 @@ spec_tests::for_each_backend! {
                 assert_eq!(r.truncated, t == n, "t_max {n}, t {t}");
                 if t == n {
                     assert_eq!(r.reasons, [Reason::Timeout]);
-                    assert_eq!((r.terms.joint_penalty, r.terms.fall_penalty, r.terms.r_reach), (0.0, 0.0, 0.0));
+                    assert_eq!((r.terms.values.joint_penalty, r.terms.values.fall_penalty, r.terms.values.r_reach), (0.0, 0.0, 0.0));
                 } else {
                     assert!(r.reasons.is_empty());
                 }
@@ -66,5 +66,5 @@ fn a_fall_on_the_timeout_step_is_terminated_not_truncated_scripted() {
     let r = step(&mut env, &zero);
     assert_eq!(r.reasons, [Reason::Fell, Reason::Timeout]);
     assert!(r.terminated && !r.truncated);
-    assert_eq!(r.terms.fall_penalty, 1.0);
+    assert_eq!(r.terms.values.fall_penalty, 1.0);
 }

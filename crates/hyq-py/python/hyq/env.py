@@ -48,17 +48,15 @@ def reset_goal(options: Mapping[str, Any] | None) -> list[float] | None:
 
 
 def core_options(env_options: Mapping[str, Any]) -> dict[str, Any]:
-    """The core's keyword arguments for clipping and frame size, checked by name."""
+    """The core's keyword arguments for clipping and frame size, checked by name; the defaults
+    are the core's."""
+    clip = env_options.get("clip_observations", _core.CLIP_OBSERVATIONS_DEFAULT)
+    width = env_options.get("render_width", _core.RENDER_WIDTH_DEFAULT)
+    height = env_options.get("render_height", _core.RENDER_HEIGHT_DEFAULT)
     return {
-        "clip_observations": check_flag(
-            "clip_observations", env_options.get("clip_observations", False)
-        ),
-        "render_width": check_count(
-            "render_width", env_options.get("render_width", 480), *RENDER_SIDES
-        ),
-        "render_height": check_count(
-            "render_height", env_options.get("render_height", 360), *RENDER_SIDES
-        ),
+        "clip_observations": check_flag("clip_observations", clip),
+        "render_width": check_count("render_width", width, *RENDER_SIDES),
+        "render_height": check_count("render_height", height, *RENDER_SIDES),
     }
 
 

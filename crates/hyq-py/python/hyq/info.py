@@ -6,18 +6,13 @@ equal). A vector env's info holds each key as an array over the envs, as Gymnasi
 
 from __future__ import annotations
 
-#: Key -> type: ``"int"``, ``"float"``, ``"bool"``, ``"str"`` or ``"float64 array (k,)"``.
+from hyq import _core
+
+#: Key -> type: ``"int"``, ``"float"``, ``"bool"``, ``"str"`` or ``"float64 array (k,)"``. The
+#: reward terms are the core's (``_core.REWARD_TERMS``: hyq-spec's table of terms, in order).
 INFO_SCHEMA: dict[str, str] = {
     "t": "int",
-    "r_b": "float",
-    "r_n": "float",
-    "r_e": "float",
-    "r_reach": "float",
-    "m_yaw": "float",
-    "m_pitch": "float",
-    "m_height": "float",
-    "joint_penalty": "float",
-    "fall_penalty": "float",
+    **{term: "float" for term in _core.REWARD_TERMS},
     "reward": "float",
     "distance_to_goal": "float",
     "d_n": "float",
