@@ -18,6 +18,12 @@
 //!    evaluation and the rest. Its own rate is reported too (`timed_pass`): the difference is
 //!    the cost of the timers.
 //!
+//! # A trained policy (`--policy mlp:FILE`, one env)
+//! The `env_mlp` workload: the same passes with the trained policy choosing every action from
+//! the step's observation (in the environment it was trained in, as `hyq run` applies it). Its
+//! actions depend on the state, so they cannot be drawn ahead: the forward pass is inside the
+//! timed region, and the rates are those of the closed loop.
+//!
 //! # Batched mode (`--num-envs N`, N ≥ 2)
 //! N envs in a [`VecEnv`] (the vector env the Python binding uses) on a pool of `--threads T`
 //! threads (default N, capped at the machine's cores), same workload per env (env i's actions
@@ -36,15 +42,17 @@ use std::fmt::Write as _;
 use clap::Args;
 use cpu_time::ProcessTime;
 use hyq_env::{
-    AutoReset, Env, Policy, RandomPolicy, Reason, ResetOptions, StepTiming, VecEnv, VecStepOut,
+    AutoReset, Env, MlpPolicy, Policy, RandomPolicy, Reason, ResetOptions, StepTiming, VecEnv,
+    VecStepOut,
 };
 use hyq_physics::Backend;
 use serde::Serialize;
 
 use crate::Failure;
 use crate::backend::with_backend;
-use crate::options::{EnvArgs, make_env, usage};
+use crate::options::{EnvArgs, make_env, read_mlp, usage};
 use crate::output::{print, print_json_line};
+use crate::run::PolicyChoice;
 
 /// Actions drawn ahead of the timed region at a time.
 pub const BLOCK: usize = 1000;
@@ -60,6 +68,10 @@ pub struct BenchArgs {
     /// Seed of the random actions and of the first reset.
     #[arg(long, default_value_t = 0)]
     seed: u64,
+    /// The actions: random (the `env_random` workload), or mlp:FILE, a trained policy file run
+    /// closed-loop in the environment it was trained in (the `env_mlp` workload; one env).
+    #[arg(long, default_value = "random", value_parser = parse_bench_policy, value_name = "POLICY")]
+    policy: PolicyChoice,
     /// Print one JSON object on stdout instead of text.
     #[arg(long)]
     json: bool,
@@ -71,6 +83,15 @@ pub struct BenchArgs {
     /// cores).
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..=hyq_env::MAX_THREADS as u64))]
     threads: Option<u64>,
+}
+
+fn parse_bench_policy(text: &str) -> Result<PolicyChoice, String> {
+    match text.parse()? {
+        choice @ (PolicyChoice::Random | PolicyChoice::Mlp(_)) => Ok(choice),
+        other => Err(format!(
+            "{other} is not a bench workload: expected random or mlp:FILE"
+        )),
+    }
 }
 
 /// How the episodes that ended during a pass ended (a step may have several reasons).
@@ -131,7 +152,7 @@ pub struct TimedPass {
 pub struct BenchReport {
     /// 1.
     pub schema_version: u32,
-    /// `"env_random"`: the anchors' case this reproduces.
+    /// `"env_random"` (the anchors' case this reproduces) or `"env_mlp"` (`--policy mlp:FILE`).
     pub workload: &'static str,
     /// The backend's name (`"rapier"`, `"dart"`, `"mujoco"`).
     pub backend: &'static str,
@@ -218,7 +239,23 @@ struct Pass {
 /// Runs `hyq bench`.
 pub fn execute(args: BenchArgs) -> Result<(), Failure> {
     let model = args.env.model()?;
-    let config = args.env.config()?;
+    let mlp = match &args.policy {
+        PolicyChoice::Mlp(file) => Some((read_mlp(file)?, file.display().to_string())),
+        _ => None,
+    };
+    let config = match &mlp {
+        Some((policy, _)) => args
+            .env
+            .configuration
+            .config_over(&policy.metadata().env_config)?,
+        None => args.env.config()?,
+    };
+    if mlp.is_some() && args.num_envs >= 2 {
+        return Err(usage(format!(
+            "--policy {} runs one env: leave out --num-envs {}",
+            args.policy, args.num_envs
+        )));
+    }
     if args.num_envs >= 2 {
         let cores = std::thread::available_parallelism().map_or(1, |n| n.get() as u64);
         let threads = args.threads.unwrap_or(args.num_envs.min(cores));
@@ -241,7 +278,16 @@ pub fn execute(args: BenchArgs) -> Result<(), Failure> {
     }
     with_backend!(args.env.backend, B => {
         let mut env = make_env::<B>(model, config)?;
-        let report = bench(&mut env, args.steps, args.seed)?;
+        let mlp = match mlp {
+            Some((policy, file)) => {
+                policy
+                    .check_env(env.model(), env.config(), &file)
+                    .map_err(|e| usage(format!("--policy mlp:{e}")))?;
+                Some(policy)
+            }
+            None => None,
+        };
+        let report = bench_with(&mut env, args.steps, args.seed, mlp)?;
         print_report(&report, args.json)
     })
 }
@@ -369,10 +415,20 @@ fn cpu_now() -> Result<Duration, Failure> {
         .map_err(|e| failure(format!("cannot read the process CPU time: {e}")))
 }
 
-/// Both passes on `env`.
-pub fn bench<B: Backend>(env: &mut Env<B>, steps: u64, seed: u64) -> Result<BenchReport, Failure> {
-    let throughput = pass(env, steps, seed, false)?;
-    let timed = pass(env, steps, seed, true)?;
+/// Both passes on `env`, under random actions or, with `mlp`, the trained policy's.
+pub fn bench_with<B: Backend>(
+    env: &mut Env<B>,
+    steps: u64,
+    seed: u64,
+    mut mlp: Option<MlpPolicy>,
+) -> Result<BenchReport, Failure> {
+    let workload = if mlp.is_some() {
+        "env_mlp"
+    } else {
+        "env_random"
+    };
+    let throughput = pass(env, steps, seed, false, mlp.clone())?;
+    let timed = pass(env, steps, seed, true, mlp.take())?;
     let t = &timed.timing;
     let total = t.total.as_secs_f64();
     let share = |d: Duration| {
@@ -390,7 +446,7 @@ pub fn bench<B: Backend>(env: &mut Env<B>, steps: u64, seed: u64) -> Result<Benc
     let substeps = config.control.sim_steps_per_env_step;
     Ok(BenchReport {
         schema_version: 1,
-        workload: "env_random",
+        workload,
         backend: B::NAME,
         robot: env.model().name().to_owned(),
         profile: if cfg!(debug_assertions) {
@@ -430,7 +486,11 @@ fn pass<B: Backend>(
     steps: u64,
     seed: u64,
     timing: bool,
+    mlp: Option<MlpPolicy>,
 ) -> Result<Pass, Failure> {
+    if let Some(policy) = mlp {
+        return closed_loop_pass(env, steps, seed, timing, policy);
+    }
     let n = env.action_space().len();
     let mut policy = RandomPolicy::new(seed);
     let mut actions = vec![0.0; BLOCK * n];
@@ -475,6 +535,51 @@ fn pass<B: Backend>(
         result.cpu += cpu_now()?.saturating_sub(cpu0);
         left -= block as u64;
     }
+    result.timing = *env.timing();
+    env.set_timing(false);
+    Ok(result)
+}
+
+/// One pass of `steps` env steps from a reset with `seed`, each action chosen by `policy` from
+/// the step's observation inside the timed region.
+fn closed_loop_pass<B: Backend>(
+    env: &mut Env<B>,
+    steps: u64,
+    seed: u64,
+    timing: bool,
+    mut policy: MlpPolicy,
+) -> Result<Pass, Failure> {
+    let mut action = vec![0.0; env.action_space().len()];
+    env.set_timing(false);
+    env.clear_timing();
+    env.reset(Some(seed), &ResetOptions::default())
+        .map_err(|e| failure(format!("reset: {e}")))?;
+    env.set_timing(timing);
+    let mut result = Pass {
+        wall: Duration::ZERO,
+        cpu: Duration::ZERO,
+        resets: 0,
+        ended: Ended::default(),
+        timing: StepTiming::default(),
+    };
+    let cpu0 = cpu_now()?;
+    let wall0 = Instant::now();
+    for _ in 0..steps {
+        policy.act(&env.policy_input(), &mut action);
+        let step = env
+            .step(&action)
+            .map_err(|e| failure(format!("step: {e}")))?;
+        if step.terminated || step.truncated {
+            for reason in step.info.reasons.iter() {
+                result.ended.add(reason);
+            }
+            result.resets += 1;
+            env.reset(None, &ResetOptions::default())
+                .map_err(|e| failure(format!("reset: {e}")))?;
+        }
+    }
+    result.wall = wall0.elapsed();
+    result.cpu = cpu_now()?.saturating_sub(cpu0);
     result.timing = *env.timing();
     env.set_timing(false);
     Ok(result)

@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use clap::Args;
-use hyq_env::{Env, EnvConfig, LoadError, Policy, RandomPolicy, Stand, Trot};
+use hyq_env::{Env, EnvConfig, LoadError, MlpPolicy, Policy, RandomPolicy, Stand, Trot};
 use hyq_physics::{Backend, RobotModel};
 
 use crate::Failure;
@@ -94,6 +94,13 @@ impl EnvArgs {
 impl ConfigArgs {
     /// The configuration: the defaults, then the file, then the overrides, validated.
     pub fn config(&self) -> Result<EnvConfig, Failure> {
+        self.config_over(&[])
+    }
+
+    /// The configuration with `base` (dotted keys and TOML values, e.g. a trained policy's
+    /// environment) applied too: the defaults, then the file, then `base` except the keys the
+    /// file or an override sets, then the overrides, validated once.
+    pub fn config_over(&self, base: &[(String, String)]) -> Result<EnvConfig, Failure> {
         let mut pairs = Vec::with_capacity(self.set.len());
         for item in &self.set {
             let (key, value) = item.split_once('=').ok_or_else(|| {
@@ -109,11 +116,56 @@ impl ConfigArgs {
             }
             pairs.push((key, value.trim()));
         }
-        EnvConfig::load(self.config.as_deref(), &pairs).map_err(|e| match e {
-            LoadError::File(e) => usage(e.to_string()),
-            LoadError::Overrides(e) => usage(format!("--set: {e}")),
-        })
+        if !base.is_empty() {
+            let mut user_keys: Vec<String> = pairs.iter().map(|(k, _)| (*k).to_owned()).collect();
+            if let Some(path) = &self.config {
+                // The file alone first, so that a bad file gets the loader's own error.
+                EnvConfig::load::<&str, &str>(Some(path), &[]).map_err(load_error)?;
+                user_keys.extend(file_keys(path)?);
+            }
+            let inherited: Vec<(&str, &str)> = base
+                .iter()
+                .filter(|(k, _)| !user_keys.contains(k))
+                .map(|(k, v)| (k.as_str(), v.as_str()))
+                .collect();
+            pairs.splice(0..0, inherited);
+        }
+        EnvConfig::load(self.config.as_deref(), &pairs).map_err(load_error)
     }
+}
+
+fn load_error(e: LoadError) -> Failure {
+    match e {
+        LoadError::File(e) => usage(e.to_string()),
+        LoadError::Overrides(e) => usage(format!("--set: {e}")),
+    }
+}
+
+/// The dotted keys a TOML configuration file sets (`task.fall_penalty`, `physics.rapier.x`).
+fn file_keys(path: &std::path::Path) -> Result<Vec<String>, Failure> {
+    fn walk(prefix: &str, table: &toml::Table, out: &mut Vec<String>) {
+        for (key, value) in table {
+            let dotted = if prefix.is_empty() {
+                key.clone()
+            } else {
+                format!("{prefix}.{key}")
+            };
+            match value {
+                toml::Value::Table(inner) => walk(&dotted, inner, out),
+                _ => out.push(dotted),
+            }
+        }
+    }
+    // The loader has read and validated the file already; these errors are for a file changed
+    // in between.
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| usage(format!("--config {}: {e}", path.display())))?;
+    let table: toml::Table = text.parse().map_err(|e: toml::de::Error| {
+        usage(format!("--config {}: {}", path.display(), e.message()))
+    })?;
+    let mut keys = Vec::new();
+    walk("", &table, &mut keys);
+    Ok(keys)
 }
 
 /// An environment on backend `B` with `config`.
@@ -125,24 +177,55 @@ pub fn make_env<B: Backend>(model: Arc<RobotModel>, config: EnvConfig) -> Result
 /// The policy and seed of a command that runs episodes (`run`, `render`).
 #[derive(Debug, Clone, Args)]
 pub struct PolicyArgs {
-    /// The policy.
-    #[arg(long, value_enum, default_value_t = PolicyChoice::Trot)]
+    /// The policy: stand, random, trot, or mlp:FILE (a trained policy file, e.g.
+    /// mlp:assets/policies/hyq_walk.safetensors, run in the environment it was trained in:
+    /// its action mode and reward settings apply unless --config or --set sets the key).
+    #[arg(long, default_value = "trot", value_parser = parse_policy, value_name = "POLICY")]
     pub policy: PolicyChoice,
     /// Seed of the first reset (goal and reset-noise streams) and of the random policy.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
 }
 
+fn parse_policy(text: &str) -> Result<PolicyChoice, String> {
+    text.parse()
+}
+
+/// Reads a trained policy file: a one-line usage error naming the file and the problem.
+pub fn read_mlp(file: &std::path::Path) -> Result<MlpPolicy, Failure> {
+    MlpPolicy::from_file(file).map_err(|e| usage(format!("--policy mlp:{e}")))
+}
+
 impl PolicyArgs {
-    /// The chosen policy for `env`'s robot (the random one seeded with `--seed`).
+    /// The environment's configuration for this policy: `env`'s, over the trained policy's own
+    /// environment when the policy is `mlp:FILE`.
+    pub fn config(&self, env: &EnvArgs) -> Result<EnvConfig, Failure> {
+        match &self.policy {
+            PolicyChoice::Mlp(file) => {
+                let policy = read_mlp(file)?;
+                env.configuration.config_over(&policy.metadata().env_config)
+            }
+            _ => env.config(),
+        }
+    }
+
+    /// The chosen policy for `env`'s robot (the random one seeded with `--seed`); a trained
+    /// policy is checked against the environment's robot and action layout.
     pub fn make<B: Backend>(&self, env: &Env<B>) -> Result<Box<dyn Policy>, Failure> {
-        Ok(match self.policy {
+        Ok(match &self.policy {
             PolicyChoice::Stand => Box::new(Stand),
             PolicyChoice::Random => Box::new(RandomPolicy::new(self.seed)),
             PolicyChoice::Trot => Box::new(
                 Trot::from_profile(env.model())
                     .map_err(|e| usage(format!("--policy trot: {e}")))?,
             ),
+            PolicyChoice::Mlp(file) => {
+                let policy = read_mlp(file)?;
+                policy
+                    .check_env(env.model(), env.config(), &file.display().to_string())
+                    .map_err(|e| usage(format!("--policy mlp:{e}")))?;
+                Box::new(policy)
+            }
         })
     }
 }

@@ -191,7 +191,7 @@ fn side_px() -> clap::builder::RangedI64ValueParser<u32> {
 /// Runs `hyq render`.
 pub fn execute(args: RenderArgs) -> Result<(), Failure> {
     let model = args.env.model()?;
-    let config = args.env.config()?;
+    let config = args.policy.config(&args.env)?;
     with_backend!(args.env.backend, B => {
         let env = make_env::<B>(model, config)?;
         render_episode(env, &args)

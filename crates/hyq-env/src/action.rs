@@ -6,7 +6,10 @@
 //! - `normalized`: q*_i = lo_i + (a_i + 1)/2 · (hi_i − lo_i), a_i ∈ [−1, 1];
 //! - `absolute`:   q*_i = a_i (rad), a_i ∈ [lo_i, hi_i];
 //! - `delta`:      q*_i = clip(θ_i + a_i · max_delta, lo_i, hi_i), a_i ∈ [−1, 1], θ_i the joint's
-//!   angle at the start of the env step.
+//!   angle at the start of the env step;
+//! - `offset`:     q*_i = clip(s_i + a_i · max_offset, lo_i, hi_i), a_i ∈ [−1, 1], s_i the joint's
+//!   angle in the robot profile's standing pose (a project-defined mode: a zero action holds
+//!   the standing pose, and the policy's reach is bounded around it).
 //!
 //! A wrong length or a NaN or infinite value is always an error, naming the index, the joint and
 //! the value. A finite value outside the action space is clipped to it (the default; the step's
@@ -85,6 +88,8 @@ pub struct ActionSpace {
     mode: ActionMode,
     out_of_range: OutOfRange,
     max_delta: f64,
+    max_offset: f64,
+    standing: Vec<f64>,
     joint_names: Vec<String>,
     lower: Vec<f64>,
     upper: Vec<f64>,
@@ -99,7 +104,7 @@ impl ActionSpace {
         let upper: Vec<f64> = model.joints().iter().map(|j| j.upper).collect();
         let (low, high) = match config.mode {
             ActionMode::Absolute => (lower.clone(), upper.clone()),
-            ActionMode::Normalized | ActionMode::Delta => {
+            ActionMode::Normalized | ActionMode::Delta | ActionMode::Offset => {
                 (vec![-1.0; lower.len()], vec![1.0; lower.len()])
             }
         };
@@ -107,6 +112,8 @@ impl ActionSpace {
             mode: config.mode,
             out_of_range: config.out_of_range,
             max_delta: config.max_delta_rad,
+            max_offset: config.max_offset_rad,
+            standing: model.standing_pose().to_vec(),
             joint_names: model.joints().iter().map(|j| j.name.clone()).collect(),
             lower,
             upper,
@@ -153,6 +160,16 @@ impl ActionSpace {
     /// `max_delta_rad` of `delta` mode (rad per env step).
     pub fn max_delta(&self) -> f64 {
         self.max_delta
+    }
+
+    /// `max_offset_rad` of `offset` mode (rad from the standing pose).
+    pub fn max_offset(&self) -> f64 {
+        self.max_offset
+    }
+
+    /// The standing pose `offset` mode is relative to (rad, action order).
+    pub fn standing(&self) -> &[f64] {
+        &self.standing
     }
 
     /// Checks an action without using it: its length, that every value is finite, and (with
@@ -213,6 +230,7 @@ impl ActionSpace {
                 ActionMode::Normalized => lo + 0.5 * (a + 1.0) * (hi - lo),
                 ActionMode::Absolute => a,
                 ActionMode::Delta => current[i] + a * self.max_delta,
+                ActionMode::Offset => self.standing[i] + a * self.max_offset,
             }
             // The normalised map can round a hair past a limit; every mode ends inside them.
             .clamp(lo, hi);
@@ -236,6 +254,7 @@ impl ActionSpace {
                 ActionMode::Normalized => 2.0 * (q - lo) / (hi - lo) - 1.0,
                 ActionMode::Absolute => q,
                 ActionMode::Delta => (q - current[i]) / self.max_delta,
+                ActionMode::Offset => (q - self.standing[i]) / self.max_offset,
             };
             out[i] = a.clamp(self.low[i], self.high[i]);
         }

@@ -193,8 +193,9 @@ impl GoalMode {
 pub struct ActionConfig {
     /// `"normalized"`: a ∈ [−1, 1] maps linearly onto each joint's range (−1 the lower limit,
     /// +1 the upper); `"absolute"`: targets in radians; `"delta"`: target = the joint's angle at
-    /// the start of the step + a · `max_delta_rad`, a ∈ [−1, 1]. Targets are always clipped to
-    /// the joint limits. (default: `"normalized"`)
+    /// the start of the step + a · `max_delta_rad`, a ∈ [−1, 1]; `"offset"`: target = the
+    /// robot's standing angle + a · `max_offset_rad`, a ∈ [−1, 1] (a project-defined mode, spec
+    /// §7.1). Targets are always clipped to the joint limits. (default: `"normalized"`)
     pub mode: ActionMode,
     /// What a finite value outside the action space does: `"clip"` clips it to the space (and
     /// the step's info says so), `"error"` refuses the step. Non-finite values are always
@@ -203,6 +204,10 @@ pub struct ActionConfig {
     /// The largest change of a joint target per env step in `"delta"` mode (rad). Finite, > 0.
     /// (default: 0.1, i.e. up to 10 rad/s at 100 env steps per second, within HyQ's 12 rad/s)
     pub max_delta_rad: f64,
+    /// The largest distance of a joint target from the standing pose in `"offset"` mode (rad).
+    /// Finite, > 0. (default: 0.5, within every HyQ joint's room on both sides of standing
+    /// but the hip flexions' 0.47 rad to one limit)
+    pub max_offset_rad: f64,
 }
 
 impl Default for ActionConfig {
@@ -211,6 +216,7 @@ impl Default for ActionConfig {
             mode: ActionMode::Normalized,
             out_of_range: OutOfRange::Clip,
             max_delta_rad: 0.1,
+            max_offset_rad: 0.5,
         }
     }
 }
@@ -225,6 +231,8 @@ pub enum ActionMode {
     Absolute,
     /// [−1, 1] times `max_delta_rad` from the current angle.
     Delta,
+    /// [−1, 1] times `max_offset_rad` from the standing pose.
+    Offset,
 }
 
 /// What happens to a finite action value outside the action space; see
@@ -895,6 +903,7 @@ impl EnvConfig {
         validate_spawn(&self.reset)?;
         validate_goal(&self.goal, self.reset.spawn_xy_m)?;
         finite_positive("action.max_delta_rad", self.action.max_delta_rad)?;
+        finite_positive("action.max_offset_rad", self.action.max_offset_rad)?;
         validate_control(&self.control)?;
         self.validate_physics()?;
         validate_reset_noise(&self.reset)

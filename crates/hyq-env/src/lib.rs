@@ -59,6 +59,7 @@ pub mod divergence;
 pub mod env;
 pub mod goal;
 pub mod info;
+pub mod mlp;
 pub mod policy;
 pub mod record;
 pub mod testing;
@@ -76,6 +77,7 @@ pub use env::{
 };
 pub use hyq_spec::TermSums;
 pub use info::{Reason, Reasons, StepInfo};
+pub use mlp::{MlpError, MlpMetadata, MlpPolicy};
 pub use policy::{Policy, PolicyInput, RandomPolicy, Stand, Trot, TrotParams};
 pub use record::StepRecord;
 pub use vec_env::{AutoReset, MAX_ENVS, MAX_THREADS, VecEnv, VecEnvError, VecStepOut};

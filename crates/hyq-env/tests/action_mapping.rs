@@ -1,8 +1,9 @@
 //! Invariant: actions map onto joint targets exactly as documented for each mode (normalized
 //! [−1, 1] onto each joint's range, absolute radians clipped to the limits, delta from the
-//! angle at the start of the step), out-of-range values are clipped or refused as configured,
-//! and a refused action (wrong length, NaN or infinity, out of range under "error") names the
-//! index and value and changes nothing in the environment.
+//! angle at the start of the step, offset from the robot's standing pose), out-of-range values
+//! are clipped or refused as configured, and a refused action (wrong length, NaN or infinity,
+//! out of range under "error") names the index and value and changes nothing in the
+//! environment.
 
 mod common;
 
@@ -118,6 +119,42 @@ fn delta_targets_stay_within_the_limits() {
 }
 
 #[test]
+fn offset_zero_holds_the_standing_pose_and_scales_from_it() {
+    let mut env = scripted(&[("action.mode", "offset"), ("action.max_offset_rad", "0.25")]);
+    reset(&mut env, 0);
+    // One step so that the joints are not exactly at the standing pose: offset mode must not
+    // read the current angle.
+    env.step(&[0.3; 12]).unwrap_or_else(|e| panic!("{e}"));
+    let standing = env.model().standing_pose().to_vec();
+    let s = env.step(&[0.0; 12]).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(s.info.joint_targets, standing);
+    let mut a = vec![0.0; 12];
+    a[1] = 1.0;
+    a[2] = -0.5;
+    a[4] = 3.0; // clipped to 1
+    let s = env.step(&a).unwrap_or_else(|e| panic!("{e}"));
+    let t = &s.info.joint_targets;
+    assert_eq!(t[1], standing[1] + 0.25);
+    assert_eq!(t[2], standing[2] - 0.125);
+    assert_eq!(t[4], standing[4] + 0.25);
+    assert_eq!(t[0], standing[0]);
+    assert!(s.info.action_clipped);
+    let space = env.action_space();
+    assert_eq!((space.low()[0], space.high()[0]), (-1.0, 1.0));
+}
+
+#[test]
+fn offset_targets_stay_within_the_limits() {
+    let mut env = scripted(&[("action.mode", "offset"), ("action.max_offset_rad", "10")]);
+    reset(&mut env, 0);
+    let s = env.step(&[-1.0; 12]).unwrap_or_else(|e| panic!("{e}"));
+    let targets = s.info.joint_targets.clone();
+    for (t, j) in targets.iter().zip(env.model().joints()) {
+        assert_eq!(*t, j.lower, "{}", j.name);
+    }
+}
+
+#[test]
 fn f32_actions_map_like_f64_actions() {
     let mut a = scripted(&[]);
     let mut b = scripted(&[]);
@@ -168,8 +205,12 @@ fn refused_actions_name_the_problem_and_change_nothing() {
 
 #[test]
 fn action_for_targets_inverts_the_mapping() {
-    for mode in ["normalized", "absolute", "delta"] {
-        let mut env = scripted(&[("action.mode", mode), ("action.max_delta_rad", "2")]);
+    for mode in ["normalized", "absolute", "delta", "offset"] {
+        let mut env = scripted(&[
+            ("action.mode", mode),
+            ("action.max_delta_rad", "2"),
+            ("action.max_offset_rad", "2"),
+        ]);
         reset(&mut env, 0);
         let targets: Vec<f64> = env
             .model()

@@ -28,6 +28,7 @@ fn an_empty_file_is_the_documented_defaults() {
     assert_eq!(c.action.mode, ActionMode::Normalized);
     assert_eq!(c.action.out_of_range, OutOfRange::Clip);
     assert_eq!(c.action.max_delta_rad, 0.1);
+    assert_eq!(c.action.max_offset_rad, 0.5);
     assert_eq!(c.control.sim_steps_per_env_step, 10);
     assert_eq!(
         (c.control.kp.clone(), c.control.kd.clone()),
@@ -157,6 +158,10 @@ fn invalid_values_are_errors_naming_the_key_and_value() {
         (
             "[action]\nmax_delta_rad = -0.1",
             &["action.max_delta_rad", "-0.1"],
+        ),
+        (
+            "[action]\nmax_offset_rad = 0",
+            &["action.max_offset_rad", "0"],
         ),
         (
             "[control]\nsim_steps_per_env_step = 0",

@@ -56,7 +56,7 @@ fn trot_walks_forward_for_ten_seconds_without_falling() {
 
 #[test]
 fn random_actions_are_in_the_space_and_reproducible() {
-    for mode in ["normalized", "absolute", "delta"] {
+    for mode in ["normalized", "absolute", "delta", "offset"] {
         let mut env = rapier(&[("action.mode", mode)]);
         env.reset(Some(0), &ResetOptions::default())
             .unwrap_or_else(|e| panic!("{e}"));

@@ -22,5 +22,6 @@ pub fn action_mode_name(mode: ActionMode) -> &'static str {
         ActionMode::Normalized => "normalized",
         ActionMode::Absolute => "absolute",
         ActionMode::Delta => "delta",
+        ActionMode::Offset => "offset",
     }
 }

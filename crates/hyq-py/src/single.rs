@@ -182,7 +182,7 @@ impl Core {
         })
     }
 
-    /// The action space's lower bounds (float32; −1 in the normalized and delta modes, the
+    /// The action space's lower bounds (float32; −1 in the normalized, delta and offset modes, the
     /// joints' lower limits in the absolute mode).
     fn action_low<'py>(
         slf: &Bound<'py, Self>,
@@ -245,7 +245,7 @@ impl Core {
         call(slf, "env_dt", |this| Ok(this.env.get().env_dt()))
     }
 
-    /// The action mode (`normalized`, `absolute` or `delta`).
+    /// The action mode (`normalized`, `absolute`, `delta` or `offset`).
     #[getter]
     fn action_mode<'py>(slf: &Bound<'py, Self>) -> PyResult<&'static str> {
         call(slf, "action_mode", |this| {

@@ -35,7 +35,7 @@ def test_sb3_check_env_is_silent_on_the_default_env(
 
 @pytest.mark.parametrize("clip", [False, True])
 @pytest.mark.parametrize("render_mode", [None, "rgb_array"])
-@pytest.mark.parametrize("mode", ["normalized", "delta", "absolute"])
+@pytest.mark.parametrize("mode", ["normalized", "delta", "absolute", "offset"])
 def test_sb3_check_env_is_silent_on_every_option_combination(
     sb3: types.SimpleNamespace, clip: bool, render_mode: str | None, mode: str
 ) -> None:

@@ -108,7 +108,8 @@ class HyQEnv(gymnasium.Env):
     **Action**: ``Box(-1, 1, (12,), float32)`` joint position targets in the default
     ``normalized`` mode (−1 a joint's lower limit, +1 its upper); ``action={"mode":
     "absolute"}`` takes radians within the joint limits, ``action={"mode": "delta"}`` a change
-    of ±``max_delta_rad`` from the current angle. A NaN or a wrong shape raises ``ValueError``.
+    of ±``max_delta_rad`` from the current angle, ``action={"mode": "offset"}`` an offset of
+    ±``max_offset_rad`` from the standing pose. A NaN or a wrong shape raises ``ValueError``.
 
     **Reward and info**: the spec's reward; ``info`` holds every term (``r_b``, ``r_n``,
     ``r_e``, ``r_reach``, ``m_yaw``, ``m_pitch``, ``m_height``, ``joint_penalty``,

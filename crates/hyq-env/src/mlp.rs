@@ -1,0 +1,532 @@
+//! A learned policy replayed without Python: a multilayer perceptron (the actor of a trained
+//! agent, with the observation normalisation it was trained behind) read from a
+//! [safetensors](https://huggingface.co/docs/safetensors) file, evaluated in plain Rust.
+//!
+//! # The file (`hyq-mlp-policy`, version 1)
+//!
+//! Tensors, for a robot with `n` observation rows and `m` action values:
+//!
+//! | name | dtype | shape | meaning |
+//! |---|---|---|---|
+//! | `obs_mean` | F64 | [n] | the running mean of each observation row |
+//! | `obs_var` | F64 | [n] | its running variance |
+//! | `layers.<k>.weight` | F32 | [out_k, in_k] | layer k's weights, k = 0, 1, …; in_0 = n, in_{k+1} = out_k |
+//! | `layers.<k>.bias` | F32 | [out_k] | layer k's bias; the last layer has out = m |
+//!
+//! Metadata (strings): `format` = `hyq-mlp-policy`, `format_version` = `1`, `robot` (the
+//! profile's name), `observation` and `action` (JSON arrays of the observation row names and
+//! the joint names, in order), `action_mode` and, for `offset` and `delta`, `action_scale_rad`
+//! (`max_offset_rad` or `max_delta_rad`), `activation` (`tanh`, `relu` or `elu`), `obs_clip`
+//! and `obs_epsilon`, and `env_config`: a JSON object of dotted configuration keys to TOML
+//! values (`{"action.mode": "\"offset\"", "task.fall_penalty": "10.0"}`), the environment the
+//! policy was trained in, which front ends apply unless the user sets a key. Other keys
+//! (`training_commit`, `trainer`, …) are kept and shown, not interpreted.
+//!
+//! # The forward pass
+//!
+//! As Stable-Baselines3's `VecNormalize` and `MlpPolicy` compute it, deterministically:
+//!
+//! ```text
+//! x_i = clip((f32(o_i) − mean_i) / sqrt(var_i + epsilon), −obs_clip, obs_clip)   (then to f32)
+//! h   = act(W_k h + b_k) for every layer but the last;  a = W_last h + b_last
+//! action_i = clip(a_i, low_i, high_i)   (the action space)
+//! ```
+//!
+//! The observation goes through f32 first because the trainer saw the float32 observations of
+//! the Python package; the layers run in f64 on the f32 weights, in a fixed order, so the same
+//! observation gives the same action bits on every run and machine, within about 10⁻⁶ of the
+//! trainer's float32 arithmetic. A step allocates nothing.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use hyq_physics::RobotModel;
+use safetensors::{Dtype, SafeTensors};
+use thiserror::Error;
+
+use crate::action::ActionSpace;
+use crate::config::{ActionMode, EnvConfig};
+use crate::env::observation_layout_of;
+use crate::policy::{Policy, PolicyInput};
+
+/// The `format` metadata value of a policy file.
+pub const FORMAT: &str = "hyq-mlp-policy";
+/// The `format_version` this reader understands.
+pub const FORMAT_VERSION: &str = "1";
+
+/// A policy file that cannot be used: which file, and what is wrong with it (one line).
+#[derive(Clone, Debug, PartialEq, Eq, Error)]
+#[error("{file}: {reason}")]
+pub struct MlpError {
+    /// The file (as given), or the source's name.
+    pub file: String,
+    /// What is wrong.
+    pub reason: String,
+}
+
+/// The hidden layers' activation.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Activation {
+    /// tanh(x) (Stable-Baselines3's default for PPO).
+    Tanh,
+    /// max(0, x).
+    Relu,
+    /// x for x > 0, e^x − 1 otherwise.
+    Elu,
+}
+
+impl Activation {
+    fn parse(name: &str) -> Option<Self> {
+        match name {
+            "tanh" => Some(Self::Tanh),
+            "relu" => Some(Self::Relu),
+            "elu" => Some(Self::Elu),
+            _ => None,
+        }
+    }
+
+    /// The name as written in the file.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Self::Tanh => "tanh",
+            Self::Relu => "relu",
+            Self::Elu => "elu",
+        }
+    }
+
+    fn apply(self, x: f64) -> f64 {
+        match self {
+            Self::Tanh => x.tanh(),
+            Self::Relu => x.max(0.0),
+            Self::Elu => {
+                if x > 0.0 {
+                    x
+                } else {
+                    x.exp_m1()
+                }
+            }
+        }
+    }
+}
+
+/// What a policy file says about the environment it was trained in.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MlpMetadata {
+    /// The robot profile's name.
+    pub robot: String,
+    /// The observation rows' names, in order.
+    pub observation: Vec<String>,
+    /// The joints' names, in action order.
+    pub action: Vec<String>,
+    /// The action mode.
+    pub action_mode: ActionMode,
+    /// `max_offset_rad` (`offset`) or `max_delta_rad` (`delta`); `None` for the other modes.
+    pub action_scale_rad: Option<f64>,
+    /// The configuration it was trained with: dotted keys and TOML values, in key order.
+    pub env_config: Vec<(String, String)>,
+    /// Every metadata entry, as stored (training commit, trainer, …).
+    pub raw: BTreeMap<String, String>,
+}
+
+#[derive(Clone, Debug)]
+struct Layer {
+    inputs: usize,
+    outputs: usize,
+    /// Row-major [outputs][inputs].
+    weight: Vec<f64>,
+    bias: Vec<f64>,
+}
+
+/// A trained MLP policy (see the module docs).
+#[derive(Clone, Debug)]
+pub struct MlpPolicy {
+    metadata: MlpMetadata,
+    activation: Activation,
+    obs_mean: Vec<f64>,
+    obs_std: Vec<f64>,
+    obs_clip: f64,
+    layers: Vec<Layer>,
+    /// Two scratch vectors as wide as the widest layer.
+    scratch: [Vec<f64>; 2],
+}
+
+fn mode_name(mode: ActionMode) -> &'static str {
+    match mode {
+        ActionMode::Normalized => "normalized",
+        ActionMode::Absolute => "absolute",
+        ActionMode::Delta => "delta",
+        ActionMode::Offset => "offset",
+    }
+}
+
+fn parse_mode(name: &str) -> Option<ActionMode> {
+    match name {
+        "normalized" => Some(ActionMode::Normalized),
+        "absolute" => Some(ActionMode::Absolute),
+        "delta" => Some(ActionMode::Delta),
+        "offset" => Some(ActionMode::Offset),
+        _ => None,
+    }
+}
+
+impl MlpPolicy {
+    /// Reads a policy file. Every check that needs only the file is done here: the format, the
+    /// metadata, the tensors' shapes and dtypes, and that every number is finite.
+    pub fn from_file(path: &Path) -> Result<Self, MlpError> {
+        let file = path.display().to_string();
+        let bytes = std::fs::read(path).map_err(|e| MlpError {
+            file: file.clone(),
+            reason: format!("cannot read the policy file: {e}"),
+        })?;
+        Self::from_bytes(&bytes, &file)
+    }
+
+    /// Reads a policy from the bytes of a file; `file` names it in errors.
+    pub fn from_bytes(bytes: &[u8], file: &str) -> Result<Self, MlpError> {
+        let err = |reason: String| MlpError {
+            file: file.to_owned(),
+            reason,
+        };
+        let (_, header) = SafeTensors::read_metadata(bytes).map_err(|e| {
+            err(format!(
+                "not a safetensors policy file ({}): expected a `{FORMAT}` file as \
+                 examples/export_policy.py writes",
+                one_line(&e.to_string())
+            ))
+        })?;
+        let tensors = SafeTensors::deserialize(bytes).map_err(|e| {
+            err(format!(
+                "not a valid safetensors file: {}",
+                one_line(&e.to_string())
+            ))
+        })?;
+        let raw: BTreeMap<String, String> = header
+            .metadata()
+            .clone()
+            .unwrap_or_default()
+            .into_iter()
+            .collect();
+        let get = |key: &str| -> Result<&str, MlpError> {
+            raw.get(key).map(String::as_str).ok_or_else(|| {
+                err(format!(
+                    "metadata has no `{key}` entry (not a `{FORMAT}` file)"
+                ))
+            })
+        };
+        let format = get("format")?;
+        if format != FORMAT {
+            return Err(err(format!(
+                "metadata `format` is {format:?}, expected {FORMAT:?}"
+            )));
+        }
+        let version = get("format_version")?;
+        if version != FORMAT_VERSION {
+            return Err(err(format!(
+                "format version {version:?}, this reader understands {FORMAT_VERSION:?}"
+            )));
+        }
+        let names = |key: &str| -> Result<Vec<String>, MlpError> {
+            serde_json::from_str(get(key)?).map_err(|e| {
+                err(format!(
+                    "metadata `{key}` is not a JSON array of names: {e}"
+                ))
+            })
+        };
+        let observation = names("observation")?;
+        let action = names("action")?;
+        let mode_text = get("action_mode")?;
+        let action_mode = parse_mode(mode_text)
+            .ok_or_else(|| err(format!("unknown action mode {mode_text:?}")))?;
+        let action_scale_rad = match action_mode {
+            ActionMode::Offset | ActionMode::Delta => {
+                let text = get("action_scale_rad")?;
+                let v: f64 = text
+                    .parse()
+                    .ok()
+                    .filter(|v: &f64| v.is_finite() && *v > 0.0)
+                    .ok_or_else(|| {
+                        err(format!(
+                            "`action_scale_rad` = {text:?} is not a finite number > 0"
+                        ))
+                    })?;
+                Some(v)
+            }
+            ActionMode::Normalized | ActionMode::Absolute => None,
+        };
+        let activation_text = get("activation")?;
+        let activation = Activation::parse(activation_text).ok_or_else(|| {
+            err(format!(
+                "unknown activation {activation_text:?} (expected tanh, relu or elu)"
+            ))
+        })?;
+        let number = |key: &str, min: f64| -> Result<f64, MlpError> {
+            let text = get(key)?;
+            text.parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite() && *v >= min)
+                .ok_or_else(|| err(format!("`{key}` = {text:?} is not a finite number ≥ {min}")))
+        };
+        let obs_clip = number("obs_clip", 0.0)?;
+        let obs_epsilon = number("obs_epsilon", 0.0)?;
+        let env_config: BTreeMap<String, String> = serde_json::from_str(get("env_config")?)
+            .map_err(|e| {
+                err(format!(
+                    "metadata `env_config` is not a JSON object of dotted keys to TOML values: {e}"
+                ))
+            })?;
+        let robot = get("robot")?.to_owned();
+
+        let tensor = |name: &str, dtype: Dtype| -> Result<(Vec<usize>, Vec<f64>), MlpError> {
+            let view = tensors
+                .tensor(name)
+                .map_err(|_| err(format!("has no tensor `{name}`")))?;
+            if view.dtype() != dtype {
+                return Err(err(format!(
+                    "tensor `{name}` is {:?}, expected {dtype:?}",
+                    view.dtype()
+                )));
+            }
+            let data = view.data();
+            let values: Vec<f64> = match dtype {
+                Dtype::F32 => data
+                    .chunks_exact(4)
+                    .map(|c| f64::from(f32::from_le_bytes([c[0], c[1], c[2], c[3]])))
+                    .collect(),
+                _ => data
+                    .chunks_exact(8)
+                    .map(|c| f64::from_le_bytes(c.try_into().unwrap_or([0; 8])))
+                    .collect(),
+            };
+            if let Some(i) = values.iter().position(|v| !v.is_finite()) {
+                return Err(err(format!(
+                    "tensor `{name}` holds a non-finite value ({}) at flat index {i}",
+                    values[i]
+                )));
+            }
+            Ok((view.shape().to_vec(), values))
+        };
+
+        let n_obs = observation.len();
+        let n_act = action.len();
+        let (mean_shape, obs_mean) = tensor("obs_mean", Dtype::F64)?;
+        let (var_shape, obs_var) = tensor("obs_var", Dtype::F64)?;
+        for (name, shape) in [("obs_mean", &mean_shape), ("obs_var", &var_shape)] {
+            if shape.as_slice() != [n_obs] {
+                return Err(err(format!(
+                    "tensor `{name}` has shape {shape:?}, expected [{n_obs}] (one per observation row)"
+                )));
+            }
+        }
+        if let Some(i) = obs_var.iter().position(|v| *v < 0.0) {
+            return Err(err(format!("`obs_var` is negative at row {i}")));
+        }
+        let obs_std: Vec<f64> = obs_var.iter().map(|v| (v + obs_epsilon).sqrt()).collect();
+        if let Some(i) = obs_std.iter().position(|s| *s == 0.0) {
+            return Err(err(format!(
+                "row {i} has zero variance and epsilon 0: its normalisation divides by zero"
+            )));
+        }
+
+        let mut layers = Vec::new();
+        let mut inputs = n_obs;
+        loop {
+            let k = layers.len();
+            let w_name = format!("layers.{k}.weight");
+            if tensors.tensor(&w_name).is_err() {
+                break;
+            }
+            let (w_shape, weight) = tensor(&w_name, Dtype::F32)?;
+            let (b_shape, bias) = tensor(&format!("layers.{k}.bias"), Dtype::F32)?;
+            if w_shape.len() != 2 || w_shape[1] != inputs {
+                return Err(err(format!(
+                    "tensor `{w_name}` has shape {w_shape:?}, expected [_, {inputs}]"
+                )));
+            }
+            let outputs = w_shape[0];
+            if b_shape.as_slice() != [outputs] {
+                return Err(err(format!(
+                    "tensor `layers.{k}.bias` has shape {b_shape:?}, expected [{outputs}]"
+                )));
+            }
+            layers.push(Layer {
+                inputs,
+                outputs,
+                weight,
+                bias,
+            });
+            inputs = outputs;
+        }
+        if layers.is_empty() {
+            return Err(err("has no tensor `layers.0.weight`".into()));
+        }
+        if inputs != n_act {
+            return Err(err(format!(
+                "the last layer has {inputs} outputs, the metadata's action layout {n_act}"
+            )));
+        }
+        let width = layers
+            .iter()
+            .map(|l| l.outputs)
+            .chain([n_obs])
+            .max()
+            .unwrap_or(n_obs);
+        Ok(Self {
+            metadata: MlpMetadata {
+                robot,
+                observation,
+                action,
+                action_mode,
+                action_scale_rad,
+                env_config: env_config.into_iter().collect(),
+                raw,
+            },
+            activation,
+            obs_mean,
+            obs_std,
+            obs_clip,
+            layers,
+            scratch: [vec![0.0; width], vec![0.0; width]],
+        })
+    }
+
+    /// What the file says about its training environment.
+    pub fn metadata(&self) -> &MlpMetadata {
+        &self.metadata
+    }
+
+    /// The hidden layers' activation.
+    pub fn activation(&self) -> Activation {
+        self.activation
+    }
+
+    /// The layer widths, inputs first: `[39, 128, 128, 12]`.
+    pub fn widths(&self) -> Vec<usize> {
+        std::iter::once(self.layers[0].inputs)
+            .chain(self.layers.iter().map(|l| l.outputs))
+            .collect()
+    }
+
+    /// Checks that an environment of `model` under `config` is the one the policy was trained
+    /// for: the robot, the observation rows, the joints and the action mode (with its scale).
+    /// `file` names the policy in the error.
+    pub fn check_env(
+        &self,
+        model: &RobotModel,
+        config: &EnvConfig,
+        file: &str,
+    ) -> Result<(), MlpError> {
+        let err = |reason: String| MlpError {
+            file: file.to_owned(),
+            reason,
+        };
+        let m = &self.metadata;
+        if m.robot != model.name() {
+            return Err(err(format!(
+                "trained for robot {:?}, the environment runs {:?}",
+                m.robot,
+                model.name()
+            )));
+        }
+        let layout = observation_layout_of(model).map_err(|e| err(e.to_string()))?;
+        let rows: Vec<&str> = layout.rows().iter().map(|r| r.name.as_ref()).collect();
+        if let Some(reason) = layout_mismatch("observation", &m.observation, &rows) {
+            return Err(err(reason));
+        }
+        let joints: Vec<&str> = model.joints().iter().map(|j| j.name.as_str()).collect();
+        if let Some(reason) = layout_mismatch("action", &m.action, &joints) {
+            return Err(err(reason));
+        }
+        let a = &config.action;
+        if a.mode != m.action_mode {
+            return Err(err(format!(
+                "trained with action.mode = {:?}, the environment has {:?}",
+                mode_name(m.action_mode),
+                mode_name(a.mode)
+            )));
+        }
+        let (key, env_scale) = match a.mode {
+            ActionMode::Offset => ("action.max_offset_rad", Some(a.max_offset_rad)),
+            ActionMode::Delta => ("action.max_delta_rad", Some(a.max_delta_rad)),
+            ActionMode::Normalized | ActionMode::Absolute => ("", None),
+        };
+        if env_scale != m.action_scale_rad {
+            return Err(err(format!(
+                "trained with {key} = {:?}, the environment has {:?}",
+                m.action_scale_rad.unwrap_or(f64::NAN),
+                env_scale.unwrap_or(f64::NAN)
+            )));
+        }
+        Ok(())
+    }
+
+    /// The action for `observation` (one value per observation row), before clipping to the
+    /// action space, written into `action` (one per action value). Allocates nothing.
+    ///
+    /// # Panics
+    /// If the slices do not have the policy's lengths.
+    pub fn forward(&mut self, observation: &[f64], action: &mut [f64]) {
+        assert_eq!(observation.len(), self.obs_mean.len(), "observation length");
+        assert_eq!(action.len(), self.metadata.action.len(), "action length");
+        let [a, b] = &mut self.scratch;
+        for (i, o) in observation.iter().enumerate() {
+            // The trainer saw float32 observations and float32 normalised inputs.
+            let x = f64::from(*o as f32);
+            let z = ((x - self.obs_mean[i]) / self.obs_std[i]).clamp(-self.obs_clip, self.obs_clip);
+            a[i] = f64::from(z as f32);
+        }
+        let (mut input, mut output) = (a, b);
+        let last = self.layers.len() - 1;
+        for (k, layer) in self.layers.iter().enumerate() {
+            for (j, row) in layer.weight.chunks_exact(layer.inputs).enumerate() {
+                let mut sum = layer.bias[j];
+                for (w, x) in row.iter().zip(&input[..layer.inputs]) {
+                    sum += w * x;
+                }
+                output[j] = if k == last {
+                    sum
+                } else {
+                    self.activation.apply(sum)
+                };
+            }
+            std::mem::swap(&mut input, &mut output);
+        }
+        action.copy_from_slice(&input[..action.len()]);
+    }
+}
+
+fn layout_mismatch(what: &str, trained: &[String], env: &[&str]) -> Option<String> {
+    if trained.len() != env.len() {
+        return Some(format!(
+            "trained on {} {what} values, the environment has {}",
+            trained.len(),
+            env.len()
+        ));
+    }
+    trained.iter().zip(env).position(|(t, e)| t != e).map(|i| {
+        format!(
+            "{what} value {i} was {:?} in training, the environment's is {:?}",
+            trained[i], env[i]
+        )
+    })
+}
+
+fn one_line(text: &str) -> String {
+    text.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
+impl Policy for MlpPolicy {
+    fn name(&self) -> &'static str {
+        "mlp"
+    }
+
+    fn act(&mut self, input: &PolicyInput<'_>, action: &mut [f64]) {
+        self.forward(input.observation, action);
+        clip_to_space(action, input.space);
+    }
+}
+
+fn clip_to_space(action: &mut [f64], space: &ActionSpace) {
+    for ((a, lo), hi) in action.iter_mut().zip(space.low()).zip(space.high()) {
+        *a = a.clamp(*lo, *hi);
+    }
+}
