@@ -31,6 +31,7 @@ pub mod ledger;
 pub mod metrics;
 mod multi;
 mod plot;
+pub mod policy;
 mod report;
 pub mod run;
 mod scenario;
@@ -42,7 +43,8 @@ pub use compare::{
 pub use error::CompareError;
 pub use ledger::{Known, Ledger, Metric, ScenarioScope, ToleranceSource};
 pub use multi::{MultiReport, PairSummary, compare_all};
-pub use plot::{PLOT_SIZE, plot_many, plot_trunk_x_z};
+pub use plot::{PLOT_SIZE, plot_many, plot_policy, plot_trunk_x_z};
+pub use policy::{PolicyPlan, PolicyReport, PolicySpec};
 pub use report::{
     JSON_FILE, MARKDOWN_FILE, PLOT_FILE, Report, SERIES_POINTS, Series, SideReport,
     prepare_output_dir,

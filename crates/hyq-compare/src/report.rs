@@ -72,7 +72,7 @@ pub struct Series {
 }
 
 /// Indices 0..len thinned to at most [`SERIES_POINTS`] (+ the last).
-fn thin(len: usize) -> Vec<usize> {
+pub(crate) fn thin(len: usize) -> Vec<usize> {
     if len == 0 {
         return Vec::new();
     }
