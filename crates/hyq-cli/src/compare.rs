@@ -30,6 +30,7 @@ const DEFAULT_EPISODES: u32 = 5;
 
 /// `hyq compare` arguments.
 #[derive(Debug, Args)]
+#[command(group(clap::ArgGroup::new("what").required(true).args(["scenario", "policy"])))]
 pub struct CompareArgs {
     /// The backends, comma-separated: two (rapier,dart or rapier,mujoco; or the same one twice,
     /// a self-check: exact agreement, or the effect of --set-b) or three different ones
@@ -40,8 +41,7 @@ pub struct CompareArgs {
     /// robot tips over), limit (the first [gait] leg's hip joint, lf_hfe on the bundled robots,
     /// driven to its limit), trot (the scripted trot), random (random
     /// actions), reach (the trot to a goal on its path). Required unless --policy is given.
-    #[arg(long, required_unless_present = "policy", conflicts_with = "policy",
-        value_parser = clap::builder::PossibleValuesParser::new(Scenario::NAMES)
+    #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(Scenario::NAMES)
         .try_map(|s| s.parse::<Scenario>()))]
     scenario: Option<Scenario>,
     /// Instead of a scenario, a trained policy (mlp:FILE, e.g.
