@@ -1,12 +1,17 @@
 //! `hyq compare`: the same action sequence on two or three physics backends, and a report of
 //! where they agree and where they drift apart (hyq-compare): `report.md`, `report.json` and
 //! `trunk_x_z.png` in `--out DIR`; with three backends the top-level report sets the three
-//! side by side and each pair's full report is in `DIR/<a>_vs_<b>/`.
+//! side by side and each pair's full report is in `DIR/<a>_vs_<b>/`. With `--policy mlp:FILE`
+//! instead of `--scenario`, a trained policy runs closed loop on every backend (hyq-compare's
+//! `policy` module), loaded and checked as `hyq run --policy` loads it; that report states the
+//! gap and is not judged against the ledger.
 //!
 //! Exit status: 0 when the reports are written, whatever they found; with `--strict`, 1 (after
 //! writing the reports) when any metric is outside the ledger, so CI can gate on it; 2 for bad
 //! input (unknown scenario or backend, seconds ≤ 0, an unwritable `--out`, an unreadable or
-//! invalid `--ledger`), reported before anything runs; 1 for a failure while running.
+//! invalid `--ledger`, a bad policy file or one trained for another layout, a backend that cannot
+//! be built, such as a MuJoCo library that cannot be loaded), reported before anything runs; 1
+//! for a failure while running.
 
 use std::io::Write as _;
 use std::path::PathBuf;

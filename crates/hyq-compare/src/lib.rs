@@ -20,6 +20,11 @@
 //! time for both backends ([`Report::write`]). `hyq compare` (hyq-cli) is the command-line
 //! front; `docs/backend-comparison.md` has the figures for rapier vs DART.
 //!
+//! A trained policy is compared closed loop instead ([`policy`]): each engine's own
+//! observations drive it, so the runs part by nature; that report states the sim-to-sim gap
+//! (per-engine episode outcomes, per-pair divergence, and the first engine's actions replayed
+//! open loop on every engine) and is not judged against the ledger.
+//!
 //! The library is generic over `hyq_physics::Backend` and names no engine. Its tests compare
 //! rapier with itself (exact agreement) and with a perturbed rapier (gravity 10 % stronger:
 //! flagged); with the cargo feature `dart` they also run the real rapier-vs-DART comparison of
