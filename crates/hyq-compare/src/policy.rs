@@ -399,9 +399,11 @@ pub struct PolicyPair {
     pub trunk_orientation: Divergence,
     /// Worst joint's angle divergence (rad).
     pub joint_angles: Divergence,
-    /// When the two trunks were first 1 cm apart (s), if ever.
+    /// When the two trunks were first 1 cm apart (s); absent if never.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub apart_1cm_s: Option<f64>,
-    /// When they were first 10 cm apart (s), if ever.
+    /// When they were first 10 cm apart (s); absent if never.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub apart_10cm_s: Option<f64>,
     /// Mean K − D^T of the second minus the first (m).
     pub distance_walked_gap_m: f64,
@@ -499,7 +501,8 @@ pub struct PolicyReport {
     pub sides: Vec<PolicySideReport>,
     /// Per pair of engines, in the order (1, 2), (1, 3), (2, 3).
     pub pairs: Vec<PolicyPair>,
-    /// The open-loop replay, if run.
+    /// The open-loop replay; absent when not run (the `delta` action mode).
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub replay: Option<ReplayReport>,
     /// The first episodes' trunk positions: every engine closed loop, then every replay.
     pub traces: Vec<Trace>,
