@@ -718,3 +718,29 @@ fn reasons(r: &[Reason]) -> String {
         r.iter().map(|r| r.as_str()).collect::<Vec<_>>().join(" + ")
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::{Stats, travel};
+
+    #[test]
+    fn travel_is_the_displacement_along_the_start_to_goal_direction() {
+        // Goal 5 m along +x: a step of (3, 4) counts 3 m, a step past the goal keeps counting.
+        assert_eq!(travel([0.0; 3], [3.0, 4.0, 0.2], [5.0, 0.0, 0.5]), 3.0);
+        assert_eq!(
+            travel([1.0, 1.0, 0.0], [8.0, 1.0, 0.0], [6.0, 1.0, 0.0]),
+            7.0
+        );
+        // Backwards is negative; a goal straight above the start gives no direction.
+        assert_eq!(travel([0.0; 3], [0.0, -2.0, 0.0], [0.0, 4.0, 0.0]), -2.0);
+        assert_eq!(travel([0.0; 3], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]), 0.0);
+    }
+
+    #[test]
+    fn stats_are_the_mean_sample_sd_and_range() {
+        let s = Stats::of([1.0, 2.0, 3.0].into_iter());
+        assert_eq!((s.mean, s.sd, s.min, s.max), (2.0, 1.0, 1.0, 3.0));
+        let one = Stats::of([4.0].into_iter());
+        assert_eq!((one.mean, one.sd, one.min, one.max), (4.0, 0.0, 4.0, 4.0));
+    }
+}
