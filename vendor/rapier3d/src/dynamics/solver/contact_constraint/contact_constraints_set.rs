@@ -1,3 +1,4 @@
+// Changed by the hyq-env project (Apache-2.0 §4(b)); the changes: PATCHES.md at this crate's root.
 use crate::alloc_prelude::*;
 use crate::dynamics::solver::contact_constraint::{
     ContactWithCoulombFriction, ContactWithCoulombFrictionBuilder, GenericContactConstraint,
@@ -38,6 +39,9 @@ pub fn joint_data_num_constraints(joint: &crate::dynamics::GenericJoint) -> usiz
 
 pub(crate) struct ContactConstraintsSet {
     pub generic_jacobians: DVector,
+    /// How many leading entries of `generic_jacobians` the last constraint build reserved:
+    /// every entry past them is zero, so only these need zeroing before the next build.
+    pub(crate) generic_jacobians_used: usize,
     /// Greedy body-mask grouper, only used for the overflow-color manifolds
     /// (they may share bodies, so the color-run chunking can't cover them).
     pub interaction_groups: InteractionGroups,
@@ -57,6 +61,7 @@ impl ContactConstraintsSet {
     pub fn new() -> Self {
         Self {
             generic_jacobians: DVector::zeros(0),
+            generic_jacobians_used: 0,
             interaction_groups: InteractionGroups::new(),
             generic_velocity_constraints: vec![],
             simd_velocity_coulomb_constraints: vec![],

@@ -1,3 +1,4 @@
+// Changed by the hyq-env project (Apache-2.0 §4(b)); the changes: PATCHES.md at this crate's root.
 use crate::alloc_prelude::*;
 use crate::dynamics::solver::{
     AnyJointConstraintMut, GenericJointConstraint, JointGenericExternalConstraintBuilder,
@@ -17,6 +18,9 @@ use {
 
 pub struct JointConstraintsSet {
     pub generic_jacobians: DVector,
+    /// How many leading entries of `generic_jacobians` the last constraint build reserved:
+    /// every entry past them is zero, so only these need zeroing before the next build.
+    pub(crate) generic_jacobians_used: usize,
     pub two_body_interactions: Vec<usize>,
     pub generic_two_body_interactions: Vec<usize>,
 
@@ -33,6 +37,7 @@ impl JointConstraintsSet {
     pub fn new() -> Self {
         Self {
             generic_jacobians: DVector::zeros(0),
+            generic_jacobians_used: 0,
             two_body_interactions: vec![],
             generic_two_body_interactions: vec![],
             velocity_constraints: vec![],

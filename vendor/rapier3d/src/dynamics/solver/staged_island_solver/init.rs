@@ -198,8 +198,11 @@ impl StagedIslandSolver {
             // NOTE: the twist constraint/builder buffers are NOT cleared: they are
             // the persistent constraint cache, preserved (and resized) further
             // below once the chunk layout is known.
-            // (On the slice: nalgebra's `fill` goes through an element iterator.)
-            set.generic_jacobians.as_mut_slice().fill(0.0);
+            // Only the part the previous build reserved can be non-zero (the buffer keeps its
+            // largest size, and grows filled with zeros).
+            let used = set.generic_jacobians_used.min(set.generic_jacobians.len());
+            set.generic_jacobians.as_mut_slice()[..used].fill(0.0);
+            set.generic_jacobians_used = 0;
             set.generic_velocity_constraints.clear();
             set.generic_velocity_constraints_builder.clear();
             set.simd_velocity_coulomb_constraints.clear();
@@ -585,6 +588,8 @@ impl StagedIslandSolver {
         // Generic (multibody) contact constraints: serial init, solved by worker 0.
         let mut jacobian_id = 0;
         set.compute_generic_constraints(bodies, multibodies, graph, store, &mut jacobian_id);
+        // Every row writes inside the range its builder reserved, below `jacobian_id`.
+        set.generic_jacobians_used = jacobian_id;
 
         #[cfg(feature = "dim3")]
         self.any_gyroscopic.store(false, Ordering::Relaxed);

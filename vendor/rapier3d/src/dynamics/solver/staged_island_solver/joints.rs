@@ -538,8 +538,11 @@ impl StagedIslandSolver {
         impulse_joints: &[JointGraphEdge],
     ) {
         let joints = &mut self.joint_constraints;
-        // (On the slice: nalgebra's `fill` goes through an element iterator.)
-        joints.generic_jacobians.as_mut_slice().fill(0.0);
+        // Only the part the previous build reserved can be non-zero (the buffer keeps its
+        // largest size, and grows filled with zeros).
+        let used = joints.generic_jacobians_used.min(joints.generic_jacobians.len());
+        joints.generic_jacobians.as_mut_slice()[..used].fill(0.0);
+        joints.generic_jacobians_used = 0;
         joints.generic_velocity_constraints.clear();
         joints.generic_velocity_constraints_builder.clear();
         let mut j_id = 0;
@@ -550,6 +553,9 @@ impl StagedIslandSolver {
             impulse_joints,
             &mut j_id,
         );
+        // Every row (and every later update of it) writes inside the range its builder
+        // reserved, below `j_id`.
+        joints.generic_jacobians_used = j_id;
     }
 }
 
