@@ -63,17 +63,23 @@ fn concat_rb_mass_matrix(
     result
 }
 
-/// The LU factorization, with partial (row) pivoting, of a multibody's (augmented) mass matrix.
+/// The factorization of a multibody's (augmented) mass matrix: an LU factorization with partial
+/// (row) pivoting, or, for a matrix known to be symmetric, a Cholesky factorization `UᵀU` when the
+/// matrix is positive definite (the LU one otherwise).
 ///
 /// It keeps its storage between factorizations, so that refactorizing a matrix of the same size
-/// allocates nothing. It performs the operations of nalgebra's [`na::LU`], in the same order, so
-/// its results are identical.
+/// allocates nothing. The LU factorization performs the operations of nalgebra's [`na::LU`], in
+/// the same order, so its results are identical.
 #[cfg_attr(feature = "serde-serialize", derive(Serialize, Deserialize))]
 #[derive(Clone, Debug)]
 pub struct MultibodyLu {
+    // The LU factors, or the Cholesky factor `U` in the upper triangle (the strict lower triangle
+    // then holds the matrix's, unused).
     lu: DMatrix<Real>,
-    // The row interchanges `(i, pivot)` of the factorization, in order.
+    // The row interchanges `(i, pivot)` of the LU factorization, in order.
     pivots: Vec<(usize, usize)>,
+    // Whether `lu` holds a Cholesky factor.
+    cholesky: bool,
 }
 
 impl Default for MultibodyLu {
@@ -81,8 +87,39 @@ impl Default for MultibodyLu {
         Self {
             lu: DMatrix::zeros(0, 0),
             pivots: Vec::new(),
+            cholesky: false,
         }
     }
+}
+
+/// Factorizes the symmetric positive-definite `dim × dim` matrix stored column by column in `a`
+/// as `UᵀU`, `U` upper triangular with a positive diagonal, written over the upper triangle of `a`
+/// (only the upper triangle is read). Returns `false` as soon as a pivot is not positive (the
+/// matrix is not positive definite, is singular or holds a NaN), leaving `a` partly overwritten.
+///
+/// Column by column (the Cholesky–Crout order), each entry one dot product of two contiguous
+/// column segments.
+fn cholesky_upper_in_place(a: &mut [Real], dim: usize) -> bool {
+    for j in 0..dim {
+        let (done, rest) = a.split_at_mut(j * dim);
+        let col_j = &mut rest[..dim];
+        for k in 0..j {
+            let col_k = &done[k * dim..k * dim + k + 1];
+            let dot = col_k[..k]
+                .iter()
+                .zip(&col_j[..k])
+                .fold(0.0, |acc: Real, (u, v)| acc + u * v);
+            col_j[k] = (col_j[k] - dot) / col_k[k];
+        }
+        let dot = col_j[..j].iter().fold(0.0, |acc: Real, u| acc + u * u);
+        let pivot = col_j[j] - dot;
+        // Also false for a NaN pivot.
+        if !(pivot > 0.0) {
+            return false;
+        }
+        col_j[j] = pivot.sqrt();
+    }
+    true
 }
 
 impl MultibodyLu {
@@ -98,6 +135,7 @@ impl MultibodyLu {
         }
         self.lu.copy_from(&matrix.view((0, 0), (dim, dim)));
         self.pivots.clear();
+        self.cholesky = false;
 
         for i in 0..dim {
             let piv = self.lu.view_range(i.., i).icamax() + i;
@@ -118,6 +156,26 @@ impl MultibodyLu {
         }
     }
 
+    /// Factorizes the top-left `dim × dim` block of `matrix`, which must be symmetric (only its
+    /// upper triangle is read when it is positive definite): by Cholesky if it is positive
+    /// definite, by the LU factorization of [`Self::factorize`] otherwise (a singular or
+    /// indefinite matrix is then handled exactly as by the LU factorization).
+    fn factorize_symmetric<R: na::Dim, C: na::Dim, S: na::Storage<Real, R, C>>(
+        &mut self,
+        matrix: &Matrix<Real, R, C, S>,
+        dim: usize,
+    ) {
+        if self.lu.nrows() != dim {
+            self.lu = DMatrix::zeros(dim, dim);
+        }
+        self.lu.copy_from(&matrix.view((0, 0), (dim, dim)));
+        self.pivots.clear();
+        self.cholesky = cholesky_upper_in_place(self.lu.as_mut_slice(), dim);
+        if !self.cholesky {
+            self.factorize(matrix, dim);
+        }
+    }
+
     /// Solves `self * x = b` in place, `b` becoming `x`.
     ///
     /// Returns `false` if the factorized matrix is not invertible, in which case `b` may hold
@@ -134,6 +192,11 @@ impl MultibodyLu {
             b.nrows(),
             "LU solve matrix dimension mismatch."
         );
+        if self.cholesky {
+            // `Uᵀ·y = b`, then `U·x = y`; the diagonal is positive.
+            let _ = self.lu.tr_solve_upper_triangular_mut(b);
+            return self.lu.solve_upper_triangular_mut(b);
+        }
         for &(i, piv) in &self.pivots {
             b.swap_rows(i, piv);
         }
@@ -1511,9 +1574,11 @@ impl Multibody {
         self.acc_inv_augmented_mass
             .factorize(&self.acc_augmented_mass, effective_dim);
         // Factorized at every internal substep: the multibody's own joint constraints (limits,
-        // motors, friction, couplings) are rebuilt with it at each one.
+        // motors, friction, couplings) are rebuilt with it at each one. The augmented mass
+        // matrix is symmetric (the other one is not): Cholesky when it is positive definite, LU
+        // when it is not (e.g. links without mass).
         self.inv_augmented_mass
-            .factorize(&self.augmented_mass, effective_dim);
+            .factorize_symmetric(&self.augmented_mass, effective_dim);
     }
 
     /// Per-DoF inverse joint-space inertia `diag(M⁻¹)` at the current configuration, where `M`

@@ -1,6 +1,6 @@
 // Changed by the hyq-env project (Apache-2.0 §4(b)); the changes: PATCHES.md at this crate's root.
 //! The dense assembly of rapier 0.36.1, kept to test the patched one against: the body jacobians,
-//! both augmented mass matrices, their LU factorizations and the free accelerations exactly as
+//! both augmented mass matrices, their (LU) factorizations and the free accelerations exactly as
 //! rapier 0.36.1 computed them (its `update_body_jacobians`, `update_mass_matrix`,
 //! `update_acceleration` and energy guard, renamed, factorizations returned instead of stored).
 
@@ -560,8 +560,8 @@ impl Multibody {
 /// a generic chain (fixed root, revolute, prismatic, spherical and kinematic joints, a branch,
 /// joint springs, damping and armature). The body jacobians must be exactly equal; both
 /// augmented mass matrices, their factorizations' solves and the free accelerations must be
-/// equal within `TOLERANCES` (exactly, with the same LU factors, while the patches are
-/// bit-identical).
+/// equal within `TOLERANCES`; the augmented mass matrix (positive definite here) must have been
+/// factorized by Cholesky, and its solves are compared with those of the dense LU factorization.
 #[cfg(all(test, feature = "dim3"))]
 mod tests {
     use super::super::MultibodyLu;
@@ -859,6 +859,9 @@ mod tests {
             // Singular: no panic, and no non-finite free acceleration where rapier 0.36.1
             // had a finite one.
             assert!(!inv.is_invertible() && !acc_inv.is_invertible());
+            // The augmented mass matrix is not positive definite: no Cholesky factor, the LU
+            // factorization instead.
+            assert!(!mb.inv_augmented_mass.cholesky);
             assert_eq!(
                 finite(&mb.accelerations),
                 finite(&dense.accelerations),
@@ -899,9 +902,9 @@ mod tests {
             "augmented mass with the implicit coriolis and gyroscopic terms: {acc_mass:e}"
         );
         worst.acc_mass = worst.acc_mass.max(acc_mass);
-        if TOLERANCES.mass == 0.0 {
-            assert_eq!(&mb.inv_augmented_mass.lu, inv.lu_internal(), "LU factors");
-        }
+        // Positive definite: factorized by Cholesky, whose solves are compared below with those
+        // of the dense assembly's LU factorization.
+        assert!(mb.inv_augmented_mass.cholesky);
         if TOLERANCES.acc_mass == 0.0 {
             assert_eq!(
                 &mb.acc_inv_augmented_mass.lu,
@@ -998,6 +1001,72 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// `MultibodyLu::factorize_symmetric` on a symmetric matrix: on a positive-definite one a
+    /// Cholesky factorization whose solves equal those of nalgebra's `LU` within 1e-5 of their
+    /// largest entry (f32; the matrices' condition numbers are below 10); on a singular, indefinite
+    /// or NaN-holding one the LU factorization, bit for bit nalgebra's, with the same solves.
+    #[test]
+    fn symmetric_factorization_is_cholesky_or_falls_back_to_lu() {
+        let mut rng = Rng(oorandom::Rand32::new(91));
+        let bits = |m: &[Real]| m.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        let mut worst: Real = 0.0;
+        for dim in [1, 2, 5, 18, 40] {
+            for case in 0..5 {
+                let b = DMatrix::from_fn(dim + 2, dim + 2, |_, _| rng.range(-1.0, 1.0));
+                // Symmetric positive definite, then spoilt by the case.
+                let mut matrix = &b * b.transpose() / (dim as Real) + DMatrix::identity(dim + 2, dim + 2);
+                let last = dim - 1;
+                match case {
+                    // Singular: a zero row and column.
+                    1 => {
+                        matrix.row_mut(last).fill(0.0);
+                        matrix.column_mut(last).fill(0.0);
+                    }
+                    // Indefinite.
+                    2 => matrix[(last, last)] = -1.0,
+                    // A NaN.
+                    3 => matrix[(last, last)] = Real::NAN,
+                    _ => {}
+                }
+                let positive_definite = case == 0 || case == 4;
+                let reference = LU::new(matrix.view((0, 0), (dim, dim)).into_owned());
+                let mut factorization = MultibodyLu::default();
+                // Reuse a factorization of another kind and size: nothing of it may remain.
+                factorization.factorize(&DMatrix::from_element(3, 3, 1.0), 3);
+                factorization.factorize_symmetric(&matrix, dim);
+                assert_eq!(
+                    factorization.cholesky, positive_definite,
+                    "dim {dim}, case {case}"
+                );
+                if !positive_definite {
+                    assert_eq!(
+                        bits(factorization.lu.as_slice()),
+                        bits(reference.lu_internal().as_slice()),
+                        "LU factors, dim {dim}, case {case}"
+                    );
+                }
+                for ncols in [1, 3] {
+                    let rhs = DMatrix::from_fn(dim, ncols, |_, _| rng.range(-1.0, 1.0));
+                    let (mut x, mut x_reference) = (rhs.clone(), rhs);
+                    let solved = factorization.solve_mut(&mut x);
+                    assert_eq!(solved, reference.solve_mut(&mut x_reference));
+                    if positive_definite {
+                        let difference = relative_difference(x.iter(), x_reference.iter());
+                        assert!(difference <= 1.0e-5, "solve, dim {dim}: {difference:e}");
+                        worst = worst.max(difference);
+                    } else {
+                        assert_eq!(
+                            bits(x.as_slice()),
+                            bits(x_reference.as_slice()),
+                            "solve, dim {dim}, case {case}, {ncols} columns"
+                        );
+                    }
+                }
+            }
+        }
+        println!("Cholesky solves against LU, worst relative difference: {worst:e}");
     }
 
     /// Links without mass or inertia (and, on their DoFs, no damping, armature or spring) make
