@@ -388,7 +388,9 @@ pub struct Multibody {
     workspace: MultibodyWorkspace,
     coriolis_v: Vec<OMatrix<Real, Dim, Dyn>>,
     coriolis_w: Vec<OMatrix<Real, AngDim, Dyn>>,
-    i_coriolis_dt: Jacobian<Real>,
+    // Per link, `dt·[m·J̇_v; I·J̇_w + G·J_w]` on its and its ancestors' DoF columns, then (the
+    // composite pass of `update_mass_matrix`) summed with its subtree's.
+    i_coriolis_dt: Vec<Jacobian<Real>>,
     acceleration_workspace: AccelerationWorkspace,
     #[cfg(feature = "dim3")]
     composite_inertias: Vec<CompositeInertia>,
@@ -429,7 +431,7 @@ impl Multibody {
             workspace: MultibodyWorkspace::new(),
             coriolis_v: Vec::new(),
             coriolis_w: Vec::new(),
-            i_coriolis_dt: Jacobian::zeros(0),
+            i_coriolis_dt: Vec::new(),
             root_is_dynamic: false,
             self_contacts_enabled,
             couplings: Vec::new(),
@@ -1247,6 +1249,97 @@ impl Multibody {
         true
     }
 
+    /// Adds `Σᵢ Jᵢᵀ·Fᵢ` to `self.acc_augmented_mass`, `Fᵢ = self.i_coriolis_dt[i]` the spatial
+    /// forces (on the link's centre of mass) of the implicit Coriolis and gyroscopic terms, by
+    /// summing the forces up the tree instead of one product per link and pair of DoFs.
+    ///
+    /// For `a` a DoF of link `j` and any link `i` of `j`'s subtree, `Jᵢ[:, a]` is `Jⱼ[:, a]` moved
+    /// from `j`'s point to `i`'s: so `Jᵢ[:, a]·Fᵢ = Jⱼ[:, a]·F'ᵢ`, `F'ᵢ` the force `Fᵢ` moved to `j`'s
+    /// point (its torque plus `(pᵢ − pⱼ) × f`). For `a` a DoF of `j` and `b` one of `j` or of an
+    /// ancestor, the entry `[a, b]` is `Jⱼ[:, a]` times the sum over `j`'s subtree of the forces in
+    /// column `b`, moved to `j`'s point. For `b` a DoF of a descendant `k` of `j`, only `k`'s
+    /// subtree has forces in column `b`: its sum at `k`, moved to `j`'s point. The sums are built
+    /// from the leaves up (a link comes after its parent), in `self.i_coriolis_dt` itself.
+    /// The points are the ones the body jacobians refer to: a link's is its parent's plus
+    /// `shift02 + shift23`, as `update_body_jacobians` builds them.
+    #[cfg(feature = "dim3")]
+    fn add_coriolis_composite(&mut self) {
+        let nrows = self.acc_augmented_mass.nrows();
+        let acc_augmented_mass = self.acc_augmented_mass.as_mut_slice();
+        let dot = |a: &[Real], b: &[Real]| {
+            let mut dot: Real = 0.0;
+            for k in 0..SPATIAL_DIM {
+                dot += a[k] * b[k];
+            }
+            dot
+        };
+        // The force `f` moved by `d` (from the point `p + d` to `p`).
+        let moved = |f: &[Real], d: Vector| {
+            let torque = d.cross(Vector::new(f[0], f[1], f[2]));
+            [f[0], f[1], f[2], f[3] + torque.x, f[4] + torque.y, f[5] + torque.z]
+        };
+        for i in (0..self.links.len()).rev() {
+            let link = &self.links[i];
+            let own = link.assembly_id..link.assembly_id + link.joint.ndofs();
+            let forces = self.i_coriolis_dt[i].as_slice();
+            let jacobian = self.body_jacobians[i].as_slice();
+
+            // Rows of the link's DoFs, columns of its and its ancestors' DoFs.
+            let (first, last) = self.link_ancestor_dofs[i];
+            for &(start, end) in &self.ancestor_dofs[first..last] {
+                for col in start..end {
+                    let force = &forces[col * SPATIAL_DIM..(col + 1) * SPATIAL_DIM];
+                    for row in own.clone() {
+                        let entry = &mut acc_augmented_mass[col * nrows + row];
+                        *entry += dot(&jacobian[row * SPATIAL_DIM..(row + 1) * SPATIAL_DIM], force);
+                    }
+                }
+            }
+
+            if i == 0 {
+                break;
+            }
+
+            // Columns of the link's DoFs, rows of its ancestors' DoFs.
+            for col in own.clone() {
+                let mut force = [0.0; SPATIAL_DIM];
+                force.copy_from_slice(&forces[col * SPATIAL_DIM..(col + 1) * SPATIAL_DIM]);
+                let mut k = i;
+                while k != 0 {
+                    let link_k = &self.links[k];
+                    force = moved(&force, link_k.shift02 + link_k.shift23);
+                    k = link_k.parent_internal_id;
+                    let ancestor = &self.links[k];
+                    let ancestor_jacobian = self.body_jacobians[k].as_slice();
+                    for row in ancestor.assembly_id..ancestor.assembly_id + ancestor.joint.ndofs() {
+                        let entry = &mut acc_augmented_mass[col * nrows + row];
+                        *entry += dot(
+                            &ancestor_jacobian[row * SPATIAL_DIM..(row + 1) * SPATIAL_DIM],
+                            &force,
+                        );
+                    }
+                }
+            }
+
+            // The subtree's forces, moved to the parent's point, join the parent's on the
+            // parent's and its ancestors' columns.
+            let parent_id = link.parent_internal_id;
+            let d = link.shift02 + link.shift23;
+            let (forces, parent_forces) = self.i_coriolis_dt.index_mut2(i, parent_id);
+            let (forces, parent_forces) = (forces.as_slice(), parent_forces.as_mut_slice());
+            let (first, last) = self.link_ancestor_dofs[parent_id];
+            for &(start, end) in &self.ancestor_dofs[first..last] {
+                for col in start..end {
+                    let cols = col * SPATIAL_DIM..(col + 1) * SPATIAL_DIM;
+                    let force = moved(&forces[cols.clone()], d);
+                    for (p, f) in parent_forces[cols].iter_mut().zip(force) {
+                        *p += f;
+                    }
+                }
+            }
+        }
+    }
+
     pub(crate) fn update_mass_matrix(&mut self, dt: Real, bodies: &RigidBodySet) {
         if self.ndofs == 0 {
             return; // Nothing to do.
@@ -1270,7 +1363,7 @@ impl Multibody {
             self.coriolis_v = vec![OMatrix::<Real, Dim, Dyn>::zeros(self.ndofs); self.links.len()];
             self.coriolis_w =
                 vec![OMatrix::<Real, AngDim, Dyn>::zeros(self.ndofs); self.links.len()];
-            self.i_coriolis_dt = Jacobian::zeros(self.ndofs);
+            self.i_coriolis_dt = vec![Jacobian::zeros(self.ndofs); self.links.len()];
         }
 
         #[cfg(feature = "dim3")]
@@ -1437,7 +1530,7 @@ impl Multibody {
             let coriolis_v = self.coriolis_v[i].as_mut_slice();
             let coriolis_w = self.coriolis_w[i].as_slice();
             let rb_j = rb_j.as_slice();
-            let i_coriolis_dt = self.i_coriolis_dt.as_mut_slice();
+            let i_coriolis_dt = self.i_coriolis_dt[i].as_mut_slice();
             #[cfg(feature = "dim3")]
             let (rb_inertia, gyroscopic_matrix) =
                 (mat_to_na(rb_inertia), mat_to_na(gyroscopic_matrix));
@@ -1487,6 +1580,11 @@ impl Multibody {
                 }
             }
 
+            if mass_matrix_assembled {
+                // Summed up the tree below (`add_coriolis_composite`).
+                continue;
+            }
+
             // `acc_augmented_mass += Jᵀ·i_coriolis_dt` on the link's and its ancestors' DoFs,
             // each entry a dot product summed in the order of nalgebra's `gemm_tr`.
             let i_coriolis_dt = &*i_coriolis_dt;
@@ -1509,6 +1607,11 @@ impl Multibody {
                     }
                 }
             }
+        }
+
+        #[cfg(feature = "dim3")]
+        if mass_matrix_assembled {
+            self.add_coriolis_composite();
         }
 
         /*

@@ -91,7 +91,7 @@ impl Multibody {
             self.coriolis_v = vec![OMatrix::<Real, Dim, Dyn>::zeros(self.ndofs); self.links.len()];
             self.coriolis_w =
                 vec![OMatrix::<Real, AngDim, Dyn>::zeros(self.ndofs); self.links.len()];
-            self.i_coriolis_dt = Jacobian::zeros(self.ndofs);
+            self.i_coriolis_dt = vec![Jacobian::zeros(self.ndofs); self.links.len()];
         }
 
         let mut curr_assembly_id = 0;
@@ -250,7 +250,7 @@ impl Multibody {
              * Meld with the mass matrix.
              */
             {
-                let mut i_coriolis_dt_v = self.i_coriolis_dt.fixed_rows_mut::<DIM>(0);
+                let mut i_coriolis_dt_v = self.i_coriolis_dt[0].fixed_rows_mut::<DIM>(0);
                 i_coriolis_dt_v.copy_from(coriolis_v);
                 let rb_mass_dt = vect_to_na(rb_mass * dt);
                 i_coriolis_dt_v
@@ -260,18 +260,18 @@ impl Multibody {
 
             #[cfg(feature = "dim2")]
             {
-                let mut i_coriolis_dt_w = self.i_coriolis_dt.fixed_rows_mut::<ANG_DIM>(DIM);
+                let mut i_coriolis_dt_w = self.i_coriolis_dt[0].fixed_rows_mut::<ANG_DIM>(DIM);
                 // NOTE: this is just an axpy, but on row columns.
                 i_coriolis_dt_w.zip_apply(coriolis_w, |o, x| *o = x * dt * rb_inertia);
             }
             #[cfg(feature = "dim3")]
             {
-                let mut i_coriolis_dt_w = self.i_coriolis_dt.fixed_rows_mut::<ANG_DIM>(DIM);
+                let mut i_coriolis_dt_w = self.i_coriolis_dt[0].fixed_rows_mut::<ANG_DIM>(DIM);
                 i_coriolis_dt_w.gemm(dt, &mat_to_na(rb_inertia), coriolis_w, 0.0);
             }
 
             self.acc_augmented_mass
-                .gemm_tr(1.0, rb_j, &self.i_coriolis_dt, 1.0);
+                .gemm_tr(1.0, rb_j, &self.i_coriolis_dt[0], 1.0);
         }
 
         /*
