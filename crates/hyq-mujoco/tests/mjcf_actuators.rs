@@ -20,7 +20,7 @@ fn world(actuators: Actuators) -> World {
     let model = bundled::hyq();
     let options = MjcfOptions {
         actuators,
-        solver: MujocoOptions::default().solver_settings(),
+        solver: MujocoOptions::default(),
         ..MjcfOptions::from_params(&PhysicsParams::default())
     };
     let mjcf = to_mjcf(&model, &options).expect("the bundled HyQ has an MJCF");
