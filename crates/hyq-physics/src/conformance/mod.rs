@@ -33,11 +33,11 @@
 //! used by the backends' own tests and benches); `independent_fk.rs` a hand-written reading of
 //! the URDF for the forward-kinematics test.
 //!
-//! Beside the suite, [`determinism`] and [`threads`] hold longer runs that a backend crate
-//! calls from tests of its own (`tests/determinism.rs`, `tests/threads.rs`: one `#[test]` per
-//! body, the file saying why its engine keeps the contract) rather than through the macro:
-//! they take seconds per robot, and the C and C++ engines, whose worlds carry state between
-//! steps and whose libraries may keep global state, are the ones that need them.
+//! Beside the suite, [`determinism`] and [`threads`] hold longer runs (thousands of sub-steps
+//! each, on several threads) that a backend crate calls from tests of its own
+//! (`tests/determinism.rs`, `tests/threads.rs`: one `#[test]` per body, the file saying why its
+//! engine keeps the contract) rather than through the macro, which runs once per robot: the
+//! DART and MuJoCo crates run them on HyQ.
 
 mod api_contract;
 mod contacts;
