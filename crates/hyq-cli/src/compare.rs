@@ -1,29 +1,41 @@
 //! `hyq compare`: the same action sequence on two or three physics backends, and a report of
 //! where they agree and where they drift apart (hyq-compare): `report.md`, `report.json` and
 //! `trunk_x_z.png` in `--out DIR`; with three backends the top-level report sets the three
-//! side by side and each pair's full report is in `DIR/<a>_vs_<b>/`.
+//! side by side and each pair's full report is in `DIR/<a>_vs_<b>/`. With `--policy mlp:FILE`
+//! instead of `--scenario`, a trained policy runs closed loop on every backend (hyq-compare's
+//! `policy` module), loaded and checked as `hyq run --policy` loads it; that report states the
+//! gap and is not judged against the ledger.
 //!
 //! Exit status: 0 when the reports are written, whatever they found; with `--strict`, 1 (after
 //! writing the reports) when any metric is outside the ledger, so CI can gate on it; 2 for bad
 //! input (unknown scenario or backend, seconds ≤ 0, an unwritable `--out`, an unreadable or
-//! invalid `--ledger`), reported before anything runs; 1 for a failure while running.
+//! invalid `--ledger`, a bad policy file or one trained for another layout, a backend that cannot
+//! be built, such as a MuJoCo library that cannot be loaded), reported before anything runs; 1
+//! for a failure while running.
 
 use std::io::Write as _;
 use std::path::PathBuf;
 
 use clap::builder::TypedValueParser as _;
 use clap::{Args, ValueEnum as _};
+use hyq_compare::policy::MAX_EPISODES;
 use hyq_compare::{
-    ComparisonSpec, DEFAULT_ONE_STEP_STATES, Ledger, MARKDOWN_FILE, Plan, Report, Scenario,
-    check_seconds, compare_all, parse_override, prepare_output_dir,
+    ComparisonSpec, DEFAULT_ONE_STEP_STATES, Ledger, MARKDOWN_FILE, Plan, PolicyPlan, PolicySpec,
+    Report, Scenario, check_seconds, compare_all, parse_override, prepare_output_dir,
 };
 
 use crate::Failure;
 use crate::backend::{BackendChoice, not_built, with_backend};
-use crate::options::{RobotArgs, usage};
+use crate::options::{ConfigArgs, RobotArgs, TrainedPolicy, check_mlp, usage};
+use crate::run::PolicyChoice;
+
+/// Episodes per backend of a policy comparison unless `--episodes` says otherwise: enough to
+/// see the spread of a noisy reset, few enough for a quick look.
+const DEFAULT_EPISODES: u32 = 5;
 
 /// `hyq compare` arguments.
 #[derive(Debug, Args)]
+#[command(group(clap::ArgGroup::new("what").required(true).args(["scenario", "policy"])))]
 pub struct CompareArgs {
     /// The backends, comma-separated: two (rapier,dart or rapier,mujoco; or the same one twice,
     /// a self-check: exact agreement, or the effect of --set-b) or three different ones
@@ -33,10 +45,26 @@ pub struct CompareArgs {
     /// The scenario (see `docs/backend-comparison.md`): stand (hold the pose), fall (a pushed
     /// robot tips over), limit (the first [gait] leg's hip joint, lf_hfe on the bundled robots,
     /// driven to its limit), trot (the scripted trot), random (random
-    /// actions), reach (the trot to a goal on its path).
+    /// actions), reach (the trot to a goal on its path). Required unless --policy is given.
     #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(Scenario::NAMES)
         .try_map(|s| s.parse::<Scenario>()))]
-    scenario: Scenario,
+    scenario: Option<Scenario>,
+    /// Instead of a scenario, a trained policy (mlp:FILE, e.g.
+    /// mlp:assets/policies/hyq_walk.safetensors), closed loop: on each backend it acts on that
+    /// backend's own observations, in the environment it was trained in (its action mode and
+    /// reward settings apply unless --config or --set sets the key), for --episodes episodes;
+    /// the first episode's actions on the first backend are also replayed open loop on every
+    /// backend. The report states the gap; it is not judged against the ledger.
+    #[arg(long, value_name = "mlp:FILE", value_parser = parse_policy)]
+    policy: Option<PolicyChoice>,
+    /// Episodes per backend with --policy (default 5; the first reset seeded with --seed, the
+    /// later ones continuing its streams, as `hyq run --episodes N`).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_EPISODES)))]
+    episodes: Option<u32>,
+    /// With --policy: a TOML configuration file (as `hyq run --config`); its keys win over the
+    /// policy file's environment. Episode length: task.max_time_steps (1000 by default, 10 s).
+    #[arg(long, value_name = "FILE")]
+    config: Option<PathBuf>,
     /// The robot.
     #[command(flatten)]
     robot: RobotArgs,
@@ -45,7 +73,7 @@ pub struct CompareArgs {
     seed: u64,
     /// Simulated seconds (default: the scenario's: stand 5, fall 3, limit 3, trot 10, random 5,
     /// reach 10). The ledger's tolerances are measured at the defaults.
-    #[arg(long, value_parser = parse_seconds)]
+    #[arg(long, value_parser = parse_seconds, conflicts_with = "policy")]
     seconds: Option<f64>,
     /// The directory to write report.md, report.json and trunk_x_z.png into (created if
     /// missing; existing reports in it are replaced).
@@ -53,22 +81,26 @@ pub struct CompareArgs {
     out: PathBuf,
     /// A ledger file of known divergences instead of the built-in one
     /// (crates/hyq-compare/ledger.toml).
-    #[arg(long, value_name = "FILE")]
+    #[arg(long, value_name = "FILE", conflicts_with = "policy")]
     ledger: Option<PathBuf>,
     /// Exit with status 1 (after writing the reports) if any metric is outside the ledger.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "policy")]
     strict: bool,
     /// Shared states sampled from the first backend's run for the one-step comparison.
-    #[arg(long, default_value_t = DEFAULT_ONE_STEP_STATES,
+    #[arg(long, default_value_t = DEFAULT_ONE_STEP_STATES, conflicts_with = "policy",
         value_parser = clap::value_parser!(u64).range(1..=1000).map(|v| v as usize))]
     one_step_states: usize,
-    /// Override one configuration value on both sides, after the scenario's configuration:
-    /// `table.key=value`. Repeatable.
+    /// Override one configuration value on every side, after the scenario's configuration (or
+    /// the policy's environment and --config): `table.key=value`. Repeatable.
     #[arg(long = "set", value_name = "TABLE.KEY=VALUE")]
     set: Vec<String>,
     /// Override one configuration value on the second backend only (e.g. a perturbation:
     /// `--set-b physics.gravity=[0,0,-10.791]`); two backends only. Repeatable.
-    #[arg(long = "set-b", value_name = "TABLE.KEY=VALUE")]
+    #[arg(
+        long = "set-b",
+        value_name = "TABLE.KEY=VALUE",
+        conflicts_with = "policy"
+    )]
     set_b: Vec<String>,
 }
 
@@ -101,6 +133,16 @@ fn parse_backends(s: &str) -> Result<Backends, String> {
         ));
     }
     Ok(Backends(choices))
+}
+
+fn parse_policy(text: &str) -> Result<PolicyChoice, String> {
+    match text.parse::<PolicyChoice>()? {
+        PolicyChoice::Mlp(file) => Ok(PolicyChoice::Mlp(file)),
+        other => Err(format!(
+            "{other} is a scripted policy: compare runs it as a scenario (--scenario); \
+             --policy takes a trained policy, mlp:FILE"
+        )),
+    }
 }
 
 fn parse_seconds(s: &str) -> Result<f64, String> {
@@ -136,6 +178,25 @@ pub fn execute(args: CompareArgs) -> Result<(), Failure> {
             &format!("--backends {}", names.join(",")),
         ));
     }
+    let scenario = match (&args.policy, args.scenario) {
+        (Some(PolicyChoice::Mlp(file)), _) => {
+            return execute_policy(&args, file, &choices, model);
+        }
+        (_, Some(_)) if args.episodes.is_some() || args.config.is_some() => {
+            let flag = if args.episodes.is_some() {
+                "--episodes"
+            } else {
+                "--config"
+            };
+            return Err(usage(format!(
+                "{flag} goes with --policy mlp:FILE; a scenario sets its own episode and \
+                 configuration (change it with --set)"
+            )));
+        }
+        (_, Some(scenario)) => scenario,
+        // clap requires one of the two and parse_policy takes only mlp:FILE.
+        _ => return Err(usage("give --scenario NAME or --policy mlp:FILE")),
+    };
     if choices.len() > 2 && !args.set_b.is_empty() {
         return Err(usage(
             "--set-b: overrides the second backend of a two-backend comparison; with three \
@@ -154,7 +215,7 @@ pub fn execute(args: CompareArgs) -> Result<(), Failure> {
             .collect::<Result<Vec<_>, Failure>>()
     };
     let spec = ComparisonSpec {
-        scenario: args.scenario,
+        scenario,
         seed: args.seed,
         seconds: args.seconds,
         one_step_states: args.one_step_states,
@@ -202,6 +263,7 @@ fn compare_failure(e: hyq_compare::CompareError) -> Failure {
     use hyq_compare::CompareError as E;
     let status = match e {
         E::Override { .. }
+        | E::Build { .. }
         | E::Config(_)
         | E::StateDependentActions { .. }
         | E::Scenario { .. } => 2,
@@ -283,6 +345,125 @@ fn execute_many(
             .collect();
         return Err(strict_failure(report.flagged, &names, args));
     }
+    Ok(())
+}
+
+/// `hyq compare --policy mlp:FILE`: the trained policy closed loop on every backend, and its
+/// first backend's first-episode actions replayed open loop on each.
+fn execute_policy(
+    args: &CompareArgs,
+    file: &std::path::Path,
+    choices: &[BackendChoice],
+    model: std::sync::Arc<hyq_physics::RobotModel>,
+) -> Result<(), Failure> {
+    let configuration = ConfigArgs {
+        config: args.config.clone(),
+        set: args.set.clone(),
+    };
+    let trained = TrainedPolicy::load(file, &configuration)?;
+    check_mlp(&trained.policy, file, &model, &trained.config)?;
+    let mut applied: Vec<String> = trained
+        .inherited
+        .iter()
+        .map(|(k, v)| format!("{k}={v} (the policy file)"))
+        .collect();
+    if let Some(path) = &args.config {
+        applied.push(format!("--config {}", path.display()));
+    }
+    applied.extend(args.set.iter().map(|s| format!("{} (--set)", s.trim())));
+    let spec = PolicySpec {
+        policy: format!("mlp:{}", file.display()),
+        seed: args.seed,
+        episodes: args.episodes.unwrap_or(DEFAULT_EPISODES),
+        configuration: applied,
+    };
+    let plan =
+        PolicyPlan::new(model, trained.config, trained.policy, spec).map_err(compare_failure)?;
+    prepare_output_dir(&args.out).map_err(|e| usage(format!("--out: {e}")))?;
+
+    // Self-comparisons get their second label apart, as in the scenario comparison.
+    let labels: Vec<String> = choices
+        .iter()
+        .enumerate()
+        .map(|(k, c)| {
+            if choices[..k].contains(c) {
+                format!("{} (B)", c.name())
+            } else {
+                c.name().to_owned()
+            }
+        })
+        .collect();
+    let mut sides = Vec::with_capacity(choices.len());
+    for (&choice, label) in choices.iter().zip(&labels) {
+        let side = with_backend!(choice, B => {
+            plan.run_side::<B>(label).map_err(compare_failure)
+        })?;
+        sides.push(side);
+    }
+    let mut replays = Vec::new();
+    if plan.replays() {
+        for (&choice, label) in choices.iter().zip(&labels) {
+            let run = with_backend!(choice, B => {
+                plan.replay::<B>(label, &sides[0]).map_err(compare_failure)
+            })?;
+            replays.push(run);
+        }
+    }
+    let report = plan.report(&sides, &replays);
+    report
+        .write(&args.out, &command_line())
+        .map_err(|e| Failure {
+            status: 1,
+            message: e.to_string(),
+        })?;
+    let mut out = std::io::stdout().lock();
+    let _ = writeln!(
+        out,
+        "policy {} on {} ({} episode(s) per backend, seed {}), closed loop:",
+        report.policy, report.robot, report.episodes, report.seed
+    );
+    for s in &report.sides {
+        let ends: Vec<String> = s
+            .ended_by
+            .iter()
+            .map(|e| format!("{} {}", e.reasons, e.episodes))
+            .collect();
+        let _ = writeln!(
+            out,
+            "{}: distance walked (K - D^T) {:.3} m mean, {:.3} m min; travel {:.3} m; return {:.3}; ended by {}",
+            s.label,
+            s.distance_walked_m.mean,
+            s.distance_walked_m.min,
+            s.travel_m.mean,
+            s.ret.mean,
+            ends.join(", ")
+        );
+    }
+    for p in &report.pairs {
+        let _ = writeln!(
+            out,
+            "{} vs {}: first episode trunk position divergence rms {:.4} m, max {:.4} m; distance walked gap {:+.3} m",
+            p.labels[0],
+            p.labels[1],
+            p.trunk_position.rms,
+            p.trunk_position.max,
+            p.distance_walked_gap_m
+        );
+    }
+    if let Some(r) = &report.replay {
+        for run in &r.runs {
+            let _ = writeln!(
+                out,
+                "{}'s actions replayed on {}: travel {:.3} m, trunk position vs {}'s run rms {:.4} m",
+                r.source, run.label, run.travel_m, r.source, run.trunk_position.rms
+            );
+        }
+    }
+    let _ = writeln!(
+        out,
+        "not judged against the ledger (closed loop); reports written to {}",
+        args.out.display()
+    );
     Ok(())
 }
 

@@ -52,7 +52,8 @@ enum Command {
     Bench(bench::BenchArgs),
     /// Random actions for many steps: no panic, no NaN anywhere; prints the observed ranges.
     Soak(soak::SoakArgs),
-    /// Feed the same actions to two physics backends and report where they agree and differ.
+    /// Feed the same actions to two or three physics backends and report where they agree and
+    /// differ; or run a trained policy closed loop on each and report the gap (--policy).
     Compare(compare::CompareArgs),
     /// Render an episode (CPU, headless) to an animated GIF or PNG frames.
     Render(render::RenderArgs),

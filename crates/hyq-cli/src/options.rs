@@ -116,21 +116,37 @@ impl ConfigArgs {
             }
             pairs.push((key, value.trim()));
         }
-        if !base.is_empty() {
-            let mut user_keys: Vec<String> = pairs.iter().map(|(k, _)| (*k).to_owned()).collect();
-            if let Some(path) = &self.config {
-                // The file alone first, so that a bad file gets the loader's own error.
-                EnvConfig::load::<&str, &str>(Some(path), &[]).map_err(load_error)?;
-                user_keys.extend(file_keys(path)?);
-            }
-            let inherited: Vec<(&str, &str)> = base
-                .iter()
-                .filter(|(k, _)| !user_keys.contains(k))
-                .map(|(k, v)| (k.as_str(), v.as_str()))
-                .collect();
-            pairs.splice(0..0, inherited);
-        }
+        let inherited = self.inherited(base)?;
+        let inherited = inherited.iter().map(|(k, v)| (k.as_str(), v.as_str()));
+        pairs.splice(0..0, inherited);
         EnvConfig::load(self.config.as_deref(), &pairs).map_err(load_error)
+    }
+}
+
+impl ConfigArgs {
+    /// The entries of `base` that apply: those whose key neither the file nor an override
+    /// sets. A bad file gets the loader's own error.
+    pub fn inherited<'a>(
+        &self,
+        base: &'a [(String, String)],
+    ) -> Result<Vec<&'a (String, String)>, Failure> {
+        if base.is_empty() {
+            return Ok(Vec::new());
+        }
+        let mut user_keys: Vec<String> = self
+            .set
+            .iter()
+            .filter_map(|item| item.split_once('=').map(|(k, _)| k.trim().to_owned()))
+            .collect();
+        if let Some(path) = &self.config {
+            // The file alone first, so that a bad file gets the loader's own error.
+            EnvConfig::load::<&str, &str>(Some(path), &[]).map_err(load_error)?;
+            user_keys.extend(file_keys(path)?);
+        }
+        Ok(base
+            .iter()
+            .filter(|(k, _)| !user_keys.contains(k))
+            .collect())
     }
 }
 
@@ -196,15 +212,56 @@ pub fn read_mlp(file: &std::path::Path) -> Result<MlpPolicy, Failure> {
     MlpPolicy::from_file(file).map_err(|e| usage(format!("--policy mlp:{e}")))
 }
 
+/// Checks that a trained policy fits an environment of `model` under `config` (robot,
+/// observation and action layout, action mode and scale): a one-line usage error naming the
+/// file and the mismatch.
+pub fn check_mlp(
+    policy: &MlpPolicy,
+    file: &std::path::Path,
+    model: &RobotModel,
+    config: &EnvConfig,
+) -> Result<(), Failure> {
+    policy
+        .check_env(model, config, &file.display().to_string())
+        .map_err(|e| usage(format!("--policy mlp:{e}")))
+}
+
+/// A trained policy file read with the environment it runs in: the file's own environment
+/// (`env_config`) under the user's configuration file and overrides.
+pub struct TrainedPolicy {
+    /// The policy.
+    pub policy: MlpPolicy,
+    /// The environment's configuration, validated.
+    pub config: EnvConfig,
+    /// The file's entries that applied (the user set none of their keys).
+    pub inherited: Vec<(String, String)>,
+}
+
+impl TrainedPolicy {
+    /// Reads `file` and builds its configuration under `configuration`.
+    pub fn load(file: &std::path::Path, configuration: &ConfigArgs) -> Result<Self, Failure> {
+        let policy = read_mlp(file)?;
+        let base = &policy.metadata().env_config;
+        let config = configuration.config_over(base)?;
+        let inherited = configuration
+            .inherited(base)?
+            .into_iter()
+            .cloned()
+            .collect();
+        Ok(Self {
+            policy,
+            config,
+            inherited,
+        })
+    }
+}
+
 impl PolicyArgs {
     /// The environment's configuration for this policy: `env`'s, over the trained policy's own
     /// environment when the policy is `mlp:FILE`.
     pub fn config(&self, env: &EnvArgs) -> Result<EnvConfig, Failure> {
         match &self.policy {
-            PolicyChoice::Mlp(file) => {
-                let policy = read_mlp(file)?;
-                env.configuration.config_over(&policy.metadata().env_config)
-            }
+            PolicyChoice::Mlp(file) => Ok(TrainedPolicy::load(file, &env.configuration)?.config),
             _ => env.config(),
         }
     }
@@ -221,9 +278,7 @@ impl PolicyArgs {
             ),
             PolicyChoice::Mlp(file) => {
                 let policy = read_mlp(file)?;
-                policy
-                    .check_env(env.model(), env.config(), &file.display().to_string())
-                    .map_err(|e| usage(format!("--policy mlp:{e}")))?;
+                check_mlp(&policy, file, env.model(), env.config())?;
                 Box::new(policy)
             }
         })

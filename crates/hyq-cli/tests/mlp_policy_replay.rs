@@ -10,37 +10,10 @@
 
 mod common;
 
-use std::path::{Path, PathBuf};
-
-use common::{hyq, hyq_ok, scratch, stderr, stdout, usage_error_naming};
-
-fn committed_policy() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../assets/policies/hyq_walk.safetensors")
-}
-
-fn policy_arg(path: &Path) -> String {
-    format!("mlp:{}", path.display())
-}
-
-/// A copy of the committed policy with its JSON header changed by `edit` (the tensor bytes
-/// kept), written to a scratch file.
-fn edited_policy(name: &str, edit: impl FnOnce(&mut serde_json::Value, &mut Vec<u8>)) -> PathBuf {
-    let bytes = std::fs::read(committed_policy()).unwrap();
-    let n = u64::from_le_bytes(bytes[..8].try_into().unwrap()) as usize;
-    let mut header: serde_json::Value = serde_json::from_slice(&bytes[8..8 + n]).unwrap();
-    let mut data = bytes[8 + n..].to_vec();
-    edit(&mut header, &mut data);
-    let mut text = serde_json::to_vec(&header).unwrap();
-    while !text.len().is_multiple_of(8) {
-        text.push(b' ');
-    }
-    let mut out = (text.len() as u64).to_le_bytes().to_vec();
-    out.extend_from_slice(&text);
-    out.extend_from_slice(&data);
-    let path = scratch(name);
-    std::fs::write(&path, out).unwrap();
-    path
-}
+use common::{
+    committed_policy, edited_policy, hyq, hyq_ok, policy_arg, scratch, stderr, stdout,
+    usage_error_naming,
+};
 
 fn short_run(policy: &str, extra: &[&str]) -> String {
     let mut args = vec![

@@ -6,7 +6,8 @@
 //! yet, so only the run and what both engines did are checked). Bad input and output hold on
 //! MuJoCo as on rapier: a configuration outside the bounds that keep every number finite is a
 //! usage error, and the largest accepted one writes only numbers; a MuJoCo that cannot be
-//! loaded is one error line and leaves an existing record as it was; a closed stdout ends a
+//! loaded is one error line and leaves an existing record as it was (for `compare` as for
+//! `run`: the same words, exit status 2); a closed stdout ends a
 //! MuJoCo command quietly.
 #![cfg(feature = "mujoco")]
 #![allow(clippy::unwrap_used)]
@@ -181,6 +182,41 @@ fn a_mujoco_that_cannot_be_loaded_is_one_line_and_keeps_the_record() {
     assert_eq!(std::fs::read_to_string(&record).unwrap(), "precious data\n");
     let left: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
     assert_eq!(left.len(), 1, "no temporary file is left");
+}
+
+#[test]
+fn compare_with_a_mujoco_that_cannot_be_loaded_is_a_usage_error_as_run_is() {
+    let dir = scratch("mujoco-missing-compare");
+    let _ = std::fs::remove_dir_all(&dir);
+    let outcome = |args: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_hyq"))
+            .args(args)
+            .env("MUJOCO_DIR", dir.join("no-mujoco-here"))
+            .output()
+            .unwrap()
+    };
+    let run = outcome(&["run", "--backend", "mujoco"]);
+    let out = dir.join("cmp");
+    let compare = outcome(&[
+        "compare",
+        "--backends",
+        "rapier,mujoco",
+        "--scenario",
+        "stand",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    for o in [&run, &compare] {
+        let err = stderr(o);
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(
+            err.starts_with("hyq: error: cannot build the mujoco environment: ")
+                && err.contains("MuJoCo 4.0.0"),
+            "{err}"
+        );
+    }
+    assert!(!out.join("report.md").exists());
 }
 
 #[test]

@@ -27,6 +27,12 @@ pub enum CompareError {
         /// The value given.
         value: usize,
     },
+    /// The number of episodes of a policy comparison is out of range.
+    #[error("episodes {value}: must be in 1..=1000")]
+    Episodes {
+        /// The value given.
+        value: u32,
+    },
     /// The scenario cannot run on this robot.
     #[error("scenario {scenario}: {reason}")]
     Scenario {
@@ -56,7 +62,16 @@ pub enum CompareError {
         /// What was wrong.
         reason: String,
     },
-    /// An environment could not be built or reset, or refused an action.
+    /// An environment could not be built (its configuration refused, or the engine's library
+    /// missing): the same words as `hyq run`'s.
+    #[error("cannot build the {backend} environment: {message}")]
+    Build {
+        /// The side's label.
+        backend: String,
+        /// The environment's message.
+        message: String,
+    },
+    /// An environment could not be reset, or refused an action.
     #[error("{backend}: {message}")]
     Env {
         /// The side's label.

@@ -20,6 +20,11 @@
 //! time for both backends ([`Report::write`]). `hyq compare` (hyq-cli) is the command-line
 //! front; `docs/backend-comparison.md` has the figures for rapier vs DART.
 //!
+//! A trained policy is compared closed loop instead ([`policy`]): each engine's own
+//! observations drive it, so the runs part by nature; that report states the sim-to-sim gap
+//! (per-engine episode outcomes, per-pair divergence, and the first engine's actions replayed
+//! open loop on every engine) and is not judged against the ledger.
+//!
 //! The library is generic over `hyq_physics::Backend` and names no engine. Its tests compare
 //! rapier with itself (exact agreement) and with a perturbed rapier (gravity 10 % stronger:
 //! flagged); with the cargo feature `dart` they also run the real rapier-vs-DART comparison of
@@ -31,6 +36,7 @@ pub mod ledger;
 pub mod metrics;
 mod multi;
 mod plot;
+pub mod policy;
 mod report;
 pub mod run;
 mod scenario;
@@ -42,7 +48,8 @@ pub use compare::{
 pub use error::CompareError;
 pub use ledger::{Known, Ledger, Metric, ScenarioScope, ToleranceSource};
 pub use multi::{MultiReport, PairSummary, compare_all};
-pub use plot::{PLOT_SIZE, plot_many, plot_trunk_x_z};
+pub use plot::{PLOT_SIZE, plot_many, plot_policy, plot_trunk_x_z};
+pub use policy::{PolicyPlan, PolicyReport, PolicySpec};
 pub use report::{
     JSON_FILE, MARKDOWN_FILE, PLOT_FILE, Report, SERIES_POINTS, Series, SideReport,
     prepare_output_dir,

@@ -189,15 +189,14 @@ impl MultiReport {
         let mut m = String::new();
         let w = &mut m;
         let labels: Vec<&str> = self.sides.iter().map(|s| s.label.as_str()).collect();
-        let _ = writeln!(
+        crate::report::markdown_title(
             w,
-            "# Comparison: {}, scenario `{}`\n",
-            labels.join(" vs "),
-            self.scenario
+            &labels,
+            self.scenario,
+            &self.robot,
+            &self.description,
+            command,
         );
-        let _ = writeln!(w, "Robot: `{}`.\n", self.robot);
-        let _ = writeln!(w, "Scenario: {}.\n", self.description);
-        let _ = writeln!(w, "```\n{command}\n```\n");
         let _ = writeln!(
             w,
             "Seed {}, {} s ({} env steps), the same {} actions fed to every backend (script fingerprint `{}`). Ledger: {}.",

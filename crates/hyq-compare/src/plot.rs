@@ -12,6 +12,7 @@ use plotters::style::FontStyle;
 
 use crate::error::CompareError;
 use crate::multi::MultiReport;
+use crate::policy::PolicyReport;
 use crate::report::Report;
 
 /// The plot's size (px).
@@ -236,6 +237,98 @@ pub fn plot_many(report: &MultiReport, path: &Path) -> Result<(), CompareError> 
                 panel(
                     &panels[2],
                     "trunk position divergence per pair",
+                    "m",
+                    &d,
+                    &PAIR_COLOURS,
+                )
+            })
+            .and_then(|()| root.present().map_err(|e| e.to_string()));
+        drawn.map_err(fail)?;
+    }
+    write_png(path, &rgb, (width, height)).map_err(|e| fail(e.to_string()))
+}
+
+/// Draws a policy comparison's plot into `path` (PNG, [`PLOT_SIZE`]): every engine's
+/// first-episode trunk x closed loop, the same under the replayed actions, and every pair's
+/// trunk position divergence over the first episodes.
+pub fn plot_policy(report: &PolicyReport, path: &Path) -> Result<(), CompareError> {
+    let fail = |message: String| CompareError::Plot {
+        path: path.to_owned(),
+        message,
+    };
+    font_registered().map_err(fail)?;
+    let (width, height) = PLOT_SIZE;
+    let mut rgb = vec![0u8; width as usize * height as usize * 3];
+    {
+        let root = BitMapBackend::with_buffer(&mut rgb, (width, height)).into_drawing_area();
+        let labels: Vec<&str> = report.sides.iter().map(|s| s.label.as_str()).collect();
+        let title = format!(
+            "{}: policy, closed loop, seed {}",
+            labels.join(" vs "),
+            report.seed
+        );
+        let xs: Vec<Vec<f64>> = report
+            .traces
+            .iter()
+            .map(|t| t.position_m.iter().map(|p| p[0]).collect())
+            .collect();
+        let lines: Vec<(&str, &[f64], &[f64])> = report
+            .traces
+            .iter()
+            .zip(&xs)
+            .map(|(t, x)| (t.label.as_str(), t.time_s.as_slice(), x.as_slice()))
+            .collect();
+        let (closed, replayed) = lines.split_at(report.sides.len().min(lines.len()));
+        let source = report
+            .replay
+            .as_ref()
+            .map_or(String::new(), |r| format!(" ({}'s actions)", r.source));
+        let names: Vec<String> = report
+            .pairs
+            .iter()
+            .map(|p| format!("{} vs {}", p.labels[0], p.labels[1]))
+            .collect();
+        let times: Vec<Vec<f64>> = report
+            .pairs
+            .iter()
+            .map(|p| {
+                (0..p.divergence_m.len())
+                    .map(|k| k as f64 * report.env_dt_s)
+                    .collect()
+            })
+            .collect();
+        let d: Vec<(&str, &[f64], &[f64])> = names
+            .iter()
+            .zip(&times)
+            .zip(&report.pairs)
+            .map(|((n, t), p)| (n.as_str(), t.as_slice(), p.divergence_m.as_slice()))
+            .collect();
+        let drawn = root
+            .fill(&WHITE)
+            .map_err(|e| e.to_string())
+            .and_then(|()| {
+                root.titled(&title, (FAMILY, 22).into_font().color(&INK))
+                    .map_err(|e| e.to_string())
+            })
+            .and_then(|body| {
+                let panels = body.split_evenly((3, 1));
+                panel(
+                    &panels[0],
+                    "trunk x, closed loop (first episode)",
+                    "x (m)",
+                    closed,
+                    &COLOURS,
+                )?;
+                panel(
+                    &panels[1],
+                    &format!("trunk x, open loop{source}"),
+                    "x (m)",
+                    replayed,
+                    &COLOURS,
+                )?;
+                panel(
+                    &panels[2],
+                    "trunk position divergence per pair, closed loop",
                     "m",
                     &d,
                     &PAIR_COLOURS,

@@ -72,7 +72,7 @@ pub struct Series {
 }
 
 /// Indices 0..len thinned to at most [`SERIES_POINTS`] (+ the last).
-fn thin(len: usize) -> Vec<usize> {
+pub(crate) fn thin(len: usize) -> Vec<usize> {
     if len == 0 {
         return Vec::new();
     }
@@ -224,15 +224,14 @@ impl Report {
     /// The title, the command, the run's settings and the verdict.
     fn markdown_header(&self, w: &mut String, command: &str) {
         let [a, b] = &self.sides;
-        // Writing into a String cannot fail.
-        let _ = writeln!(
+        markdown_title(
             w,
-            "# Comparison: {} vs {}, scenario `{}`\n",
-            a.label, b.label, self.scenario
+            &[&a.label, &b.label],
+            self.scenario,
+            &self.robot,
+            &self.description,
+            command,
         );
-        let _ = writeln!(w, "Robot: `{}`.\n", self.robot);
-        let _ = writeln!(w, "Scenario: {}.\n", self.description);
-        let _ = writeln!(w, "```\n{command}\n```\n");
         let _ = writeln!(
             w,
             "Seed {}, {} s ({} env steps of {} s), the same {} actions fed to both (script fingerprint `{}`). Ledger: {}.",
@@ -411,6 +410,27 @@ impl Report {
             );
         }
     }
+}
+
+/// The opening every scenario report shares (two backends or more): the title naming the
+/// backends and the scenario, the robot, what the scenario does, and the command verbatim.
+pub(crate) fn markdown_title(
+    w: &mut String,
+    labels: &[&str],
+    scenario: Scenario,
+    robot: &str,
+    description: &str,
+    command: &str,
+) {
+    // Writing into a String cannot fail.
+    let _ = writeln!(
+        w,
+        "# Comparison: {}, scenario `{scenario}`\n",
+        labels.join(" vs ")
+    );
+    let _ = writeln!(w, "Robot: `{robot}`.\n");
+    let _ = writeln!(w, "Scenario: {description}.\n");
+    let _ = writeln!(w, "```\n{command}\n```\n");
 }
 
 /// A number with 4 significant digits (plain notation between 1e-3 and 1e4).

@@ -51,6 +51,8 @@ pub struct Trajectory {
     /// The joint targets of the step that followed each sample (rad); the last sample's are
     /// those of the last step (nothing followed it).
     pub targets: Vec<f64>,
+    /// The actions of every step, as fed (step-major), `num_joints` per step.
+    pub actions: Vec<f64>,
     /// Why the episode ended (empty if the script ran out first, which cannot happen: the
     /// episode's t_max is the script's length).
     pub reasons: Reasons,
@@ -58,6 +60,12 @@ pub struct Trajectory {
     pub end_step: u64,
     /// Reward-term sums.
     pub sums: TermSums,
+    /// The goal G (m).
+    pub goal: [f64; 3],
+    /// D^0 = K, the trunk's distance to the goal after reset (m).
+    pub initial_distance_m: f64,
+    /// D^T, its distance to the goal after the last step (m).
+    pub final_distance_m: f64,
 }
 
 impl Trajectory {
@@ -101,7 +109,10 @@ pub fn build_env<B: Backend>(
     model: Arc<RobotModel>,
     config: EnvConfig,
 ) -> Result<Env<B>, CompareError> {
-    Env::<B>::new(model, config).map_err(|e| env_error(label, e))
+    Env::<B>::new(model, config).map_err(|e| CompareError::Build {
+        backend: label.to_owned(),
+        message: e.to_string(),
+    })
 }
 
 /// Resets `env` with `seed` and feeds it `script` (one action per env step, flattened) until
@@ -114,6 +125,23 @@ pub fn run_script<B: Backend>(
     script: &[f64],
 ) -> Result<Trajectory, CompareError> {
     let n = env.action_space().len();
+    let mut actions = script.chunks_exact(n.max(1));
+    run_episode(label, env, Some(seed), start, |_, action| {
+        actions.next().map(|a| action.copy_from_slice(a)).is_some()
+    })
+}
+
+/// Resets `env` (with `seed`, or continuing its streams when `None`) and runs one episode in
+/// which `next` writes each action from the environment it sees (closed loop) or from a script
+/// (open loop), until the episode ends or `next` returns false; records a [`Trajectory`].
+pub fn run_episode<B: Backend>(
+    label: &str,
+    env: &mut Env<B>,
+    seed: Option<u64>,
+    start: Option<&RobotState>,
+    mut next: impl FnMut(&Env<B>, &mut [f64]) -> bool,
+) -> Result<Trajectory, CompareError> {
+    let n = env.action_space().len();
     let layout = env.observation_layout().clone();
     let model = env.model().clone();
     let tracked: Vec<String> = model.tracked().iter().map(|t| t.name.clone()).collect();
@@ -121,9 +149,9 @@ pub fn run_script<B: Backend>(
         state: start.cloned(),
         ..ResetOptions::default()
     };
-    env.reset(Some(seed), &options)
-        .map_err(|e| env_error(label, e))?;
-    let steps = script.len() / n.max(1);
+    let reset = env.reset(seed, &options).map_err(|e| env_error(label, e))?;
+    let (goal, initial_distance_m) = (reset.info.goal, reset.info.distance_to_goal);
+    let steps = usize::try_from(env.config().task.max_time_steps).unwrap_or(0);
     let mut traj = Trajectory {
         label: label.to_owned(),
         engine: B::NAME,
@@ -136,9 +164,13 @@ pub fn run_script<B: Backend>(
         contacts: Vec::new(),
         states: Vec::with_capacity(steps + 1),
         targets: Vec::with_capacity((steps + 1) * n),
+        actions: Vec::with_capacity(steps * n),
         reasons: Reasons::NONE,
         end_step: 0,
         sums: TermSums::default(),
+        goal,
+        initial_distance_m,
+        final_distance_m: initial_distance_m,
     };
     let record = |traj: &mut Trajectory, env: &Env<B>| {
         let trunk: &TrunkState = env.trunk();
@@ -153,14 +185,17 @@ pub fn run_script<B: Backend>(
         traj.states.push(env.backend().state());
     };
     record(&mut traj, env);
-    for action in script.chunks_exact(n) {
-        let step = env.step(action).map_err(|e| env_error(label, e))?;
+    let mut action = vec![0.0; n];
+    while next(env, &mut action) {
+        let step = env.step(&action).map_err(|e| env_error(label, e))?;
         let info = step.info;
         let r = &info.reward;
         traj.sums.terms.add(r);
         traj.sums.ret += r.total;
         traj.targets.extend_from_slice(&info.joint_targets);
+        traj.actions.extend_from_slice(&action);
         traj.reasons = info.reasons;
+        traj.final_distance_m = info.distance_to_goal;
         let done = info.reasons.done();
         traj.end_step = info.t;
         record(&mut traj, env);

@@ -1,7 +1,9 @@
 //! Helpers shared by the CLI tests: run the built `hyq` binary as a process, and scratch files.
 #![allow(dead_code)]
+// In tests a failed unwrap is a failed test, with its location.
+#![allow(clippy::unwrap_used)]
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 /// The output of `hyq args…`, run as a process with no terminal (no progress bar).
@@ -82,4 +84,37 @@ pub fn first_null(v: &serde_json::Value, path: &str) -> Option<String> {
             .find_map(|(k, x)| first_null(x, &format!("{path}.{k}"))),
         _ => None,
     }
+}
+
+/// The committed trained policy file.
+pub fn committed_policy() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../assets/policies/hyq_walk.safetensors")
+}
+
+/// `mlp:PATH`.
+pub fn policy_arg(path: &Path) -> String {
+    format!("mlp:{}", path.display())
+}
+
+/// A copy of the committed policy with its JSON header changed by `edit` (the tensor bytes
+/// kept), written to a scratch file.
+pub fn edited_policy(
+    name: &str,
+    edit: impl FnOnce(&mut serde_json::Value, &mut Vec<u8>),
+) -> PathBuf {
+    let bytes = std::fs::read(committed_policy()).unwrap();
+    let n = u64::from_le_bytes(bytes[..8].try_into().unwrap()) as usize;
+    let mut header: serde_json::Value = serde_json::from_slice(&bytes[8..8 + n]).unwrap();
+    let mut data = bytes[8 + n..].to_vec();
+    edit(&mut header, &mut data);
+    let mut text = serde_json::to_vec(&header).unwrap();
+    while !text.len().is_multiple_of(8) {
+        text.push(b' ');
+    }
+    let mut out = (text.len() as u64).to_le_bytes().to_vec();
+    out.extend_from_slice(&text);
+    out.extend_from_slice(&data);
+    let path = scratch(name);
+    std::fs::write(&path, out).unwrap();
+    path
 }

@@ -1,3 +1,4 @@
+// Changed by the hyq-env project (Apache-2.0 §4(b)); the changes: PATCHES.md at this crate's root.
 //! Per-step assembly and launch: substep solve-groups, the SIMD chunk layout
 //! over the persistent contact buckets, and the worker spawn/inline run.
 
@@ -197,7 +198,8 @@ impl StagedIslandSolver {
             // NOTE: the twist constraint/builder buffers are NOT cleared: they are
             // the persistent constraint cache, preserved (and resized) further
             // below once the chunk layout is known.
-            set.generic_jacobians.fill(0.0);
+            // (On the slice: nalgebra's `fill` goes through an element iterator.)
+            set.generic_jacobians.as_mut_slice().fill(0.0);
             set.generic_velocity_constraints.clear();
             set.generic_velocity_constraints_builder.clear();
             set.simd_velocity_coulomb_constraints.clear();

@@ -1,3 +1,4 @@
+// Changed by the hyq-env project (Apache-2.0 §4(b)); the changes: PATCHES.md at this crate's root.
 //! Staged joint assembly: joint coloring in the contacts' color space, SIMD
 //! chunking by row signature, scalar/overflow builders, and the cross-step
 //! joint-assembly persistence cache.
@@ -537,7 +538,8 @@ impl StagedIslandSolver {
         impulse_joints: &[JointGraphEdge],
     ) {
         let joints = &mut self.joint_constraints;
-        joints.generic_jacobians.fill(0.0);
+        // (On the slice: nalgebra's `fill` goes through an element iterator.)
+        joints.generic_jacobians.as_mut_slice().fill(0.0);
         joints.generic_velocity_constraints.clear();
         joints.generic_velocity_constraints_builder.clear();
         let mut j_id = 0;

@@ -1,0 +1,746 @@
+//! A policy on several backends, closed loop: each engine runs the same policy from its own
+//! observations, so what the report measures is the sim-to-sim gap a user of the policy meets
+//! (train on one engine, evaluate on the others), under the same rules.
+//!
+//! Per engine, `episodes` episodes as `hyq run --policy … --episodes N --seed S` runs them (the
+//! first reset seeded with S, later ones continuing its streams): distance walked toward the
+//! goal (K − D^T), the trunk's travel along the start-to-goal direction, D^T, the return, the
+//! steps and how each episode ended. Per pair of engines, the first episode over time: trunk
+//! position, orientation and worst-joint divergence (RMS and max) and when the two trunks were
+//! first 1 cm and 10 cm apart.
+//!
+//! Closed-loop runs part by nature: each engine's small differences change the observation,
+//! which changes the next action. So this comparison is **not** judged against the ledger (whose
+//! tolerances are for identical action scripts) and has no pass or fail; it states the gap.
+//!
+//! To tell physics from feedback apart, the first engine's first-episode actions are also
+//! replayed open loop on every engine (the first one included: its replay must reproduce its
+//! closed-loop run exactly, a check of the replay itself). What another engine does with the
+//! very same actions is the physics' share of the gap. The replay is skipped in the `delta`
+//! action mode, whose targets depend on the simulated joint angles.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use hyq_env::{ActionMode, EnvConfig, Policy, Reason};
+use hyq_physics::{Backend, RobotModel};
+use serde::Serialize;
+
+use crate::error::CompareError;
+use crate::metrics::{Divergence, compare_trajectories};
+use crate::report::{JSON_FILE, MARKDOWN_FILE, PLOT_FILE, prepare_output_dir, sig, thin};
+use crate::run::{Trajectory, build_env, run_episode, run_script};
+
+/// The most episodes per engine a policy comparison runs.
+pub const MAX_EPISODES: u32 = 1000;
+
+/// The trunk distances (m) at which a pair's first episode counts as "apart".
+pub const APART_M: [f64; 2] = [0.01, 0.1];
+
+/// What a policy comparison runs.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PolicySpec {
+    /// The policy as the user named it (e.g. `mlp:assets/policies/hyq_walk.safetensors`).
+    pub policy: String,
+    /// The first reset's seed.
+    pub seed: u64,
+    /// Episodes per engine (1..=[`MAX_EPISODES`]).
+    pub episodes: u32,
+    /// The configuration as applied, for the report: `key=value` with where it came from.
+    pub configuration: Vec<String>,
+}
+
+/// A policy comparison made ready to run: the robot, the environment's configuration (the same
+/// on every engine) and the policy, cloned fresh for each engine.
+pub struct PolicyPlan<P> {
+    model: Arc<RobotModel>,
+    config: EnvConfig,
+    policy: P,
+    spec: PolicySpec,
+}
+
+/// One engine's closed-loop episodes.
+pub struct PolicySide {
+    label: String,
+    first: Trajectory,
+    episodes: Vec<EpisodeOutcome>,
+}
+
+impl PolicySide {
+    /// The first episode, sampled at every env step.
+    pub fn first_episode(&self) -> &Trajectory {
+        &self.first
+    }
+
+    /// Every episode's outcome.
+    pub fn episodes(&self) -> &[EpisodeOutcome] {
+        &self.episodes
+    }
+}
+
+/// How one episode ended.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct EpisodeOutcome {
+    /// 1 for the first.
+    pub episode: u32,
+    /// Env steps taken.
+    pub steps: u64,
+    /// Σ reward.
+    #[serde(rename = "return")]
+    pub ret: f64,
+    /// Every reason that held on the last step.
+    pub end_reasons: Vec<Reason>,
+    /// K = D^0 (m).
+    pub initial_distance_m: f64,
+    /// D^T (m).
+    pub final_distance_m: f64,
+    /// K − D^T: how much closer to the goal the trunk ended than it started (m).
+    pub distance_walked_m: f64,
+    /// The trunk's displacement along the start-to-goal direction in the ground plane (m):
+    /// unlike K − D^T it keeps growing past the goal.
+    pub travel_m: f64,
+    /// C^T (m).
+    pub final_position: [f64; 3],
+}
+
+impl EpisodeOutcome {
+    fn of(episode: u32, t: &Trajectory) -> Self {
+        let start = t.positions.first().copied().unwrap_or([f64::NAN; 3]);
+        let end = t.positions.last().copied().unwrap_or([f64::NAN; 3]);
+        Self {
+            episode,
+            steps: t.end_step,
+            ret: t.sums.ret,
+            end_reasons: t.reasons.iter().collect(),
+            initial_distance_m: t.initial_distance_m,
+            final_distance_m: t.final_distance_m,
+            distance_walked_m: t.initial_distance_m - t.final_distance_m,
+            travel_m: travel(start, end, t.goal),
+            final_position: end,
+        }
+    }
+}
+
+/// The displacement from `start` to `end` along the direction from `start` to `goal`, in the
+/// ground plane (m); 0 when the goal is straight above or below the start.
+fn travel(start: [f64; 3], end: [f64; 3], goal: [f64; 3]) -> f64 {
+    let d = [goal[0] - start[0], goal[1] - start[1]];
+    let m = [end[0] - start[0], end[1] - start[1]];
+    let norm = d[0].hypot(d[1]);
+    if norm < 1e-12 {
+        0.0
+    } else {
+        (d[0] * m[0] + d[1] * m[1]) / norm
+    }
+}
+
+impl<P: Policy + Clone> PolicyPlan<P> {
+    /// Checks `spec` and keeps what every engine runs.
+    pub fn new(
+        model: Arc<RobotModel>,
+        config: EnvConfig,
+        policy: P,
+        spec: PolicySpec,
+    ) -> Result<Self, CompareError> {
+        if !(1..=MAX_EPISODES).contains(&spec.episodes) {
+            return Err(CompareError::Episodes {
+                value: spec.episodes,
+            });
+        }
+        config.validate()?;
+        Ok(Self {
+            model,
+            config,
+            policy,
+            spec,
+        })
+    }
+
+    /// What is run.
+    pub fn spec(&self) -> &PolicySpec {
+        &self.spec
+    }
+
+    /// Runs the episodes on backend `B`, labelled `label`, with a fresh copy of the policy.
+    pub fn run_side<B: Backend>(&self, label: &str) -> Result<PolicySide, CompareError> {
+        let mut env = build_env::<B>(label, self.model.clone(), self.config.clone())?;
+        let mut policy = self.policy.clone();
+        let mut first = None;
+        let mut episodes = Vec::with_capacity(self.spec.episodes as usize);
+        for k in 0..self.spec.episodes {
+            let seed = (k == 0).then_some(self.spec.seed);
+            let traj = run_episode(label, &mut env, seed, None, |env, action| {
+                policy.act(&env.policy_input(), action);
+                true
+            })?;
+            episodes.push(EpisodeOutcome::of(k + 1, &traj));
+            if first.is_none() {
+                first = Some(traj);
+            }
+        }
+        let first = first.ok_or(CompareError::Episodes { value: 0 })?;
+        Ok(PolicySide {
+            label: label.to_owned(),
+            first,
+            episodes,
+        })
+    }
+
+    /// Whether the open-loop replay means anything: not in the `delta` action mode, where the
+    /// same actions give targets that depend on each engine's joint angles.
+    pub fn replays(&self) -> bool {
+        self.config.action.mode != ActionMode::Delta
+    }
+
+    /// Replays `source`'s first-episode actions open loop on backend `B`, labelled `label`:
+    /// the same first reset, the same actions, no policy.
+    pub fn replay<B: Backend>(
+        &self,
+        label: &str,
+        source: &PolicySide,
+    ) -> Result<Trajectory, CompareError> {
+        let mut env = build_env::<B>(label, self.model.clone(), self.config.clone())?;
+        run_script(label, &mut env, self.spec.seed, None, &source.first.actions)
+    }
+
+    /// The report of `sides` (each ran this plan) and of the replays of the first side's
+    /// actions (`replays[k]` on the engine of `sides[k]`; empty when not replayed).
+    pub fn report(&self, sides: &[PolicySide], replays: &[Trajectory]) -> PolicyReport {
+        let pairs = pairs_of(sides);
+        let replay = sides.first().filter(|_| !replays.is_empty()).map(|src| {
+            let runs = replays
+                .iter()
+                .map(|r| {
+                    let d = compare_trajectories(&src.first, r);
+                    let outcome = EpisodeOutcome::of(1, r);
+                    ReplayRun {
+                        label: r.label.clone(),
+                        steps: outcome.steps,
+                        ret: outcome.ret,
+                        end_reasons: outcome.end_reasons,
+                        distance_walked_m: outcome.distance_walked_m,
+                        travel_m: outcome.travel_m,
+                        trunk_position: d.trunk_position,
+                        joint_angles: d.joint_angles,
+                    }
+                })
+                .collect();
+            ReplayReport {
+                source: src.label.clone(),
+                actions: src.first.end_step,
+                runs,
+            }
+        });
+        let traces = sides
+            .iter()
+            .map(|s| Trace::of(&s.first))
+            .chain(replays.iter().map(Trace::of))
+            .collect();
+        PolicyReport {
+            robot: self.model.name().to_owned(),
+            policy: self.spec.policy.clone(),
+            seed: self.spec.seed,
+            episodes: self.spec.episodes,
+            max_steps: self.config.task.max_time_steps,
+            env_dt_s: self.config.env_dt(),
+            configuration: self.spec.configuration.clone(),
+            sides: sides.iter().map(side_report).collect(),
+            pairs,
+            replay,
+            traces,
+        }
+    }
+}
+
+fn side_report(s: &PolicySide) -> PolicySideReport {
+    let e = &s.episodes;
+    let mut ends: Vec<(String, u32)> = Vec::new();
+    for o in e {
+        let name = o
+            .end_reasons
+            .iter()
+            .map(|r| r.as_str())
+            .collect::<Vec<_>>()
+            .join("+");
+        let name = if name.is_empty() {
+            "none".to_owned()
+        } else {
+            name
+        };
+        match ends.iter_mut().find(|(n, _)| *n == name) {
+            Some((_, c)) => *c += 1,
+            None => ends.push((name, 1)),
+        }
+    }
+    ends.sort();
+    PolicySideReport {
+        label: s.label.clone(),
+        engine: s.first.engine.to_owned(),
+        distance_walked_m: Stats::of(e.iter().map(|o| o.distance_walked_m)),
+        travel_m: Stats::of(e.iter().map(|o| o.travel_m)),
+        final_distance_m: Stats::of(e.iter().map(|o| o.final_distance_m)),
+        ret: Stats::of(e.iter().map(|o| o.ret)),
+        steps: Stats::of(e.iter().map(|o| o.steps as f64)),
+        ended_by: ends
+            .into_iter()
+            .map(|(reasons, episodes)| EndCount { reasons, episodes })
+            .collect(),
+        episodes: e.clone(),
+    }
+}
+
+fn pairs_of(sides: &[PolicySide]) -> Vec<PolicyPair> {
+    let mut pairs = Vec::new();
+    for i in 0..sides.len() {
+        for j in i + 1..sides.len() {
+            let (a, b) = (&sides[i], &sides[j]);
+            let d = compare_trajectories(&a.first, &b.first);
+            let apart = |m: f64| {
+                d.series[0]
+                    .iter()
+                    .position(|e| *e >= m || e.is_nan())
+                    .map(|t| t as f64 * a.first.env_dt)
+            };
+            let (sa, sb) = (side_report(a), side_report(b));
+            pairs.push(PolicyPair {
+                labels: [a.label.clone(), b.label.clone()],
+                samples: d.samples,
+                trunk_position: d.trunk_position,
+                trunk_orientation: d.trunk_orientation,
+                joint_angles: d.joint_angles,
+                apart_1cm_s: apart(APART_M[0]),
+                apart_10cm_s: apart(APART_M[1]),
+                distance_walked_gap_m: sb.distance_walked_m.mean - sa.distance_walked_m.mean,
+                travel_gap_m: sb.travel_m.mean - sa.travel_m.mean,
+                return_gap: sb.ret.mean - sa.ret.mean,
+                divergence_m: d.series[0].clone(),
+            });
+        }
+    }
+    pairs
+}
+
+/// Mean, sample standard deviation, min and max of some episodes' values.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct Stats {
+    /// Mean.
+    pub mean: f64,
+    /// Sample standard deviation (0 for one episode).
+    pub sd: f64,
+    /// Smallest.
+    pub min: f64,
+    /// Largest.
+    pub max: f64,
+}
+
+impl Stats {
+    fn of(values: impl Iterator<Item = f64> + Clone) -> Self {
+        let n = values.clone().count();
+        if n == 0 {
+            return Self::default();
+        }
+        let mean = values.clone().sum::<f64>() / n as f64;
+        let sd = if n > 1 {
+            (values.clone().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1) as f64).sqrt()
+        } else {
+            0.0
+        };
+        let (min, max) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        });
+        Self { mean, sd, min, max }
+    }
+}
+
+/// How many episodes ended for a set of reasons.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct EndCount {
+    /// The reasons, joined with `+` (`timeout`, `fell`, `fell+joint_limit`).
+    pub reasons: String,
+    /// Episodes.
+    pub episodes: u32,
+}
+
+/// One engine's episodes, summarised.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PolicySideReport {
+    /// The label.
+    pub label: String,
+    /// The engine (`Backend::NAME`).
+    pub engine: String,
+    /// K − D^T (m).
+    pub distance_walked_m: Stats,
+    /// Trunk travel along the start-to-goal direction (m).
+    pub travel_m: Stats,
+    /// D^T (m).
+    pub final_distance_m: Stats,
+    /// The return.
+    #[serde(rename = "return")]
+    pub ret: Stats,
+    /// Steps per episode.
+    pub steps: Stats,
+    /// How the episodes ended.
+    pub ended_by: Vec<EndCount>,
+    /// Every episode.
+    pub episodes: Vec<EpisodeOutcome>,
+}
+
+/// Two engines' first episodes over time, and the gap between their episode means.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PolicyPair {
+    /// The two labels.
+    pub labels: [String; 2],
+    /// Samples both first episodes lived through (reset + steps).
+    pub samples: usize,
+    /// Trunk position divergence (m).
+    pub trunk_position: Divergence,
+    /// Trunk orientation divergence (rad).
+    pub trunk_orientation: Divergence,
+    /// Worst joint's angle divergence (rad).
+    pub joint_angles: Divergence,
+    /// When the two trunks were first 1 cm apart (s); absent if never.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub apart_1cm_s: Option<f64>,
+    /// When they were first 10 cm apart (s); absent if never.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub apart_10cm_s: Option<f64>,
+    /// Mean K − D^T of the second minus the first (m).
+    pub distance_walked_gap_m: f64,
+    /// Mean travel of the second minus the first (m).
+    pub travel_gap_m: f64,
+    /// Mean return of the second minus the first.
+    pub return_gap: f64,
+    /// e_p(t) of the first episodes, per sample (m).
+    #[serde(skip)]
+    pub divergence_m: Vec<f64>,
+}
+
+/// The first engine's first-episode actions replayed open loop on every engine.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ReplayReport {
+    /// The engine whose closed-loop actions are replayed.
+    pub source: String,
+    /// Actions replayed (the source episode's steps).
+    pub actions: u64,
+    /// Per engine, the first one (the source itself) included.
+    pub runs: Vec<ReplayRun>,
+}
+
+/// One engine under the replayed actions.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ReplayRun {
+    /// The engine's label.
+    pub label: String,
+    /// Steps taken (fewer than the actions if the episode ended first).
+    pub steps: u64,
+    /// The return.
+    #[serde(rename = "return")]
+    pub ret: f64,
+    /// How it ended.
+    pub end_reasons: Vec<Reason>,
+    /// K − D^T (m).
+    pub distance_walked_m: f64,
+    /// Trunk travel along the start-to-goal direction (m).
+    pub travel_m: f64,
+    /// Trunk position against the source's closed-loop first episode (m).
+    pub trunk_position: Divergence,
+    /// Worst joint's angle against it (rad).
+    pub joint_angles: Divergence,
+}
+
+/// A first episode's trunk position over time, thinned to at most
+/// [`crate::SERIES_POINTS`] + 1 points in the JSON file.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Trace {
+    /// The run's label.
+    pub label: String,
+    /// Time (s).
+    pub time_s: Vec<f64>,
+    /// Trunk x, y, z (m).
+    pub position_m: Vec<[f64; 3]>,
+}
+
+impl Trace {
+    fn of(t: &Trajectory) -> Self {
+        Self {
+            label: t.label.clone(),
+            time_s: (0..t.len()).map(|k| k as f64 * t.env_dt).collect(),
+            position_m: t.positions.clone(),
+        }
+    }
+
+    fn thinned(&self) -> Self {
+        let idx = thin(self.time_s.len());
+        Self {
+            label: self.label.clone(),
+            time_s: idx.iter().map(|&i| self.time_s[i]).collect(),
+            position_m: idx.iter().map(|&i| self.position_m[i]).collect(),
+        }
+    }
+}
+
+/// A policy comparison (see the module docs).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PolicyReport {
+    /// The robot's name.
+    pub robot: String,
+    /// The policy as named.
+    pub policy: String,
+    /// The first reset's seed.
+    pub seed: u64,
+    /// Episodes per engine.
+    pub episodes: u32,
+    /// t_max (env steps).
+    pub max_steps: u64,
+    /// Δt_env (s).
+    pub env_dt_s: f64,
+    /// The configuration as applied (`key=value (source)`).
+    pub configuration: Vec<String>,
+    /// Per engine.
+    pub sides: Vec<PolicySideReport>,
+    /// Per pair of engines, in the order (1, 2), (1, 3), (2, 3).
+    pub pairs: Vec<PolicyPair>,
+    /// The open-loop replay; absent when not run (the `delta` action mode).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub replay: Option<ReplayReport>,
+    /// The first episodes' trunk positions: every engine closed loop, then every replay.
+    pub traces: Vec<Trace>,
+}
+
+impl PolicyReport {
+    /// The report as pretty JSON, its traces thinned.
+    pub fn to_json(&self) -> String {
+        let mut thinned = self.clone();
+        thinned.traces = self.traces.iter().map(Trace::thinned).collect();
+        match serde_json::to_string_pretty(&thinned) {
+            Ok(s) => s,
+            // Numbers, strings, bools and lists of those; a non-finite number becomes null.
+            Err(e) => unreachable!("a policy report serialises to JSON: {e}"),
+        }
+    }
+
+    /// Writes `report.json`, `report.md` and `trunk_x_z.png` into `dir` (created if missing);
+    /// returns the three paths.
+    pub fn write(
+        &self,
+        dir: impl AsRef<Path>,
+        command: &str,
+    ) -> Result<[PathBuf; 3], CompareError> {
+        let dir = dir.as_ref();
+        prepare_output_dir(dir)?;
+        let json = dir.join(JSON_FILE);
+        let md = dir.join(MARKDOWN_FILE);
+        let png = dir.join(PLOT_FILE);
+        let write = |path: &Path, text: String| {
+            std::fs::write(path, text).map_err(|e| CompareError::Output {
+                path: path.to_owned(),
+                message: e.to_string(),
+            })
+        };
+        write(&json, self.to_json() + "\n")?;
+        write(&md, self.to_markdown(command))?;
+        crate::plot::plot_policy(self, &png)?;
+        Ok([json, md, png])
+    }
+
+    /// The Markdown report; `command` is the command line that produced it.
+    pub fn to_markdown(&self, command: &str) -> String {
+        let mut m = String::new();
+        let w = &mut m;
+        let labels: Vec<&str> = self.sides.iter().map(|s| s.label.as_str()).collect();
+        // Writing into a String cannot fail.
+        let _ = writeln!(
+            w,
+            "# Policy comparison: {}, policy `{}`\n",
+            labels.join(" vs "),
+            self.policy
+        );
+        let _ = writeln!(w, "Robot: `{}`.\n", self.robot);
+        let _ = writeln!(w, "```\n{command}\n```\n");
+        let _ = writeln!(
+            w,
+            "Closed loop: on each engine the policy acts on that engine's own observations. {} episode(s) per engine, the first reset seeded with {} and the later ones continuing its streams (as `hyq run --episodes {} --seed {}`), at most {} env steps of {} s each.\n",
+            self.episodes, self.seed, self.episodes, self.seed, self.max_steps, self.env_dt_s
+        );
+        if !self.configuration.is_empty() {
+            let _ = writeln!(w, "Configuration on every engine:\n");
+            for c in &self.configuration {
+                let _ = writeln!(w, "- `{c}`");
+            }
+            let _ = writeln!(w);
+        }
+        let _ = writeln!(
+            w,
+            "**Not judged against the ledger.** Closed-loop runs part by nature (every difference changes the next observation and so the next action), so no tolerance fits them: this report states the gap, it does not pass or fail. The ledger judges identical action scripts (`--scenario`).\n"
+        );
+
+        let _ = writeln!(w, "## Per engine ({} episodes each)\n", self.episodes);
+        let _ = writeln!(w, "| | {} |", labels.join(" | "));
+        let _ = writeln!(w, "|---|{}", "---|".repeat(labels.len()));
+        let mut row = |name: &str, f: &dyn Fn(&PolicySideReport) -> String| {
+            let cells: Vec<String> = self.sides.iter().map(f).collect();
+            let _ = writeln!(w, "| {name} | {} |", cells.join(" | "));
+        };
+        let spread =
+            |s: &Stats| format!("{:.3} ± {:.3} [{:.3}, {:.3}]", s.mean, s.sd, s.min, s.max);
+        row("K − D^T (m): mean ± sd [min, max]", &|s| {
+            spread(&s.distance_walked_m)
+        });
+        row("trunk travel toward the goal (m)", &|s| spread(&s.travel_m));
+        row("D^T (m), mean", &|s| {
+            format!("{:.3}", s.final_distance_m.mean)
+        });
+        row("return, mean ± sd", &|s| {
+            format!("{:.3} ± {:.3}", s.ret.mean, s.ret.sd)
+        });
+        row("steps, mean", &|s| format!("{:.1}", s.steps.mean));
+        row("ended by", &|s| {
+            s.ended_by
+                .iter()
+                .map(|e| format!("{} {}", e.reasons, e.episodes))
+                .collect::<Vec<_>>()
+                .join(", ")
+        });
+
+        let _ = writeln!(w, "\n## Per pair\n");
+        let _ = writeln!(
+            w,
+            "The first episodes over time (same first reset on both engines), and the gap between the engines' episode means (second minus first).\n"
+        );
+        let _ = writeln!(
+            w,
+            "| pair | trunk position RMS / max | orientation RMS / max | worst joint RMS / max | 1 cm apart at | 10 cm apart at | K − D^T gap | travel gap | return gap |\n|---|---|---|---|---|---|---|---|---|"
+        );
+        let when = |t: Option<f64>| t.map_or("never".to_owned(), |t| format!("{t:.2} s"));
+        for p in &self.pairs {
+            let _ = writeln!(
+                w,
+                "| {} vs {} | {} / {} m | {} / {} rad | {} / {} rad | {} | {} | {:+.3} m | {:+.3} m | {:+.3} |",
+                p.labels[0],
+                p.labels[1],
+                sig(p.trunk_position.rms),
+                sig(p.trunk_position.max),
+                sig(p.trunk_orientation.rms),
+                sig(p.trunk_orientation.max),
+                sig(p.joint_angles.rms),
+                sig(p.joint_angles.max),
+                when(p.apart_1cm_s),
+                when(p.apart_10cm_s),
+                p.distance_walked_gap_m,
+                p.travel_gap_m,
+                p.return_gap
+            );
+        }
+
+        let _ = writeln!(
+            w,
+            "\n## Open loop: {} actions replayed\n",
+            self.replay_title()
+        );
+        match &self.replay {
+            None => {
+                let _ = writeln!(
+                    w,
+                    "Not run: in the `delta` action mode the same actions give targets that depend on each engine's joint angles."
+                );
+            }
+            Some(r) => {
+                let _ = writeln!(
+                    w,
+                    "{}'s first episode ({} actions) fed unchanged to every engine from the same first reset, no policy in the loop: what each engine's physics does with the very same actions. The replay on {} itself must match its closed-loop run exactly (a check of the replay).\n",
+                    r.source, r.actions, r.source
+                );
+                let _ = writeln!(
+                    w,
+                    "| engine | steps | ended by | K − D^T | trunk travel | return | trunk position vs {}'s closed loop, RMS / max | worst joint, RMS / max |\n|---|---|---|---|---|---|---|---|",
+                    r.source
+                );
+                for run in &r.runs {
+                    let _ = writeln!(
+                        w,
+                        "| {} | {} | {} | {:.3} m | {:.3} m | {:.3} | {} / {} m | {} / {} rad |",
+                        run.label,
+                        run.steps,
+                        reasons(&run.end_reasons),
+                        run.distance_walked_m,
+                        run.travel_m,
+                        run.ret,
+                        sig(run.trunk_position.rms),
+                        sig(run.trunk_position.max),
+                        sig(run.joint_angles.rms),
+                        sig(run.joint_angles.max)
+                    );
+                }
+            }
+        }
+
+        let _ = writeln!(w, "\n## Episodes\n");
+        let _ = writeln!(
+            w,
+            "| engine | episode | steps | return | K − D^T | trunk travel | D^T | ended by |\n|---|---|---|---|---|---|---|---|"
+        );
+        for s in &self.sides {
+            for e in &s.episodes {
+                let _ = writeln!(
+                    w,
+                    "| {} | {} | {} | {:.3} | {:.3} m | {:.3} m | {:.3} m | {} |",
+                    s.label,
+                    e.episode,
+                    e.steps,
+                    e.ret,
+                    e.distance_walked_m,
+                    e.travel_m,
+                    e.final_distance_m,
+                    reasons(&e.end_reasons)
+                );
+            }
+        }
+        let _ = writeln!(
+            w,
+            "\n## Plot\n\n![first episode: trunk x per engine, closed loop and replayed; trunk position divergence per pair]({PLOT_FILE})"
+        );
+        m
+    }
+
+    fn replay_title(&self) -> String {
+        match &self.replay {
+            Some(r) => format!("{}'s", r.source),
+            None => "the first engine's".to_owned(),
+        }
+    }
+}
+
+fn reasons(r: &[Reason]) -> String {
+    if r.is_empty() {
+        "—".to_owned()
+    } else {
+        r.iter().map(|r| r.as_str()).collect::<Vec<_>>().join(" + ")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Stats, travel};
+
+    #[test]
+    fn travel_is_the_displacement_along_the_start_to_goal_direction() {
+        // Goal 5 m along +x: a step of (3, 4) counts 3 m, a step past the goal keeps counting.
+        assert_eq!(travel([0.0; 3], [3.0, 4.0, 0.2], [5.0, 0.0, 0.5]), 3.0);
+        assert_eq!(
+            travel([1.0, 1.0, 0.0], [8.0, 1.0, 0.0], [6.0, 1.0, 0.0]),
+            7.0
+        );
+        // Backwards is negative; a goal straight above the start gives no direction.
+        assert_eq!(travel([0.0; 3], [0.0, -2.0, 0.0], [0.0, 4.0, 0.0]), -2.0);
+        assert_eq!(travel([0.0; 3], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]), 0.0);
+    }
+
+    #[test]
+    fn stats_are_the_mean_sample_sd_and_range() {
+        let s = Stats::of([1.0, 2.0, 3.0].into_iter());
+        assert_eq!((s.mean, s.sd, s.min, s.max), (2.0, 1.0, 1.0, 3.0));
+        let one = Stats::of([4.0].into_iter());
+        assert_eq!((one.mean, one.sd, one.min, one.max), (4.0, 0.0, 4.0, 4.0));
+    }
+}
