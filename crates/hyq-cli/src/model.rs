@@ -352,7 +352,7 @@ fn render(args: &ModelArgs, model: &RobotModel, config: &EnvConfig) -> Result<St
             mujoco.validate().map_err(|e| usage(e.to_string()))?;
             let options = MjcfOptions {
                 actuators,
-                solver: mujoco.solver_settings(),
+                solver: mujoco,
                 ..MjcfOptions::from_params(&config.physics.params)
             };
             to_mjcf(model, &options)

@@ -2,7 +2,7 @@
 //! `StepRecord` schema, with exactly the documented keys, and full f64 precision: every line
 //! reads back as a `StepRecord` (unknown keys are errors) and writes out again to the same
 //! bytes; `t` counts 1, 2, … within each episode, only an episode's last record is done, and
-//! the records agree with the run's summary (steps per episode, return = Σ reward).
+//! the records agree with the run's summary (the robot, steps per episode, return = Σ reward).
 
 // In tests a failed unwrap is a failed test, with its location.
 #![allow(clippy::unwrap_used)]
@@ -13,7 +13,8 @@ use common::{hyq_ok, scratch};
 use hyq_env::StepRecord;
 use serde_json::Value;
 
-const KEYS: [&str; 16] = [
+const KEYS: [&str; 17] = [
+    "robot",
     "episode",
     "t",
     "obs",
@@ -93,6 +94,11 @@ fn every_step_is_one_record_that_round_trips_bit_for_bit() {
             record.to_json_line(),
             line,
             "full precision: the same bytes back"
+        );
+        assert_eq!(
+            record.robot.as_deref(),
+            summaries[0]["robot"].as_str(),
+            "the record names the summary's robot"
         );
         assert_eq!(
             (

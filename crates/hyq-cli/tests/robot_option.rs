@@ -140,6 +140,7 @@ fn a_third_robot_from_a_profile_path_runs_through_run_bench_and_render() {
             .unwrap(),
     )
     .unwrap();
+    assert_eq!(first["robot"], "anymal_c_8dof");
     // 2·8 joint rows + 2 foot flags + 11 trunk rows; 8 actions.
     assert_eq!(first["obs"].as_array().unwrap().len(), 29);
     assert_eq!(first["action"].as_array().unwrap().len(), 8);

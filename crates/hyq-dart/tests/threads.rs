@@ -1,13 +1,16 @@
 //! Several DART worlds stepping on several threads at once work, and each gives bitwise the
 //! trajectory it gives alone on one thread: the worlds share no mutable state (DART's Bullet
 //! detector has no global state on the step path, unlike its ODE detector).
+//!
+//! The bodies are hyq-physics' `conformance::threads`, run here on the bundled HyQ.
 
-mod common;
+use hyq_dart::{DartBackend, DartOptions};
+use hyq_physics::conformance::fixtures::Robot;
+use hyq_physics::conformance::threads;
 
-use common::{first_difference, hyq, random_trajectory, random_trajectory_from};
-use hyq_dart::DartBackend;
-
-const STEPS: usize = 1500;
+fn hyq() -> Robot {
+    Robot::bundled("hyq")
+}
 
 fn assert_send<T: Send>() {}
 
@@ -18,44 +21,16 @@ fn dart_backend_is_send() {
 
 #[test]
 fn two_worlds_on_two_threads_match_their_single_thread_runs_bitwise() {
-    let seeds = [11_u64, 12];
-    let alone: Vec<Vec<u64>> = seeds
-        .iter()
-        .map(|&s| random_trajectory(&mut hyq(), s, STEPS))
-        .collect();
-    for round in 0..3 {
-        let together: Vec<Vec<u64>> = std::thread::scope(|scope| {
-            let handles: Vec<_> = seeds
-                .iter()
-                .map(|&s| scope.spawn(move || random_trajectory(&mut hyq(), s, STEPS)))
-                .collect();
-            handles
-                .into_iter()
-                .map(|h| h.join().expect("a stepping thread panicked"))
-                .collect()
-        });
-        for (i, (a, b)) in alone.iter().zip(&together).enumerate() {
-            assert_eq!(
-                first_difference(a, b),
-                None,
-                "round {round}: world {i} on its own thread differs from its single-thread run"
-            );
-        }
-    }
-    assert_ne!(
-        alone[0], alone[1],
-        "different seeds must give different runs"
+    threads::two_worlds_on_two_threads_match_their_single_thread_runs_bitwise::<DartBackend>(
+        &hyq(),
+        &DartOptions::default(),
     );
 }
 
 #[test]
 fn a_world_moved_to_another_thread_carries_on_bitwise() {
-    let whole = random_trajectory(&mut hyq(), 5, 2 * STEPS);
-    let mut world = hyq();
-    let mut trace = random_trajectory(&mut world, 5, STEPS);
-    let rest = std::thread::spawn(move || random_trajectory_from(&mut world, 5, STEPS, STEPS))
-        .join()
-        .expect("the other thread panicked");
-    trace.extend(rest);
-    assert_eq!(first_difference(&whole, &trace), None);
+    threads::a_world_moved_to_another_thread_carries_on_bitwise::<DartBackend>(
+        &hyq(),
+        &DartOptions::default(),
+    );
 }

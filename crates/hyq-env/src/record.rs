@@ -3,6 +3,7 @@
 //!
 //! | key | type | meaning |
 //! |---|---|---|
+//! | `robot` | string | the robot's name (its profile's, e.g. `hyq`, `anymal_c`) |
 //! | `episode` | integer | episode number, 1 for the first since the env was built |
 //! | `t` | integer | env steps since reset, 1 for the first step |
 //! | `obs` | 39 numbers | the observation after the step (§3 order) |
@@ -20,6 +21,9 @@
 //!
 //! Numbers are written with full f64 precision (shortest round-trip form): reading a record
 //! back gives the same bits.
+//!
+//! `robot` was added after the other keys: a record written before it has none, and still reads
+//! back (with [`StepRecord::robot`] `None`) and writes out again to the same bytes.
 
 use std::borrow::Cow;
 
@@ -35,6 +39,9 @@ use crate::info::{Reason, Reasons, StepInfo};
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct StepRecord<'a> {
+    /// The robot's name; `None` only for a record written before records named their robot.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub robot: Option<Cow<'a, str>>,
     /// Episode number (1 for the first).
     pub episode: u64,
     /// Env steps since reset (1 for the first step).
@@ -71,11 +78,18 @@ pub struct StepRecord<'a> {
 }
 
 impl<'a> StepRecord<'a> {
-    /// The record of a step taken under `task` from its info, observation and action (`task`
-    /// says which opt-in terms are on, and so written).
-    pub fn new(info: &'a StepInfo, obs: &'a [f64], action: &'a [f64], task: &TaskConfig) -> Self {
+    /// The record of a step of `robot` taken under `task` from its info, observation and
+    /// action (`task` says which opt-in terms are on, and so written).
+    pub fn new(
+        robot: &'a str,
+        info: &'a StepInfo,
+        obs: &'a [f64],
+        action: &'a [f64],
+        task: &TaskConfig,
+    ) -> Self {
         let r = &info.reward;
         Self {
+            robot: Some(Cow::Borrowed(robot)),
             episode: info.episode,
             t: info.t,
             obs: Cow::Borrowed(obs),
@@ -97,7 +111,13 @@ impl<'a> StepRecord<'a> {
 
     /// The record of `env`'s last step, taken with `action`.
     pub fn from_env<B: Backend>(env: &'a Env<B>, action: &'a [f64]) -> Self {
-        Self::new(env.info(), env.observation(), action, &env.config().task)
+        Self::new(
+            env.model().name(),
+            env.info(),
+            env.observation(),
+            action,
+            &env.config().task,
+        )
     }
 
     /// The reasons as a set.

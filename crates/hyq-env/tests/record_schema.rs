@@ -1,13 +1,16 @@
 //! Invariant: the per-step JSONL record has exactly the documented keys (`terms.m_height` only
-//! when the height penalty is configured), its numbers read back to the same bits, its reasons
-//! use the stable names, and unknown keys are refused when reading.
+//! when the height penalty is configured), names the env's robot, its numbers read back to the
+//! same bits, its reasons use the stable names, and unknown keys are refused when reading; a
+//! record written before records named their robot still reads, and writes out to the same
+//! bytes.
 
 mod common;
 
 use common::{reset, scripted};
 use hyq_env::{Reason, StepRecord};
 
-const KEYS: [&str; 16] = [
+const KEYS: [&str; 17] = [
+    "robot",
     "episode",
     "t",
     "obs",
@@ -87,6 +90,8 @@ fn a_record_has_the_schema_keys_and_round_trips_bit_for_bit() {
     assert_eq!(value["reasons"], serde_json::json!(["timeout"]));
     assert_eq!(value["truncated"], serde_json::json!(true));
     assert_eq!(value["t"], serde_json::json!(2));
+    assert_eq!(value["robot"], serde_json::json!(env.model().name()));
+    assert_eq!(value["robot"], serde_json::json!("hyq"));
 
     let back = StepRecord::from_json_line(&line).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(back, record);
@@ -124,4 +129,20 @@ fn reading_refuses_unknown_keys_and_reason_names() {
     let bad_reason = line.replace("\"reasons\":[]", "\"reasons\":[\"tripped\"]");
     assert_ne!(bad_reason, line);
     assert!(StepRecord::from_json_line(&bad_reason).is_err());
+}
+
+#[test]
+fn a_record_without_the_robot_key_reads_and_writes_back_the_same_bytes() {
+    let mut env = scripted(&[]);
+    reset(&mut env, 0);
+    env.step(&[0.0; 12]).unwrap_or_else(|e| panic!("{e}"));
+    let line = StepRecord::from_env(&env, &[0.0; 12]).to_json_line();
+    let old = line.replacen("\"robot\":\"hyq\",", "", 1);
+    assert!(old.starts_with("{\"episode\":1,"), "{old}");
+    let back = StepRecord::from_json_line(&old).unwrap_or_else(|e| panic!("{e}: {old}"));
+    assert_eq!(back.robot, None);
+    assert_eq!(back.to_json_line(), old);
+    let named = StepRecord::from_json_line(&line).unwrap_or_else(|e| panic!("{e}: {line}"));
+    assert_eq!(named.robot.as_deref(), Some("hyq"));
+    assert_eq!(named.to_json_line(), line);
 }

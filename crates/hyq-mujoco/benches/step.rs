@@ -3,70 +3,22 @@
 //! contact flags. Two workloads: standing still on four feet (settled for 1 s first), and
 //! random joint targets redrawn every 10 sub-steps (feet landing and lifting, joints at their
 //! limits; reset to the spawn state when the trunk touches the ground, as an episode would
-//! end), and the cost of `set_state` (which resets all of MuJoCo's data).
+//! end), and the cost of `set_state` (which resets all of MuJoCo's data). The workloads are
+//! hyq-physics' `SubstepWorkloads`, which the DART backend's bench times too.
 //!
 //! Run: `cargo bench -p hyq-mujoco --bench step`.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use hyq_mujoco::{MujocoBackend, MujocoOptions};
-use hyq_physics::conformance::fixtures::Rng;
-use hyq_physics::{Actuator, Backend, PdScratch, PhysicsParams, bundled, pd_substep};
-
-fn hyq() -> MujocoBackend {
-    MujocoBackend::build(
-        bundled::hyq(),
-        &PhysicsParams::default(),
-        &MujocoOptions::default(),
-    )
-    .expect("the bundled HyQ builds on MuJoCo")
-}
+use hyq_physics::conformance::fixtures::{Robot, SubstepWorkloads};
 
 fn step(c: &mut Criterion) {
-    let model = bundled::hyq();
-    let n = model.num_joints();
-    let act = Actuator::new(&model);
-    let mut contacts = vec![false; model.tracked().len()];
+    let robot = Robot::bundled("hyq");
+    let mut w = SubstepWorkloads::<MujocoBackend>::new(&robot, &MujocoOptions::default(), true);
     let mut group = c.benchmark_group("mujoco_substep");
-
-    let mut b = hyq();
-    let mut scratch = PdScratch::new(n);
-    let standing = model.standing_pose().to_vec();
-    for _ in 0..1000 {
-        pd_substep(&mut b, &act, &standing, &mut scratch).expect("standing stays finite");
-    }
-    group.bench_function("standing", |bench| {
-        bench.iter(|| {
-            pd_substep(&mut b, &act, &standing, &mut scratch).expect("standing stays finite");
-            b.contacts(&mut contacts);
-        });
-    });
-
-    let mut b = hyq();
-    let spawn = model.spawn_state();
-    let trunk = model.trunk_tracked_index();
-    let mut targets = standing.clone();
-    let mut rng = Rng::new(0);
-    let mut k = 0_u64;
-    group.bench_function("random_targets", |bench| {
-        bench.iter(|| {
-            if k.is_multiple_of(10) {
-                for (t, j) in targets.iter_mut().zip(model.joints()) {
-                    *t = j.lower + rng.unit() * (j.upper - j.lower);
-                }
-            }
-            k += 1;
-            pd_substep(&mut b, &act, &targets, &mut scratch).expect("random targets stay finite");
-            b.contacts(&mut contacts);
-            if contacts[trunk] {
-                b.set_state(&spawn).expect("the spawn state is valid");
-            }
-        });
-    });
-
-    let mut b = hyq();
-    group.bench_function("set_state", |bench| {
-        bench.iter(|| b.set_state(&spawn).expect("the spawn state is valid"));
-    });
+    group.bench_function("standing", |bench| bench.iter(|| w.standing()));
+    group.bench_function("random_targets", |bench| bench.iter(|| w.random_targets()));
+    group.bench_function("set_state", |bench| bench.iter(|| w.set_state()));
     group.finish();
 }
 

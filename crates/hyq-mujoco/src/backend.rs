@@ -41,7 +41,7 @@ pub fn world_mjcf(
     options.validate()?;
     let mjcf_options = MjcfOptions {
         actuators: Actuators::None,
-        solver: options.solver_settings(),
+        solver: options.clone(),
         autoreset: false,
         ..MjcfOptions::from_params(params)
     };

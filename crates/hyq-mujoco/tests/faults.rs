@@ -9,12 +9,15 @@
 //!   such an error prints it and exits the process);
 //! - the same error while compiling is the model being refused, with MuJoCo's text.
 
-mod common;
-
-use common::{first_difference, hyq, random_trajectory};
 use hyq_mujoco::raw::{Layout, StepError, World, layout};
-use hyq_mujoco::{MujocoOptions, world_mjcf};
+use hyq_mujoco::{MujocoBackend, MujocoOptions, world_mjcf};
+use hyq_physics::conformance::fixtures::{Robot, build_default, first_difference, random_pd_run};
 use hyq_physics::{Backend, PhysicsError, PhysicsParams, bundled};
+
+/// The backend's world of the bundled HyQ at its spawn state.
+fn hyq() -> MujocoBackend {
+    build_default(&Robot::bundled("hyq"), &MujocoOptions::default())
+}
 
 #[test]
 fn exploding_torques_are_a_divergence_with_mujocos_warning_and_the_world_recovers() {
@@ -42,8 +45,8 @@ fn exploding_torques_are_a_divergence_with_mujocos_warning_and_the_world_recover
     world
         .set_state(&model.spawn_state())
         .expect("the spawn state is valid");
-    let replay = random_trajectory(&mut world, 2, 500);
-    let fresh = random_trajectory(&mut hyq(), 2, 500);
+    let replay = random_pd_run(&mut world, 2, 0.0, 0..500);
+    let fresh = random_pd_run(&mut hyq(), 2, 0.0, 0..500);
     assert_eq!(first_difference(&fresh, &replay), None);
 }
 

@@ -6,11 +6,9 @@
 //! - `<position>` servos with the model's gains, driven with the standing pose as targets, stand
 //!   HyQ where the shared PD actuator does (the same law, evaluated by MuJoCo inside its step).
 
-mod common;
-
-use common::Rng;
 use hyq_mujoco::raw::{World, layout};
 use hyq_mujoco::{MujocoBackend, MujocoOptions};
+use hyq_physics::conformance::fixtures::Rng;
 use hyq_physics::mjcf::{Actuators, MjcfOptions, to_mjcf};
 use hyq_physics::{Actuator, Backend, PdScratch, PhysicsParams, bundled, pd_substep};
 
@@ -20,7 +18,7 @@ fn world(actuators: Actuators) -> World {
     let model = bundled::hyq();
     let options = MjcfOptions {
         actuators,
-        solver: MujocoOptions::default().solver_settings(),
+        solver: MujocoOptions::default(),
         ..MjcfOptions::from_params(&PhysicsParams::default())
     };
     let mjcf = to_mjcf(&model, &options).expect("the bundled HyQ has an MJCF");
@@ -53,9 +51,7 @@ fn motors_driven_with_the_shared_torques_reproduce_the_backend_bitwise() {
     let mut targets = model.standing_pose().to_vec();
     for k in 0..2000 {
         if k % 10 == 0 {
-            for (t, j) in targets.iter_mut().zip(model.joints()) {
-                *t = j.lower + rng.unit() * (j.upper - j.lower);
-            }
+            rng.fill_joint_angles(&model, 0.0, &mut targets);
         }
         pd_substep(&mut backend, &act, &targets, &mut scratch).expect("a backend step");
         motors.joint_positions(&mut q);

@@ -2,13 +2,17 @@
 //! trajectory it gives alone on one thread: each world owns its model and data, and the shim's
 //! error handling is per thread. Worlds are also built on several threads at once (MuJoCo's
 //! model compiler keeps process-wide state; the crate compiles one model at a time).
+//!
+//! The bodies shared with the other backends are hyq-physics' `conformance::threads`, run
+//! here on the bundled HyQ; building on several threads at once is MuJoCo's own concern.
 
-mod common;
+use hyq_mujoco::{MujocoBackend, MujocoOptions};
+use hyq_physics::conformance::fixtures::{Robot, build_default, first_difference, random_pd_run};
+use hyq_physics::conformance::threads;
 
-use common::{first_difference, hyq, random_trajectory, random_trajectory_from};
-use hyq_mujoco::MujocoBackend;
-
-const STEPS: usize = 1500;
+fn hyq() -> Robot {
+    Robot::bundled("hyq")
+}
 
 fn assert_send<T: Send>() {}
 
@@ -19,43 +23,23 @@ fn mujoco_backend_is_send() {
 
 #[test]
 fn two_worlds_on_two_threads_match_their_single_thread_runs_bitwise() {
-    let seeds = [11_u64, 12];
-    let alone: Vec<Vec<u64>> = seeds
-        .iter()
-        .map(|&s| random_trajectory(&mut hyq(), s, STEPS))
-        .collect();
-    for round in 0..3 {
-        let together: Vec<Vec<u64>> = std::thread::scope(|scope| {
-            let handles: Vec<_> = seeds
-                .iter()
-                .map(|&s| scope.spawn(move || random_trajectory(&mut hyq(), s, STEPS)))
-                .collect();
-            handles
-                .into_iter()
-                .map(|h| h.join().expect("a stepping thread panicked"))
-                .collect()
-        });
-        for (i, (a, b)) in alone.iter().zip(&together).enumerate() {
-            assert_eq!(
-                first_difference(a, b),
-                None,
-                "round {round}: world {i} on its own thread differs from its single-thread run"
-            );
-        }
-    }
-    assert_ne!(
-        alone[0], alone[1],
-        "different seeds must give different runs"
+    threads::two_worlds_on_two_threads_match_their_single_thread_runs_bitwise::<MujocoBackend>(
+        &hyq(),
+        &MujocoOptions::default(),
     );
 }
 
 #[test]
 fn worlds_built_on_several_threads_at_once_are_all_alike() {
-    let reference = random_trajectory(&mut hyq(), 21, 200);
+    let robot = hyq();
+    let options = MujocoOptions::default();
+    let fresh_run = || {
+        let mut world: MujocoBackend = build_default(&robot, &options);
+        random_pd_run(&mut world, 21, 0.0, 0..200)
+    };
+    let reference = fresh_run();
     let runs: Vec<Vec<u64>> = std::thread::scope(|scope| {
-        let handles: Vec<_> = (0..4)
-            .map(|_| scope.spawn(|| random_trajectory(&mut hyq(), 21, 200)))
-            .collect();
+        let handles: Vec<_> = (0..4).map(|_| scope.spawn(fresh_run)).collect();
         handles
             .into_iter()
             .map(|h| h.join().expect("a building thread panicked"))
@@ -68,12 +52,8 @@ fn worlds_built_on_several_threads_at_once_are_all_alike() {
 
 #[test]
 fn a_world_moved_to_another_thread_carries_on_bitwise() {
-    let whole = random_trajectory(&mut hyq(), 5, 2 * STEPS);
-    let mut world = hyq();
-    let mut trace = random_trajectory(&mut world, 5, STEPS);
-    let rest = std::thread::spawn(move || random_trajectory_from(&mut world, 5, STEPS, STEPS))
-        .join()
-        .expect("the other thread panicked");
-    trace.extend(rest);
-    assert_eq!(first_difference(&whole, &trace), None);
+    threads::a_world_moved_to_another_thread_carries_on_bitwise::<MujocoBackend>(
+        &hyq(),
+        &MujocoOptions::default(),
+    );
 }

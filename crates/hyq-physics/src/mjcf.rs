@@ -11,7 +11,7 @@
 //! What the generator writes, element by element:
 //! - `<compiler>`: radians; inertias taken only from the `<inertial>` elements (never from the
 //!   shapes), no mass or inertia bounds, no rebalancing, no fusing of bodies;
-//! - `<option>`: the time step, gravity and the solver settings of [`SolverSettings`];
+//! - `<option>`: the time step, gravity and the solver settings of [`MujocoOptions`];
 //! - `<default>`: every robot shape has `contype="1" conaffinity="0"` and the ground
 //!   `contype="0" conaffinity="1"`, so robot shapes collide with the ground and never with each
 //!   other; `condim="3"` (sliding friction, no torsional or rolling friction); the friction
@@ -46,8 +46,9 @@
 //! `f64` values of the model.
 //!
 //! Users get this text from the command line: `hyq model --format mjcf [--actuators
-//! position|motor|none]` (crates/hyq-cli) writes it for the bundled HyQ and the configuration
-//! (`--config`, `--set`), with MuJoCo's default solver settings.
+//! position|motor|none]` (crates/hyq-cli) writes it for the chosen robot (`--robot`) and the
+//! configuration (`--config`, `--set`), with the MuJoCo backend's solver settings (the
+//! configuration's `[physics.mujoco]`, [`MujocoOptions::default`] where it sets none).
 
 use std::collections::{HashMap, HashSet};
 use std::fmt::Write as _;
@@ -118,57 +119,6 @@ impl Solver {
     }
 }
 
-/// MuJoCo's solver and contact settings. `Default` is MuJoCo 4.0's own defaults.
-#[derive(Debug, Clone, PartialEq)]
-pub struct SolverSettings {
-    /// Integrator (default: Euler).
-    pub integrator: Integrator,
-    /// Friction cone (default: pyramidal).
-    pub cone: Cone,
-    /// Ratio of frictional to normal constraint impedance; above 1 makes friction stiffer
-    /// (default: 1).
-    pub impratio: f64,
-    /// Constraint solver (default: Newton).
-    pub solver: Solver,
-    /// Maximum solver iterations per step (default: 100).
-    pub iterations: u32,
-    /// Maximum line-search iterations per solver iteration, Newton and CG (default: 50).
-    pub ls_iterations: u32,
-    /// Early-termination tolerance of the solver (default: 1e-8).
-    pub tolerance: f64,
-    /// Iterations of the no-slip post-solver; 0 disables it (default: 0).
-    pub noslip_iterations: u32,
-    /// Contact `solref`: time constant (s) and damping ratio of the contact's reference
-    /// acceleration (default: [0.02, 1]).
-    pub contact_solref: [f64; 2],
-    /// Contact `solimp`: d0, d_width, width (m), midpoint, power of the impedance curve
-    /// (default: [0.9, 0.95, 0.001, 0.5, 2]).
-    pub contact_solimp: [f64; 5],
-    /// Joint-limit `solref` (default: [0.02, 1]).
-    pub limit_solref: [f64; 2],
-    /// Joint-limit `solimp` (default: [0.9, 0.95, 0.001, 0.5, 2]).
-    pub limit_solimp: [f64; 5],
-}
-
-impl Default for SolverSettings {
-    fn default() -> Self {
-        Self {
-            integrator: Integrator::Euler,
-            cone: Cone::Pyramidal,
-            impratio: 1.0,
-            solver: Solver::Newton,
-            iterations: 100,
-            ls_iterations: 50,
-            tolerance: 1e-8,
-            noslip_iterations: 0,
-            contact_solref: [0.02, 1.0],
-            contact_solimp: [0.9, 0.95, 0.001, 0.5, 2.0],
-            limit_solref: [0.02, 1.0],
-            limit_solimp: [0.9, 0.95, 0.001, 0.5, 2.0],
-        }
-    }
-}
-
 /// Who produces the joint torques in the generated model.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Actuators {
@@ -186,90 +136,77 @@ pub enum Actuators {
     Position,
 }
 
-/// MuJoCo-specific settings (`[physics.mujoco]` in an environment's TOML). Each maps to the
-/// MJCF attribute of the same name; the defaults are the project's choice, measured in the
+/// MuJoCo's solver and contact settings: the `<option>` attributes and the contact and
+/// joint-limit `solref`/`solimp` the generator writes, and the MuJoCo backend's
+/// `[physics.mujoco]` table in an environment's TOML. Each field maps to the MJCF attribute of
+/// the same name.
+///
+/// Two sets of values: [`MujocoOptions::default`], the MuJoCo backend's (and `hyq model`'s),
+/// and [`MujocoOptions::mujoco_defaults`], MuJoCo 4.0's own, which differ in three fields;
+/// each field's doc gives both where they differ. The backend's choices are measured in the
 /// hyq-mujoco crate's README (settings table).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct MujocoOptions {
     /// Integrator: `"euler"` (semi-implicit Euler, joint damping implicit) or `"implicitfast"`
-    /// (default: euler, MuJoCo's).
+    /// (implicit in velocity without the Coriolis derivatives) (default: euler, MuJoCo's).
     pub integrator: Integrator,
-    /// Friction cone: `"pyramidal"` or `"elliptic"` (default: pyramidal, MuJoCo's).
+    /// Friction cone: `"pyramidal"` (four edges per contact) or `"elliptic"` (the Coulomb
+    /// cone) (default: pyramidal, MuJoCo's).
     pub cone: Cone,
-    /// Ratio of frictional to normal impedance, ≥ 1 (default: 1, MuJoCo's).
+    /// Ratio of frictional to normal constraint impedance, ≥ 1; above 1 makes friction stiffer
+    /// (default: 1, MuJoCo's).
     pub impratio: f64,
     /// Constraint solver: `"newton"`, `"cg"` or `"pgs"` (default: newton, MuJoCo's).
     pub solver: Solver,
     /// Maximum solver iterations per step (default: 100, MuJoCo's).
     pub iterations: u32,
-    /// Maximum line-search iterations (default: 50, MuJoCo's).
+    /// Maximum line-search iterations per solver iteration, Newton and CG (default: 50,
+    /// MuJoCo's).
     pub ls_iterations: u32,
-    /// Solver tolerance (default: 1e-8, MuJoCo's).
+    /// Early-termination tolerance of the solver (default: 1e-8, MuJoCo's).
     pub tolerance: f64,
-    /// No-slip post-solver iterations; 0 is off (default: 10; MuJoCo's is 0). Without it a
-    /// standing HyQ's feet creep 6 mm in 9 s (14.9 mm with the stiff contacts below).
+    /// Iterations of the no-slip post-solver; 0 disables it (default: 10; MuJoCo's is 0).
+    /// Without it a standing HyQ's feet creep 6 mm in 9 s (14.9 mm with the stiff contacts
+    /// below).
     pub noslip_iterations: u32,
-    /// Ground-contact softness: time constant (s) and damping ratio (default: [0.002, 1]; MuJoCo's
-    /// is [0.02, 1], at which a standing HyQ's feet sink 2.5 mm). MuJoCo raises a time constant
-    /// below two time steps to two time steps.
+    /// Ground-contact `solref`: time constant (s) and damping ratio of the contact's reference
+    /// acceleration (default: [0.002, 1]; MuJoCo's is [0.02, 1], at which a standing HyQ's feet
+    /// sink 2.5 mm). MuJoCo raises a time constant below two time steps to two time steps.
     pub contact_solref: [f64; 2],
-    /// Ground-contact impedance curve: d0, d_width, width (m), midpoint, power (default:
-    /// [0.9, 0.95, 0.001, 0.5, 2], MuJoCo's).
+    /// Ground-contact `solimp`: d0, d_width, width (m), midpoint, power of the impedance curve
+    /// (default: [0.9, 0.95, 0.001, 0.5, 2], MuJoCo's).
     pub contact_solimp: [f64; 5],
-    /// Joint-limit softness: time constant (s) and damping ratio (default: [0.002, 1]; MuJoCo's
-    /// is [0.02, 1], at which joints driven at full torque overshoot their limits by 0.36 rad).
+    /// Joint-limit `solref` (default: [0.002, 1]; MuJoCo's is [0.02, 1], at which joints driven
+    /// at full torque overshoot their limits by 0.36 rad).
     pub limit_solref: [f64; 2],
-    /// Joint-limit impedance curve (default: [0.9, 0.95, 0.001, 0.5, 2], MuJoCo's).
+    /// Joint-limit `solimp` (default: [0.9, 0.95, 0.001, 0.5, 2], MuJoCo's).
     pub limit_solimp: [f64; 5],
 }
 
-impl Default for MujocoOptions {
-    /// MuJoCo's own defaults except three, each measured in the crate's README: stiff ground
-    /// contacts and joint limits (time constant 2 ms, the shortest MuJoCo accepts at a 1 ms
-    /// step) and 10 no-slip iterations, so that HyQ stands where the rigid-contact engines put
-    /// it, does not creep, and its joints overshoot their limits no more than on rapier.
-    fn default() -> Self {
-        let s = SolverSettings::default();
-        Self {
-            integrator: s.integrator,
-            cone: s.cone,
-            impratio: s.impratio,
-            solver: s.solver,
-            iterations: s.iterations,
-            ls_iterations: s.ls_iterations,
-            tolerance: s.tolerance,
-            noslip_iterations: 10,
-            contact_solref: [0.002, 1.0],
-            contact_solimp: s.contact_solimp,
-            limit_solref: [0.002, 1.0],
-            limit_solimp: s.limit_solimp,
-        }
-    }
-}
-
 impl MujocoOptions {
-    /// The settings as the MJCF generator takes them.
-    pub fn solver_settings(&self) -> SolverSettings {
-        SolverSettings {
-            integrator: self.integrator,
-            cone: self.cone,
-            impratio: self.impratio,
-            solver: self.solver,
-            iterations: self.iterations,
-            ls_iterations: self.ls_iterations,
-            tolerance: self.tolerance,
-            noslip_iterations: self.noslip_iterations,
-            contact_solref: self.contact_solref,
-            contact_solimp: self.contact_solimp,
-            limit_solref: self.limit_solref,
-            limit_solimp: self.limit_solimp,
+    /// MuJoCo 4.0's own defaults, the values a model without these attributes gets.
+    pub fn mujoco_defaults() -> Self {
+        Self {
+            integrator: Integrator::Euler,
+            cone: Cone::Pyramidal,
+            impratio: 1.0,
+            solver: Solver::Newton,
+            iterations: 100,
+            ls_iterations: 50,
+            tolerance: 1e-8,
+            noslip_iterations: 0,
+            contact_solref: [0.02, 1.0],
+            contact_solimp: [0.9, 0.95, 0.001, 0.5, 2.0],
+            limit_solref: [0.02, 1.0],
+            limit_solimp: [0.9, 0.95, 0.001, 0.5, 2.0],
         }
     }
 
-    /// Checks every field; the error names the first invalid one (`mujoco.<field>`).
+    /// Checks every field as a key of `[physics.mujoco]`; the error names the first invalid
+    /// one (`mujoco.<field>`).
     pub fn validate(&self) -> Result<(), crate::PhysicsError> {
-        self.solver_settings().validate().map_err(|e| match e {
+        self.check().map_err(|e| match e {
             MjcfError::InvalidOption {
                 field,
                 value,
@@ -287,7 +224,23 @@ impl MujocoOptions {
     }
 }
 
-/// `field` of [`SolverSettings`] as a key of `[physics.mujoco]`.
+impl Default for MujocoOptions {
+    /// The MuJoCo backend's settings: MuJoCo's own defaults except three, each measured in the
+    /// hyq-mujoco crate's README: stiff ground contacts and joint limits (time constant 2 ms,
+    /// the shortest MuJoCo accepts at a 1 ms step) and 10 no-slip iterations, so that HyQ
+    /// stands where the rigid-contact engines put it, does not creep, and its joints overshoot
+    /// their limits no more than on rapier.
+    fn default() -> Self {
+        Self {
+            noslip_iterations: 10,
+            contact_solref: [0.002, 1.0],
+            limit_solref: [0.002, 1.0],
+            ..Self::mujoco_defaults()
+        }
+    }
+}
+
+/// `field` of [`MujocoOptions`] as a key of `[physics.mujoco]`.
 fn table_key(field: &'static str) -> &'static str {
     match field {
         "impratio" => "mujoco.impratio",
@@ -317,15 +270,16 @@ pub struct MjcfOptions {
     /// The actuators.
     pub actuators: Actuators,
     /// Solver and contact settings.
-    pub solver: SolverSettings,
+    pub solver: MujocoOptions,
     /// Let MuJoCo reset the state by itself when it becomes non-finite or huge (its
     /// `autoreset` flag). A simulator that must see and report divergence turns it off.
     pub autoreset: bool,
 }
 
 impl MjcfOptions {
-    /// Options from the engine-independent physics parameters, with MuJoCo's default solver
-    /// settings, no actuator and MuJoCo's automatic reset off.
+    /// Options from the engine-independent physics parameters, with MuJoCo's own default
+    /// solver settings ([`MujocoOptions::mujoco_defaults`]), no actuator and MuJoCo's
+    /// automatic reset off.
     pub fn from_params(params: &PhysicsParams) -> Self {
         Self {
             timestep: params.dt,
@@ -333,7 +287,7 @@ impl MjcfOptions {
             friction: params.ground_friction,
             contact_distance: params.contact_distance,
             actuators: Actuators::None,
-            solver: SolverSettings::default(),
+            solver: MujocoOptions::mujoco_defaults(),
             autoreset: false,
         }
     }
@@ -369,7 +323,7 @@ pub enum MjcfError {
     /// An option is out of its valid range.
     #[error("MJCF option {field} = {value}: {reason}")]
     InvalidOption {
-        /// The option, e.g. `timestep` or `impratio` (a [`SolverSettings`] field).
+        /// The option, e.g. `timestep` or `impratio` (a [`MujocoOptions`] field).
         field: &'static str,
         /// The rejected value, formatted.
         value: String,
@@ -412,13 +366,13 @@ impl MjcfOptions {
                 "must be finite and >= 0 (m)",
             ));
         }
-        self.solver.validate()
+        self.solver.check()
     }
 }
 
-impl SolverSettings {
+impl MujocoOptions {
     /// Checks every setting; the error names the first invalid one by its field name.
-    pub fn validate(&self) -> Result<(), MjcfError> {
+    fn check(&self) -> Result<(), MjcfError> {
         let s = self;
         if !(s.impratio.is_finite() && s.impratio >= 1.0) {
             return Err(invalid("impratio", s.impratio, "must be finite and >= 1"));
@@ -1079,7 +1033,7 @@ mod tests {
             friction: 0.8,
             contact_distance: 0.002,
             actuators: Actuators::None,
-            solver: SolverSettings {
+            solver: MujocoOptions {
                 integrator: Integrator::Implicitfast,
                 cone: Cone::Elliptic,
                 impratio: 10.0,
@@ -1124,6 +1078,30 @@ mod tests {
     }
 
     #[test]
+    fn backend_defaults_are_mujocos_but_for_three_documented_fields() {
+        let mujoco = MujocoOptions::mujoco_defaults();
+        let backend = MujocoOptions::default();
+        assert_eq!(
+            MujocoOptions {
+                noslip_iterations: mujoco.noslip_iterations,
+                contact_solref: mujoco.contact_solref,
+                limit_solref: mujoco.limit_solref,
+                ..backend.clone()
+            },
+            mujoco
+        );
+        assert_eq!(
+            (
+                backend.noslip_iterations,
+                backend.contact_solref,
+                backend.limit_solref
+            ),
+            (10, [0.002, 1.0], [0.002, 1.0])
+        );
+        assert_eq!(MjcfOptions::default().solver, mujoco);
+    }
+
+    #[test]
     fn invalid_options_are_refused_by_name() {
         let base = MjcfOptions::default();
         let cases: Vec<(&str, MjcfOptions)> = vec![
@@ -1144,9 +1122,9 @@ mod tests {
             (
                 "impratio",
                 MjcfOptions {
-                    solver: SolverSettings {
+                    solver: MujocoOptions {
                         impratio: 0.5,
-                        ..SolverSettings::default()
+                        ..MujocoOptions::mujoco_defaults()
                     },
                     ..base.clone()
                 },
@@ -1154,9 +1132,9 @@ mod tests {
             (
                 "contact_solimp",
                 MjcfOptions {
-                    solver: SolverSettings {
+                    solver: MujocoOptions {
                         contact_solimp: [0.9, 1.5, 0.001, 0.5, 2.0],
-                        ..SolverSettings::default()
+                        ..MujocoOptions::mujoco_defaults()
                     },
                     ..base.clone()
                 },
@@ -1164,9 +1142,9 @@ mod tests {
             (
                 "limit_solref",
                 MjcfOptions {
-                    solver: SolverSettings {
+                    solver: MujocoOptions {
                         limit_solref: [0.0, 1.0],
-                        ..SolverSettings::default()
+                        ..MujocoOptions::mujoco_defaults()
                     },
                     ..base.clone()
                 },

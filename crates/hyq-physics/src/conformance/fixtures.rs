@@ -3,6 +3,7 @@
 //! recording trajectories bit for bit. Every helper panics with the backend's name on failure
 //! (they are for tests and benches, where a failure is the report).
 
+use std::ops::Range;
 use std::path::Path;
 use std::sync::Arc;
 
@@ -13,6 +14,7 @@ use rand_chacha::ChaCha8Rng;
 use crate::actuator::{Actuator, PdScratch, pd_substep};
 use crate::backend::{Backend, PhysicsParams, RobotState};
 use crate::bundled;
+use crate::error::PhysicsError;
 use crate::model::RobotModel;
 use crate::profile::Profile;
 
@@ -252,22 +254,164 @@ pub fn record<B: Backend>(b: &B, out: &mut Vec<u64>) {
     out.extend(read_contacts(b).iter().map(|&c| u64::from(c)));
 }
 
-/// A PD run with targets drawn inside the limits, redrawn every 10 sub-steps, recorded bitwise.
-pub fn random_pd_trajectory<B: Backend>(b: &mut B, seed: u64, steps: usize) -> Vec<u64> {
-    let model = Arc::clone(b.model());
-    let act = Actuator::new(&model);
-    let mut scratch = PdScratch::new(model.num_joints());
-    let mut rng = Rng::new(seed);
-    let mut targets = model.standing_pose().to_vec();
-    let mut out = Vec::new();
-    for i in 0..steps {
-        if i % 10 == 0 {
-            targets = rng.joint_angles(&model, 0.05);
+/// PD sub-steps the way the environment takes them (the shared actuator's torques, then one
+/// step), towards the standing pose or towards random targets redrawn every 10 sub-steps (one
+/// env step). Owns its actuator, scratch and targets, so a sub-step allocates nothing (the
+/// backends' benchmarks time it).
+pub struct PdDriver {
+    model: Arc<RobotModel>,
+    actuator: Actuator,
+    scratch: PdScratch,
+    targets: Vec<f64>,
+    /// The stream and the margin (rad) inside the limits of random targets; `None` holds the
+    /// standing pose.
+    random: Option<(Rng, f64)>,
+    /// Sub-steps taken or skipped so far.
+    count: usize,
+}
+
+impl PdDriver {
+    /// Holds `model`'s standing pose.
+    pub fn standing(model: &Arc<RobotModel>) -> Self {
+        Self {
+            model: Arc::clone(model),
+            actuator: Actuator::new(model),
+            scratch: PdScratch::new(model.num_joints()),
+            targets: model.standing_pose().to_vec(),
+            random: None,
+            count: 0,
         }
-        step_pd(b, &act, &targets, &mut scratch);
+    }
+
+    /// Targets drawn from [`Rng`]`::new(seed)`, uniformly inside the joint limits and `margin`
+    /// (rad) away from them ([`Rng::fill_joint_angles`]), before the first sub-step and every
+    /// 10 sub-steps after it.
+    pub fn random(model: &Arc<RobotModel>, seed: u64, margin: f64) -> Self {
+        Self {
+            random: Some((Rng::new(seed), margin)),
+            ..Self::standing(model)
+        }
+    }
+
+    /// Advances the targets by `n` sub-steps without stepping anything: a driver that skipped
+    /// `n` continues the run of one that took them, for a world that already ran them.
+    pub fn skip(&mut self, n: usize) {
+        for _ in 0..n {
+            self.next_targets();
+        }
+    }
+
+    /// One PD sub-step towards the current targets (redrawn first when due).
+    pub fn substep<B: Backend>(&mut self, b: &mut B) -> Result<(), PhysicsError> {
+        self.next_targets();
+        pd_substep(b, &self.actuator, &self.targets, &mut self.scratch)
+    }
+
+    fn next_targets(&mut self) {
+        if let Some((rng, margin)) = &mut self.random
+            && self.count.is_multiple_of(10)
+        {
+            rng.fill_joint_angles(&self.model, *margin, &mut self.targets);
+        }
+        self.count += 1;
+    }
+}
+
+/// The sub-step workloads of the backends' benchmarks (`benches/step.rs`), each on a world of
+/// its own, the bundled robot at its spawn state: one call is one timed iteration, and
+/// allocates nothing.
+pub struct SubstepWorkloads<B: Backend> {
+    standing_world: B,
+    standing: PdDriver,
+    random_world: B,
+    random: PdDriver,
+    reset_on_fall: bool,
+    reset_world: B,
+    spawn: RobotState,
+    contacts: Vec<bool>,
+    trunk: usize,
+}
+
+impl<B: Backend> SubstepWorkloads<B> {
+    /// The three worlds of `robot` on `B` with `options`; the standing one settles for 1 s
+    /// first. With `reset_on_fall`, the random-target world is set back to the spawn state
+    /// whenever the trunk touches the ground, as an episode would end.
+    pub fn new(robot: &Robot, options: &B::Options, reset_on_fall: bool) -> Self {
+        let model = &robot.model;
+        let mut standing_world: B = build_default(robot, options);
+        let mut standing = PdDriver::standing(model);
+        for _ in 0..steps_for(&PhysicsParams::default(), 1.0) {
+            standing
+                .substep(&mut standing_world)
+                .unwrap_or_else(|e| panic!("{} failed to stand: {e}", B::NAME));
+        }
+        Self {
+            standing_world,
+            standing,
+            random_world: build_default(robot, options),
+            random: PdDriver::random(model, 0, 0.0),
+            reset_on_fall,
+            reset_world: build_default(robot, options),
+            spawn: model.spawn_state(),
+            contacts: vec![false; model.tracked().len()],
+            trunk: model.trunk_tracked_index(),
+        }
+    }
+
+    /// One PD sub-step holding the standing pose, then the contact flags read.
+    pub fn standing(&mut self) {
+        self.standing
+            .substep(&mut self.standing_world)
+            .unwrap_or_else(|e| panic!("{} failed a standing sub-step: {e}", B::NAME));
+        self.standing_world.contacts(&mut self.contacts);
+    }
+
+    /// One PD sub-step towards random targets anywhere inside the joint limits, redrawn every
+    /// 10 sub-steps (feet landing and lifting, joints at their limits), then the contact flags
+    /// read (and the reset, see [`SubstepWorkloads::new`]).
+    pub fn random_targets(&mut self) {
+        self.random
+            .substep(&mut self.random_world)
+            .unwrap_or_else(|e| panic!("{} failed a random-target sub-step: {e}", B::NAME));
+        self.random_world.contacts(&mut self.contacts);
+        if self.reset_on_fall && self.contacts[self.trunk] {
+            set(&mut self.random_world, &self.spawn);
+        }
+    }
+
+    /// `set_state` to the spawn state.
+    pub fn set_state(&mut self) {
+        set(&mut self.reset_world, &self.spawn);
+    }
+}
+
+/// Sub-steps `steps` (counted from 0) of a PD run towards random targets `margin` (rad) inside
+/// the joint limits ([`PdDriver::random`]), each recorded bitwise after it is taken
+/// ([`record`]). A range starting after 0 continues a run whose first sub-steps this world
+/// already took: `random_pd_run(b, s, m, 0..n)` then `random_pd_run(b, s, m, n..n + k)` equals
+/// `random_pd_run(b, s, m, 0..n + k)`.
+pub fn random_pd_run<B: Backend>(
+    b: &mut B,
+    seed: u64,
+    margin: f64,
+    steps: Range<usize>,
+) -> Vec<u64> {
+    let mut driver = PdDriver::random(b.model(), seed, margin);
+    driver.skip(steps.start);
+    let mut out = Vec::new();
+    for _ in steps {
+        driver
+            .substep(b)
+            .unwrap_or_else(|e| panic!("{} failed a PD sub-step: {e}", B::NAME));
         record(b, &mut out);
     }
     out
+}
+
+/// A PD run with targets drawn 0.05 rad inside the limits, redrawn every 10 sub-steps,
+/// recorded bitwise ([`random_pd_run`] from the first sub-step).
+pub fn random_pd_trajectory<B: Backend>(b: &mut B, seed: u64, steps: usize) -> Vec<u64> {
+    random_pd_run(b, seed, 0.05, 0..steps)
 }
 
 /// Index of the first value where two traces differ (or where one ends early).

@@ -32,13 +32,21 @@
 //! `dynamics.rs` and `api_contract.rs` hold the tests; [`fixtures`] the shared helpers (also
 //! used by the backends' own tests and benches); `independent_fk.rs` a hand-written reading of
 //! the URDF for the forward-kinematics test.
+//!
+//! Beside the suite, [`determinism`] and [`threads`] hold longer runs (thousands of sub-steps
+//! each, on several threads) that a backend crate calls from tests of its own
+//! (`tests/determinism.rs`, `tests/threads.rs`: one `#[test]` per body, the file saying why its
+//! engine keeps the contract) rather than through the macro, which runs once per robot: the
+//! DART and MuJoCo crates run them on HyQ.
 
 mod api_contract;
 mod contacts;
+pub mod determinism;
 mod dynamics;
 pub mod fixtures;
 mod independent_fk;
 mod kinematics;
+pub mod threads;
 
 pub use api_contract::{
     divergence_is_reported_and_recoverable, invalid_params_are_rejected,
