@@ -12,7 +12,9 @@ use crate::compare::{Plan, Side};
 use crate::error::CompareError;
 use crate::ledger::Ledger;
 use crate::metrics::Divergence;
-use crate::report::{JSON_FILE, MARKDOWN_FILE, PLOT_FILE, Report, SideReport, prepare_output_dir};
+use crate::report::{
+    MARKDOWN_FILE, PLOT_FILE, Report, SideReport, prepare_output_dir, write_report_files,
+};
 use crate::scenario::Scenario;
 
 /// One pair's summary in a [`MultiReport`].
@@ -165,23 +167,13 @@ impl MultiReport {
         for (report, pair) in self.reports.iter().zip(&self.pairs) {
             report.write(dir.join(&pair.dir), command)?;
         }
-        let json = dir.join(JSON_FILE);
-        let md = dir.join(MARKDOWN_FILE);
-        let png = dir.join(PLOT_FILE);
-        let write = |path: &Path, text: String| {
-            std::fs::write(path, text).map_err(|e| CompareError::Output {
-                path: path.to_owned(),
-                message: e.to_string(),
-            })
-        };
         let text = match serde_json::to_string_pretty(self) {
             Ok(s) => s,
             Err(e) => unreachable!("a comparison report serialises to JSON: {e}"),
         };
-        write(&json, text + "\n")?;
-        write(&md, self.to_markdown(command))?;
-        crate::plot::plot_many(self, &png)?;
-        Ok([json, md, png])
+        write_report_files(dir, text, self.to_markdown(command), |png| {
+            crate::plot::plot_many(self, png)
+        })
     }
 
     /// The Markdown report; `command` is the command line that produced it.

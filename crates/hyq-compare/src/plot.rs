@@ -120,138 +120,195 @@ fn panel(
 
 /// Draws the report's plot into `path` (PNG, [`PLOT_SIZE`]).
 pub fn plot_trunk_x_z(report: &Report, path: &Path) -> Result<(), CompareError> {
-    let fail = |message: String| CompareError::Plot {
-        path: path.to_owned(),
-        message,
-    };
-    font_registered().map_err(fail)?;
     let s = &report.series;
     let [a, b] = &report.sides;
-    let (width, height) = PLOT_SIZE;
-    let mut rgb = vec![0u8; width as usize * height as usize * 3];
-    {
-        let root = BitMapBackend::with_buffer(&mut rgb, (width, height)).into_drawing_area();
-        let title = format!(
-            "{} vs {}: scenario {}, seed {}",
-            a.label, b.label, report.scenario, report.seed
-        );
-        let drawn = root
-            .fill(&WHITE)
-            .map_err(|e| e.to_string())
-            .and_then(|()| {
-                root.titled(&title, (FAMILY, 22).into_font().color(&INK))
-                    .map_err(|e| e.to_string())
-            })
-            .and_then(|body| {
-                let panels = body.split_evenly((3, 1));
-                panel(
-                    &panels[0],
-                    "trunk x",
-                    "x (m)",
-                    &[
-                        (&a.label, &s.time_s[0], &s.x_m[0]),
-                        (&b.label, &s.time_s[1], &s.x_m[1]),
-                    ],
-                    &COLOURS,
-                )?;
-                panel(
-                    &panels[1],
-                    "trunk z",
-                    "z (m)",
-                    &[
-                        (&a.label, &s.time_s[0], &s.z_m[0]),
-                        (&b.label, &s.time_s[1], &s.z_m[1]),
-                    ],
-                    &COLOURS,
-                )?;
-                panel(
-                    &panels[2],
-                    "trunk position divergence |C_A − C_B|",
-                    "m",
-                    &[("divergence", &s.divergence_time_s, &s.trunk_position_m)],
-                    &[GREEN],
-                )
-            })
-            .and_then(|()| root.present().map_err(|e| e.to_string()));
-        drawn.map_err(fail)?;
-    }
-    write_png(path, &rgb, (width, height)).map_err(|e| fail(e.to_string()))
+    let title = format!(
+        "{} vs {}: scenario {}, seed {}",
+        a.label, b.label, report.scenario, report.seed
+    );
+    let x = [
+        (
+            a.label.as_str(),
+            s.time_s[0].as_slice(),
+            s.x_m[0].as_slice(),
+        ),
+        (
+            b.label.as_str(),
+            s.time_s[1].as_slice(),
+            s.x_m[1].as_slice(),
+        ),
+    ];
+    let z = [
+        (
+            a.label.as_str(),
+            s.time_s[0].as_slice(),
+            s.z_m[0].as_slice(),
+        ),
+        (
+            b.label.as_str(),
+            s.time_s[1].as_slice(),
+            s.z_m[1].as_slice(),
+        ),
+    ];
+    let d = [(
+        "divergence",
+        s.divergence_time_s.as_slice(),
+        s.trunk_position_m.as_slice(),
+    )];
+    plot_panels(
+        path,
+        &title,
+        [
+            Panel::new("trunk x", "x (m)", &x, &COLOURS),
+            Panel::new("trunk z", "z (m)", &z, &COLOURS),
+            Panel::new("trunk position divergence |C_A − C_B|", "m", &d, &[GREEN]),
+        ],
+    )
 }
 
 /// Draws a several-backend report's plot into `path` (PNG, [`PLOT_SIZE`]): every backend's
 /// trunk x and z, and every pair's trunk position divergence.
 pub fn plot_many(report: &MultiReport, path: &Path) -> Result<(), CompareError> {
-    let fail = |message: String| CompareError::Plot {
-        path: path.to_owned(),
-        message,
-    };
-    font_registered().map_err(fail)?;
-    let (width, height) = PLOT_SIZE;
-    let mut rgb = vec![0u8; width as usize * height as usize * 3];
-    {
-        let root = BitMapBackend::with_buffer(&mut rgb, (width, height)).into_drawing_area();
-        let labels: Vec<&str> = report.sides.iter().map(|s| s.label.as_str()).collect();
-        let title = format!(
-            "{}: scenario {}, seed {}",
-            labels.join(" vs "),
-            report.scenario,
-            report.seed
-        );
-        let x: Vec<(&str, &[f64], &[f64])> = labels
-            .iter()
-            .zip(&report.traces)
-            .map(|(l, t)| (*l, t[0].as_slice(), t[1].as_slice()))
-            .collect();
-        let z: Vec<(&str, &[f64], &[f64])> = labels
-            .iter()
-            .zip(&report.traces)
-            .map(|(l, t)| (*l, t[0].as_slice(), t[2].as_slice()))
-            .collect();
-        let names: Vec<String> = report
-            .pairs
-            .iter()
-            .map(|p| format!("{} vs {}", p.labels[0], p.labels[1]))
-            .collect();
-        let d: Vec<(&str, &[f64], &[f64])> = names
-            .iter()
-            .zip(&report.reports)
-            .map(|(n, r)| {
-                (
-                    n.as_str(),
-                    r.series.divergence_time_s.as_slice(),
-                    r.series.trunk_position_m.as_slice(),
-                )
-            })
-            .collect();
-        let drawn = root
-            .fill(&WHITE)
-            .map_err(|e| e.to_string())
-            .and_then(|()| {
-                root.titled(&title, (FAMILY, 22).into_font().color(&INK))
-                    .map_err(|e| e.to_string())
-            })
-            .and_then(|body| {
-                let panels = body.split_evenly((3, 1));
-                panel(&panels[0], "trunk x", "x (m)", &x, &COLOURS)?;
-                panel(&panels[1], "trunk z", "z (m)", &z, &COLOURS)?;
-                panel(
-                    &panels[2],
-                    "trunk position divergence per pair",
-                    "m",
-                    &d,
-                    &PAIR_COLOURS,
-                )
-            })
-            .and_then(|()| root.present().map_err(|e| e.to_string()));
-        drawn.map_err(fail)?;
-    }
-    write_png(path, &rgb, (width, height)).map_err(|e| fail(e.to_string()))
+    let labels: Vec<&str> = report.sides.iter().map(|s| s.label.as_str()).collect();
+    let title = format!(
+        "{}: scenario {}, seed {}",
+        labels.join(" vs "),
+        report.scenario,
+        report.seed
+    );
+    let x: Vec<(&str, &[f64], &[f64])> = labels
+        .iter()
+        .zip(&report.traces)
+        .map(|(l, t)| (*l, t[0].as_slice(), t[1].as_slice()))
+        .collect();
+    let z: Vec<(&str, &[f64], &[f64])> = labels
+        .iter()
+        .zip(&report.traces)
+        .map(|(l, t)| (*l, t[0].as_slice(), t[2].as_slice()))
+        .collect();
+    let names: Vec<String> = report
+        .pairs
+        .iter()
+        .map(|p| format!("{} vs {}", p.labels[0], p.labels[1]))
+        .collect();
+    let d: Vec<(&str, &[f64], &[f64])> = names
+        .iter()
+        .zip(&report.reports)
+        .map(|(n, r)| {
+            (
+                n.as_str(),
+                r.series.divergence_time_s.as_slice(),
+                r.series.trunk_position_m.as_slice(),
+            )
+        })
+        .collect();
+    plot_panels(
+        path,
+        &title,
+        [
+            Panel::new("trunk x", "x (m)", &x, &COLOURS),
+            Panel::new("trunk z", "z (m)", &z, &COLOURS),
+            Panel::new("trunk position divergence per pair", "m", &d, &PAIR_COLOURS),
+        ],
+    )
 }
 
 /// Draws a policy comparison's plot into `path` (PNG, [`PLOT_SIZE`]): every engine's
 /// first-episode trunk x closed loop, the same under the replayed actions, and every pair's
 /// trunk position divergence over the first episodes.
 pub fn plot_policy(report: &PolicyReport, path: &Path) -> Result<(), CompareError> {
+    let labels: Vec<&str> = report.sides.iter().map(|s| s.label.as_str()).collect();
+    let title = format!(
+        "{}: policy, closed loop, seed {}",
+        labels.join(" vs "),
+        report.seed
+    );
+    let xs: Vec<Vec<f64>> = report
+        .traces
+        .iter()
+        .map(|t| t.position_m.iter().map(|p| p[0]).collect())
+        .collect();
+    let lines: Vec<(&str, &[f64], &[f64])> = report
+        .traces
+        .iter()
+        .zip(&xs)
+        .map(|(t, x)| (t.label.as_str(), t.time_s.as_slice(), x.as_slice()))
+        .collect();
+    let (closed, replayed) = lines.split_at(report.sides.len().min(lines.len()));
+    let source = report
+        .replay
+        .as_ref()
+        .map_or(String::new(), |r| format!(" ({}'s actions)", r.source));
+    let names: Vec<String> = report
+        .pairs
+        .iter()
+        .map(|p| format!("{} vs {}", p.labels[0], p.labels[1]))
+        .collect();
+    let times: Vec<Vec<f64>> = report
+        .pairs
+        .iter()
+        .map(|p| {
+            (0..p.divergence_m.len())
+                .map(|k| k as f64 * report.env_dt_s)
+                .collect()
+        })
+        .collect();
+    let d: Vec<(&str, &[f64], &[f64])> = names
+        .iter()
+        .zip(&times)
+        .zip(&report.pairs)
+        .map(|((n, t), p)| (n.as_str(), t.as_slice(), p.divergence_m.as_slice()))
+        .collect();
+    let open_loop = format!("trunk x, open loop{source}");
+    plot_panels(
+        path,
+        &title,
+        [
+            Panel::new(
+                "trunk x, closed loop (first episode)",
+                "x (m)",
+                closed,
+                &COLOURS,
+            ),
+            Panel::new(&open_loop, "x (m)", replayed, &COLOURS),
+            Panel::new(
+                "trunk position divergence per pair, closed loop",
+                "m",
+                &d,
+                &PAIR_COLOURS,
+            ),
+        ],
+    )
+}
+
+/// One of a plot's three stacked panels: its caption, y-axis label, lines (label, times,
+/// values) and their colours.
+struct Panel<'a> {
+    caption: &'a str,
+    y_desc: &'a str,
+    lines: &'a [(&'a str, &'a [f64], &'a [f64])],
+    colours: &'a [RGBColor],
+}
+
+impl<'a> Panel<'a> {
+    fn new(
+        caption: &'a str,
+        y_desc: &'a str,
+        lines: &'a [(&'a str, &'a [f64], &'a [f64])],
+        colours: &'a [RGBColor],
+    ) -> Self {
+        Self {
+            caption,
+            y_desc,
+            lines,
+            colours,
+        }
+    }
+}
+
+/// Draws `title` over three stacked panels into `path` (PNG, [`PLOT_SIZE`]): every
+/// comparison plot's frame.
+fn plot_panels(path: &Path, title: &str, panels: [Panel<'_>; 3]) -> Result<(), CompareError> {
     let fail = |message: String| CompareError::Plot {
         path: path.to_owned(),
         message,
@@ -261,80 +318,20 @@ pub fn plot_policy(report: &PolicyReport, path: &Path) -> Result<(), CompareErro
     let mut rgb = vec![0u8; width as usize * height as usize * 3];
     {
         let root = BitMapBackend::with_buffer(&mut rgb, (width, height)).into_drawing_area();
-        let labels: Vec<&str> = report.sides.iter().map(|s| s.label.as_str()).collect();
-        let title = format!(
-            "{}: policy, closed loop, seed {}",
-            labels.join(" vs "),
-            report.seed
-        );
-        let xs: Vec<Vec<f64>> = report
-            .traces
-            .iter()
-            .map(|t| t.position_m.iter().map(|p| p[0]).collect())
-            .collect();
-        let lines: Vec<(&str, &[f64], &[f64])> = report
-            .traces
-            .iter()
-            .zip(&xs)
-            .map(|(t, x)| (t.label.as_str(), t.time_s.as_slice(), x.as_slice()))
-            .collect();
-        let (closed, replayed) = lines.split_at(report.sides.len().min(lines.len()));
-        let source = report
-            .replay
-            .as_ref()
-            .map_or(String::new(), |r| format!(" ({}'s actions)", r.source));
-        let names: Vec<String> = report
-            .pairs
-            .iter()
-            .map(|p| format!("{} vs {}", p.labels[0], p.labels[1]))
-            .collect();
-        let times: Vec<Vec<f64>> = report
-            .pairs
-            .iter()
-            .map(|p| {
-                (0..p.divergence_m.len())
-                    .map(|k| k as f64 * report.env_dt_s)
-                    .collect()
-            })
-            .collect();
-        let d: Vec<(&str, &[f64], &[f64])> = names
-            .iter()
-            .zip(&times)
-            .zip(&report.pairs)
-            .map(|((n, t), p)| (n.as_str(), t.as_slice(), p.divergence_m.as_slice()))
-            .collect();
-        let drawn = root
-            .fill(&WHITE)
-            .map_err(|e| e.to_string())
-            .and_then(|()| {
-                root.titled(&title, (FAMILY, 22).into_font().color(&INK))
-                    .map_err(|e| e.to_string())
-            })
-            .and_then(|body| {
-                let panels = body.split_evenly((3, 1));
-                panel(
-                    &panels[0],
-                    "trunk x, closed loop (first episode)",
-                    "x (m)",
-                    closed,
-                    &COLOURS,
-                )?;
-                panel(
-                    &panels[1],
-                    &format!("trunk x, open loop{source}"),
-                    "x (m)",
-                    replayed,
-                    &COLOURS,
-                )?;
-                panel(
-                    &panels[2],
-                    "trunk position divergence per pair, closed loop",
-                    "m",
-                    &d,
-                    &PAIR_COLOURS,
-                )
-            })
-            .and_then(|()| root.present().map_err(|e| e.to_string()));
+        let drawn =
+            root.fill(&WHITE)
+                .map_err(|e| e.to_string())
+                .and_then(|()| {
+                    root.titled(title, (FAMILY, 22).into_font().color(&INK))
+                        .map_err(|e| e.to_string())
+                })
+                .and_then(|body| {
+                    let areas = body.split_evenly((3, 1));
+                    areas.iter().zip(&panels).try_for_each(|(area, p)| {
+                        panel(area, p.caption, p.y_desc, p.lines, p.colours)
+                    })
+                })
+                .and_then(|()| root.present().map_err(|e| e.to_string()));
         drawn.map_err(fail)?;
     }
     write_png(path, &rgb, (width, height)).map_err(|e| fail(e.to_string()))

@@ -29,7 +29,7 @@ use serde::Serialize;
 
 use crate::error::CompareError;
 use crate::metrics::{Divergence, compare_trajectories};
-use crate::report::{JSON_FILE, MARKDOWN_FILE, PLOT_FILE, prepare_output_dir, sig, thin};
+use crate::report::{PLOT_FILE, prepare_output_dir, sig, thin, write_report_files};
 use crate::run::{Trajectory, build_env, run_episode, run_script};
 
 /// The most episodes per engine a policy comparison runs.
@@ -529,19 +529,9 @@ impl PolicyReport {
     ) -> Result<[PathBuf; 3], CompareError> {
         let dir = dir.as_ref();
         prepare_output_dir(dir)?;
-        let json = dir.join(JSON_FILE);
-        let md = dir.join(MARKDOWN_FILE);
-        let png = dir.join(PLOT_FILE);
-        let write = |path: &Path, text: String| {
-            std::fs::write(path, text).map_err(|e| CompareError::Output {
-                path: path.to_owned(),
-                message: e.to_string(),
-            })
-        };
-        write(&json, self.to_json() + "\n")?;
-        write(&md, self.to_markdown(command))?;
-        crate::plot::plot_policy(self, &png)?;
-        Ok([json, md, png])
+        write_report_files(dir, self.to_json(), self.to_markdown(command), |png| {
+            crate::plot::plot_policy(self, png)
+        })
     }
 
     /// The Markdown report; `command` is the command line that produced it.

@@ -193,19 +193,9 @@ impl Report {
     ) -> Result<[PathBuf; 3], CompareError> {
         let dir = dir.as_ref();
         prepare_output_dir(dir)?;
-        let json = dir.join(JSON_FILE);
-        let md = dir.join(MARKDOWN_FILE);
-        let png = dir.join(PLOT_FILE);
-        let write = |path: &Path, text: String| {
-            std::fs::write(path, text).map_err(|e| CompareError::Output {
-                path: path.to_owned(),
-                message: e.to_string(),
-            })
-        };
-        write(&json, self.to_json() + "\n")?;
-        write(&md, self.to_markdown(command))?;
-        crate::plot::plot_trunk_x_z(self, &png)?;
-        Ok([json, md, png])
+        write_report_files(dir, self.to_json(), self.to_markdown(command), |png| {
+            crate::plot::plot_trunk_x_z(self, png)
+        })
     }
 
     /// The Markdown report; `command` is the command line that produced it (shown verbatim).
@@ -445,6 +435,32 @@ pub(crate) fn sig(v: f64) -> String {
     } else {
         format!("{v:.3e}")
     }
+}
+
+/// Writes a report's three files into `dir` (already prepared by [`prepare_output_dir`]):
+/// `json` (a newline appended) as [`JSON_FILE`], `markdown` as [`MARKDOWN_FILE`], and the plot
+/// `draw` makes as [`PLOT_FILE`]; returns the three paths in that order.
+pub(crate) fn write_report_files(
+    dir: &Path,
+    json: String,
+    markdown: String,
+    draw: impl FnOnce(&Path) -> Result<(), CompareError>,
+) -> Result<[PathBuf; 3], CompareError> {
+    let paths = [
+        dir.join(JSON_FILE),
+        dir.join(MARKDOWN_FILE),
+        dir.join(PLOT_FILE),
+    ];
+    let write = |path: &Path, text: String| {
+        std::fs::write(path, text).map_err(|e| CompareError::Output {
+            path: path.to_owned(),
+            message: e.to_string(),
+        })
+    };
+    write(&paths[0], json + "\n")?;
+    write(&paths[1], markdown)?;
+    draw(&paths[2])?;
+    Ok(paths)
 }
 
 /// Creates `dir` if needed and checks that a file can be written in it, before any
