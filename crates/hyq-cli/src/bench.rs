@@ -228,6 +228,7 @@ pub struct VecBenchReport {
 }
 
 /// One pass's measurements.
+#[derive(Default)]
 struct Pass {
     wall: Duration,
     cpu: Duration,
@@ -494,18 +495,8 @@ fn pass<B: Backend>(
     let n = env.action_space().len();
     let mut policy = RandomPolicy::new(seed);
     let mut actions = vec![0.0; BLOCK * n];
-    env.set_timing(false);
-    env.clear_timing();
-    env.reset(Some(seed), &ResetOptions::default())
-        .map_err(|e| failure(format!("reset: {e}")))?;
-    env.set_timing(timing);
-    let mut result = Pass {
-        wall: Duration::ZERO,
-        cpu: Duration::ZERO,
-        resets: 0,
-        ended: Ended::default(),
-        timing: StepTiming::default(),
-    };
+    start_pass(env, seed, timing)?;
+    let mut result = Pass::default();
     let mut left = steps;
     while left > 0 {
         let block = left.min(BLOCK as u64) as usize;
@@ -540,6 +531,17 @@ fn pass<B: Backend>(
     Ok(result)
 }
 
+/// Resets `env` with `seed` outside the timing, then turns the per-part timing on or off for
+/// the pass that follows.
+fn start_pass<B: Backend>(env: &mut Env<B>, seed: u64, timing: bool) -> Result<(), Failure> {
+    env.set_timing(false);
+    env.clear_timing();
+    env.reset(Some(seed), &ResetOptions::default())
+        .map_err(|e| failure(format!("reset: {e}")))?;
+    env.set_timing(timing);
+    Ok(())
+}
+
 /// One pass of `steps` env steps from a reset with `seed`, each action chosen by `policy` from
 /// the step's observation inside the timed region.
 fn closed_loop_pass<B: Backend>(
@@ -550,18 +552,8 @@ fn closed_loop_pass<B: Backend>(
     mut policy: MlpPolicy,
 ) -> Result<Pass, Failure> {
     let mut action = vec![0.0; env.action_space().len()];
-    env.set_timing(false);
-    env.clear_timing();
-    env.reset(Some(seed), &ResetOptions::default())
-        .map_err(|e| failure(format!("reset: {e}")))?;
-    env.set_timing(timing);
-    let mut result = Pass {
-        wall: Duration::ZERO,
-        cpu: Duration::ZERO,
-        resets: 0,
-        ended: Ended::default(),
-        timing: StepTiming::default(),
-    };
+    start_pass(env, seed, timing)?;
+    let mut result = Pass::default();
     let cpu0 = cpu_now()?;
     let wall0 = Instant::now();
     for _ in 0..steps {
