@@ -6,7 +6,7 @@
 //!
 //! The model: each joint is a unit inertia driven by its torque and damped by the model's joint
 //! damping, integrated with semi-implicit Euler and stopped at its limits; the trunk moves with
-//! its velocity (no gravity, no ground). After each sub-step every foot reads as touching the
+//! its velocity (no gravity, no ground: a terrain it is given is remembered and ignored). After each sub-step every foot reads as touching the
 //! ground and the trunk as not touching ([`ScriptedOptions::feet_touch`]), then the script, if
 //! any, runs.
 //!
@@ -16,7 +16,9 @@ use std::fmt;
 use std::sync::Arc;
 
 use hyq_physics::na::{Isometry3, UnitQuaternion};
-use hyq_physics::{Backend, PhysicsError, PhysicsParams, RobotModel, RobotState, TrunkState};
+use hyq_physics::{
+    Backend, PhysicsError, PhysicsParams, RobotModel, RobotState, Terrain, TrunkState,
+};
 use serde::{Deserialize, Serialize};
 
 /// Options of [`ScriptedBackend`] (`[physics.scripted]` is not read: use `Default` or
@@ -73,6 +75,8 @@ pub struct ScriptedBackend {
     contacts: Vec<bool>,
     substep: u64,
     script: Option<Script>,
+    /// The terrain last given; the toy model has no ground, so it changes nothing.
+    terrain: Terrain,
 }
 
 impl fmt::Debug for ScriptedBackend {
@@ -143,6 +147,7 @@ impl Backend for ScriptedBackend {
             contacts: vec![false; tracked],
             substep: 0,
             script: None,
+            terrain: Terrain::Flat,
             model,
         })
     }
@@ -229,5 +234,17 @@ impl Backend for ScriptedBackend {
 
     fn total_mass(&self) -> f64 {
         self.model.total_mass()
+    }
+
+    fn terrain(&self) -> &Terrain {
+        &self.terrain
+    }
+
+    fn apply_terrain(&mut self, terrain: &Terrain) -> Result<(), PhysicsError> {
+        self.terrain = terrain.clone();
+        self.torques.fill(0.0);
+        self.contacts.fill(false);
+        self.substep = 0;
+        Ok(())
     }
 }

@@ -19,7 +19,9 @@ use std::sync::Arc;
 use hyq_env::testing::ScriptedBackend;
 use hyq_env::{Env, EnvConfig, Policy, RandomPolicy, ResetOptions};
 use hyq_physics::na::Isometry3;
-use hyq_physics::{Backend, PhysicsError, PhysicsParams, RobotModel, RobotState, TrunkState};
+use hyq_physics::{
+    Backend, PhysicsError, PhysicsParams, RobotModel, RobotState, Terrain, TrunkState,
+};
 use hyq_rapier::RapierBackend;
 
 /// Allocations (and reallocations) made by `f` on this thread. allocation-counter installs a
@@ -90,6 +92,12 @@ impl Backend for Tallied {
     }
     fn total_mass(&self) -> f64 {
         self.inner.total_mass()
+    }
+    fn terrain(&self) -> &Terrain {
+        self.inner.terrain()
+    }
+    fn apply_terrain(&mut self, terrain: &Terrain) -> Result<(), PhysicsError> {
+        self.inner.apply_terrain(terrain)
     }
 }
 

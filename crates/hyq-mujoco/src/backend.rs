@@ -10,7 +10,9 @@ use std::sync::Arc;
 
 use hyq_physics::mjcf::{Actuators, Mjcf, MjcfOptions, to_mjcf};
 use hyq_physics::na::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3};
-use hyq_physics::{Backend, PhysicsError, PhysicsParams, RobotModel, RobotState, TrunkState};
+use hyq_physics::{
+    Backend, PhysicsError, PhysicsParams, RobotModel, RobotState, Terrain, TrunkState,
+};
 
 use crate::error::MujocoError;
 use crate::options::MujocoOptions;
@@ -29,13 +31,23 @@ impl From<MujocoError> for PhysicsError {
     }
 }
 
-/// The MJCF the backend compiles for `model` under `params` and `options` (no actuators: the
-/// backend applies the shared actuator's torques itself). Useful to inspect, or to load the
-/// same world in MuJoCo from elsewhere.
+/// The MJCF the backend compiles for `model` under `params` and `options` on flat ground (no
+/// actuators: the backend applies the shared actuator's torques itself). Useful to inspect, or
+/// to load the same world in MuJoCo from elsewhere.
 pub fn world_mjcf(
     model: &RobotModel,
     params: &PhysicsParams,
     options: &MujocoOptions,
+) -> Result<Mjcf, PhysicsError> {
+    world_mjcf_on(model, params, options, &Terrain::Flat)
+}
+
+/// [`world_mjcf`] on `terrain`: the MJCF the backend compiles once given that ground.
+pub fn world_mjcf_on(
+    model: &RobotModel,
+    params: &PhysicsParams,
+    options: &MujocoOptions,
+    terrain: &Terrain,
 ) -> Result<Mjcf, PhysicsError> {
     params.validate()?;
     options.validate()?;
@@ -43,6 +55,7 @@ pub fn world_mjcf(
         actuators: Actuators::None,
         solver: options.clone(),
         autoreset: false,
+        terrain: terrain.clone(),
         ..MjcfOptions::from_params(params)
     };
     to_mjcf(model, &mjcf_options).map_err(|e| backend_error(e.to_string()))
@@ -76,7 +89,7 @@ fn isometry(p: &[f64; 7]) -> Isometry3<f64> {
     )
 }
 
-/// One HyQ (or any [`RobotModel`]) on flat ground in its own MuJoCo world.
+/// One HyQ (or any [`RobotModel`]) on flat ground or a height field in its own MuJoCo world.
 ///
 /// `Send` (worlds can move between threads, and several worlds can step on several threads at
 /// once) but not `Sync`.
@@ -91,6 +104,10 @@ pub struct MujocoBackend {
     /// Set when the world cannot be stepped until the next state change (a failed state change
     /// or a failed step).
     blocked: Option<String>,
+    /// The solver settings the world was compiled with.
+    options: MujocoOptions,
+    /// The ground the world holds.
+    terrain: Terrain,
 }
 
 impl MujocoBackend {
@@ -124,6 +141,8 @@ impl Backend for MujocoBackend {
             contacts: vec![false; tracked],
             params: params.clone(),
             blocked: None,
+            options: options.clone(),
+            terrain: Terrain::Flat,
             model,
         };
         let spawn = backend.model.spawn_state();
@@ -228,6 +247,24 @@ impl Backend for MujocoBackend {
 
     fn total_mass(&self) -> f64 {
         self.world.total_mass()
+    }
+
+    fn terrain(&self) -> &Terrain {
+        &self.terrain
+    }
+
+    fn apply_terrain(&mut self, terrain: &Terrain) -> Result<(), PhysicsError> {
+        // MuJoCo's height field is part of the compiled model: the world is compiled anew
+        // from the MJCF on the new ground, and the robot put back where it was.
+        let state = self.state();
+        let mjcf = world_mjcf_on(&self.model, &self.params, &self.options, terrain)?;
+        self.world = World::new(&mjcf.xml, &layout(&self.model, &mjcf))?;
+        self.terrain = terrain.clone();
+        self.apply_state(&state);
+        match &self.blocked {
+            Some(reason) => Err(backend_error(reason.clone())),
+            None => Ok(()),
+        }
     }
 }
 

@@ -1,8 +1,8 @@
 //! The physics seam: the [`Backend`] trait every simulator implements, and the plain data that
 //! crosses it ([`PhysicsParams`], [`RobotState`], [`TrunkState`]).
 //!
-//! A backend simulates one robot ([`RobotModel`]) on flat ground at z = 0 (world frame: x
-//! forward, y left, z up). It advances one physics sub-step at a time under joint torques the
+//! A backend simulates one robot ([`RobotModel`]) on the ground (world frame: x forward, y left,
+//! z up): flat at z = 0 as built, or a height field ([`Terrain`]) once given one. It advances one physics sub-step at a time under joint torques the
 //! caller computes (the shared actuator, [`crate::actuator`]), and reports joint state, trunk
 //! state and which tracked bodies (feet, trunk) touched the ground during the last sub-step.
 //!
@@ -19,6 +19,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::PhysicsError;
 use crate::model::RobotModel;
+use crate::terrain::Terrain;
 
 /// Engine-independent physics settings (`[physics]` in an environment's TOML).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -176,7 +177,7 @@ impl RobotState {
     }
 }
 
-/// A physics engine simulating one robot on flat ground.
+/// A physics engine simulating one robot on the ground: flat as built, or a height field.
 ///
 /// Required: the small core below. Provided: validation ([`Backend::set_state`],
 /// [`Backend::set_joint_torques`]) and whole-state reads. A backend:
@@ -263,6 +264,32 @@ pub trait Backend: Sized + Send + 'static {
 
     /// The total mass (kg) of the robot's bodies as the engine holds them.
     fn total_mass(&self) -> f64;
+
+    // -------------------------------------------------------------------------------------
+    // The ground under the robot: flat as built, or a height field.
+    // -------------------------------------------------------------------------------------
+
+    /// The ground this world simulates: [`Terrain::Flat`] (the plane z = 0) after
+    /// [`Backend::build`], else what [`Backend::set_terrain`] last gave.
+    fn terrain(&self) -> &Terrain;
+
+    /// Replaces the ground with `terrain` (different from the current one), keeping the
+    /// robot's state: afterwards the world is as [`Backend::apply_state`] leaves it with the
+    /// state it held (no contact, warm start or pending torque survives). The new ground's
+    /// friction is the robot shapes' ([`PhysicsParams::ground_friction`]); a height field is
+    /// one field built from the whole grid, triangulated as [`crate::HeightGrid`] documents.
+    ///
+    /// Callers use [`Backend::set_terrain`].
+    fn apply_terrain(&mut self, terrain: &Terrain) -> Result<(), PhysicsError>;
+
+    /// Replaces the ground with `terrain` (see [`Backend::apply_terrain`]); giving the ground
+    /// the world already has changes nothing, so a flat world stays exactly as built.
+    fn set_terrain(&mut self, terrain: &Terrain) -> Result<(), PhysicsError> {
+        if self.terrain().same_as(terrain) {
+            return Ok(());
+        }
+        self.apply_terrain(terrain)
+    }
 
     /// Validates `state` against the model and puts the world into it (see
     /// [`Backend::apply_state`]).

@@ -201,4 +201,7 @@ pub enum PhysicsError {
     /// The robot model could not be built.
     #[error(transparent)]
     Model(#[from] ModelError),
+    /// A terrain could not be made or used.
+    #[error(transparent)]
+    Terrain(#[from] crate::terrain::TerrainError),
 }

@@ -11,6 +11,9 @@
 //!   shared code ([`pd_substep`]), so every backend is driven identically.
 //! - [`mjcf`]: the robot as MuJoCo's XML model format, pure text generation (no MuJoCo
 //!   needed), for the MuJoCo backend and for MuJoCo-from-Python benchmarks alike.
+//! - [`terrain`]: the ground: flat, or a height field from one grid of heights (generated
+//!   rough ground, slopes and stairs, or a user's `.npy` or PNG file), the surface every backend
+//!   builds from it, and how far a shape is above it.
 //! - [`urdf_export`]: the loaded robot written back as URDF (fixed links lumped, primitive
 //!   shapes only), for engines and tools outside the project that read URDF.
 //! - [`bundled`]: the robots shipped in `assets/` (HyQ, the default, and ANYmal C), usable from
@@ -32,6 +35,7 @@ pub mod inertia;
 pub mod mjcf;
 pub mod model;
 pub mod profile;
+pub mod terrain;
 pub mod urdf_export;
 
 pub use actuator::{Actuator, PdScratch, apply_pd, apply_pd_to_valid_targets, pd_substep};
@@ -41,6 +45,7 @@ pub use error::{ModelError, PhysicsError};
 pub use model::{Collision, Joint, Link, RobotModel, Shape, TrackedBody};
 pub use model::{Gait, GaitLeg};
 pub use profile::Profile;
+pub use terrain::{HeightGrid, Terrain, TerrainError};
 
 /// The linear-algebra crate of this API (`nalgebra`), re-exported so that callers use the
 /// same version.
