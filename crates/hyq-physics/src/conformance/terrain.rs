@@ -375,10 +375,15 @@ fn stands<B: Backend>(
             );
         }
         b.link_poses(&mut poses);
+        // Each tracked body's first shape's centre: a foot sphere's centre moves only if the
+        // foot slides or rolls.
         let points: Vec<Vector3<f64>> = model
             .tracked()
             .iter()
-            .map(|t| poses[t.link].translation.vector)
+            .map(|t| {
+                let origin = model.links()[t.link].collisions[t.shapes[0]].origin;
+                (poses[t.link] * origin).translation.vector
+            })
             .collect();
         let first = reference.get_or_insert_with(|| points.clone());
         for (t, (p, q)) in points.iter().zip(first.iter()).enumerate() {
