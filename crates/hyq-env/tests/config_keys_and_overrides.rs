@@ -109,8 +109,8 @@ fn a_full_file_reads_every_table() {
 /// written-out configuration and the tables whose keys are checked are the same.
 #[test]
 fn every_registered_table_is_written_read_and_checked() {
-    let written: toml::Table = toml::from_str(&EnvConfig::default().to_toml_string())
-        .unwrap_or_else(|e| panic!("{e}"));
+    let written: toml::Table =
+        toml::from_str(&EnvConfig::default().to_toml_string()).unwrap_or_else(|e| panic!("{e}"));
     let mut tables: Vec<&str> = written.keys().map(String::as_str).collect();
     let mut registered = EnvConfig::TABLES.to_vec();
     tables.sort_unstable();
