@@ -5,13 +5,23 @@
 //! every other backend), without actuators: the shared PD actuator
 //! ([`hyq_physics::pd_substep`]) computes the joint torques, and the backend writes them into
 //! MuJoCo's applied generalized forces for one step.
+//!
+//! Per-episode dynamics ([`Backend::apply_dynamics`]) are written into `mjModel` in place:
+//! every geom's sliding friction (MuJoCo takes the larger of a contact's two, so the ground's
+//! is set too, whatever its shape), each joint's damping, and each body's mass, centre of
+//! mass and principal inertia (diagonalised by MuJoCo's own `mju_eig3`, as its compiler does);
+//! then `mj_setConst` recomputes what MuJoCo derives from masses. A body given the model's own
+//! values gets MuJoCo's compiled ones back bit for bit. A push adds to the free joint's
+//! velocity and recomputes the velocity-dependent terms (`mj_step1`), keeping the contacts and
+//! the warm start.
 
 use std::sync::Arc;
 
 use hyq_physics::mjcf::{Actuators, Mjcf, MjcfOptions, to_mjcf};
 use hyq_physics::na::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3};
 use hyq_physics::{
-    Backend, PhysicsError, PhysicsParams, RobotModel, RobotState, Terrain, TrunkState,
+    Backend, Dynamics, MassProperties, PhysicsError, PhysicsParams, RobotModel, RobotState,
+    Terrain, TrunkState,
 };
 
 use crate::error::MujocoError;
@@ -104,6 +114,12 @@ pub struct MujocoBackend {
     /// Set when the world cannot be stepped until the next state change (a failed state change
     /// or a failed step).
     blocked: Option<String>,
+    /// Set when MuJoCo refused dynamics (which were validated, so unexpectedly): the world
+    /// cannot be stepped until dynamics are given again.
+    refused_dynamics: Option<String>,
+    /// The dynamics last given ([`Backend::apply_dynamics`]), which a new ground keeps;
+    /// `None` while the world has the model's.
+    dynamics: Option<Dynamics>,
     /// The solver settings the world was compiled with.
     options: MujocoOptions,
     /// The ground the world holds.
@@ -111,6 +127,49 @@ pub struct MujocoBackend {
 }
 
 impl MujocoBackend {
+    /// Gives the compiled world the dynamics `dynamics` (see [`Backend::apply_dynamics`]).
+    fn give_dynamics(&mut self, dynamics: &Dynamics) {
+        // A body whose values are the model's own gets MuJoCo's compiled values back bit for
+        // bit (MuJoCo diagonalised the tensor when it compiled the model).
+        let nominal: Vec<bool> = dynamics
+            .bodies
+            .iter()
+            .zip(self.model.links())
+            .map(|(b, l)| b.mass == l.mass && b.com == l.com && b.inertia == l.inertia)
+            .collect();
+        let bodies: Vec<[f64; 10]> = dynamics
+            .bodies
+            .iter()
+            .map(|b| {
+                let i = b.inertia;
+                [
+                    b.mass,
+                    b.com.x,
+                    b.com.y,
+                    b.com.z,
+                    i[(0, 0)],
+                    i[(1, 1)],
+                    i[(2, 2)],
+                    i[(0, 1)],
+                    i[(0, 2)],
+                    i[(1, 2)],
+                ]
+            })
+            .collect();
+        self.refused_dynamics = self
+            .world
+            .set_dynamics(
+                dynamics.ground_friction,
+                &nominal,
+                &bodies,
+                &dynamics.joint_damping,
+            )
+            .err()
+            // The dynamics were validated, so MuJoCo refusing them is unexpected; the trait
+            // gives this method no error channel, so the next step reports it.
+            .map(|e| format!("MuJoCo refused the dynamics: {e}"));
+    }
+
     /// Contacts in MuJoCo's current list whose shapes touch or penetrate the ground (all robot
     /// shapes, tracked or not).
     pub fn num_touching(&self) -> usize {
@@ -141,6 +200,8 @@ impl Backend for MujocoBackend {
             contacts: vec![false; tracked],
             params: params.clone(),
             blocked: None,
+            refused_dynamics: None,
+            dynamics: None,
             options: options.clone(),
             terrain: Terrain::Flat,
             model,
@@ -184,6 +245,11 @@ impl Backend for MujocoBackend {
     }
 
     fn step(&mut self) -> Result<(), PhysicsError> {
+        if let Some(reason) = &self.refused_dynamics {
+            return Err(backend_error(format!(
+                "{reason}; call set_dynamics before stepping again"
+            )));
+        }
         if let Some(reason) = &self.blocked {
             return Err(backend_error(format!(
                 "{reason}; call set_state before stepping again"
@@ -249,19 +315,46 @@ impl Backend for MujocoBackend {
         self.world.total_mass()
     }
 
+    fn apply_dynamics(&mut self, dynamics: &Dynamics) {
+        self.give_dynamics(dynamics);
+        self.dynamics = Some(dynamics.clone());
+    }
+
+    fn body_mass_properties(&self, link: usize) -> MassProperties {
+        let v = self.world.body_inertial(link);
+        MassProperties {
+            mass: v[0],
+            com: Vector3::new(v[1], v[2], v[3]),
+            inertia: hyq_physics::na::Matrix3::new(
+                v[4], v[7], v[8], v[7], v[5], v[9], v[8], v[9], v[6],
+            ),
+        }
+    }
+
+    fn apply_trunk_velocity_change(&mut self, dv: &Vector3<f64>) {
+        if let Err(e) = self.world.add_root_velocity(&[dv.x, dv.y, dv.z]) {
+            // The change was validated (finite); see `apply_state`.
+            self.blocked = Some(format!("the trunk push failed: {e}"));
+        }
+    }
+
     fn terrain(&self) -> &Terrain {
         &self.terrain
     }
 
     fn apply_terrain(&mut self, terrain: &Terrain) -> Result<(), PhysicsError> {
         // MuJoCo's height field is part of the compiled model: the world is compiled anew
-        // from the MJCF on the new ground, and the robot put back where it was.
+        // from the MJCF on the new ground, given the dynamics it had, and the robot put back
+        // where it was.
         let state = self.state();
         let mjcf = world_mjcf_on(&self.model, &self.params, &self.options, terrain)?;
         self.world = World::new(&mjcf.xml, &layout(&self.model, &mjcf))?;
         self.terrain = terrain.clone();
+        if let Some(d) = self.dynamics.clone() {
+            self.give_dynamics(&d);
+        }
         self.apply_state(&state);
-        match &self.blocked {
+        match self.blocked.as_ref().or(self.refused_dynamics.as_ref()) {
             Some(reason) => Err(backend_error(reason.clone())),
             None => Ok(()),
         }

@@ -259,55 +259,153 @@ pub fn contacts_follow_the_grids_triangles<B: Backend>(_robot: &Robot, options: 
     assert_eq!(checked, 96);
 }
 
-/// The field has the ground friction: a block on a 10° slope stays put with friction 1
-/// (within 1 mm over 1 s) and slides down with friction 0.1 (below tan 10° = 0.176: at least
-/// 25 cm in 1 s, where Coulomb's law gives 37 cm).
+/// How the block of [`the_fields_friction_is_the_ground_friction`] gets its friction.
+#[derive(Clone, Copy, Debug)]
+enum FrictionFrom {
+    /// [`PhysicsParams::ground_friction`] at build.
+    Params,
+    /// [`Backend::set_dynamics`] before the ground is given.
+    DynamicsFirst,
+    /// [`Backend::set_dynamics`] after the ground is given.
+    DynamicsAfter,
+}
+
+/// The block resting on `terrain` (10° slope rising along +x) with `friction` given as
+/// `from` says: how far it moves in 1 s after settling for 0.2 s (m).
+fn block_slide<B: Backend>(
+    options: &B::Options,
+    terrain: &Terrain,
+    friction: f64,
+    from: FrictionFrom,
+) -> f64 {
+    let block = block();
+    let params = PhysicsParams {
+        ground_friction: if matches!(from, FrictionFrom::Params) {
+            friction
+        } else {
+            1.0
+        },
+        ..PhysicsParams::default()
+    };
+    let dynamics = crate::randomize::Dynamics {
+        ground_friction: friction,
+        ..crate::randomize::Dynamics::nominal(&block.model, &params)
+    };
+    let mut b: B = build(&block, &params, options);
+    let give = |b: &mut B| {
+        b.set_dynamics(&dynamics)
+            .unwrap_or_else(|e| panic!("{} refused dynamics: {e}", B::NAME));
+    };
+    if matches!(from, FrictionFrom::DynamicsFirst) {
+        give(&mut b);
+    }
+    b.set_terrain(terrain)
+        .unwrap_or_else(|e| panic!("{} refused a terrain: {e}", B::NAME));
+    if matches!(from, FrictionFrom::DynamicsAfter) {
+        give(&mut b);
+    }
+    // Resting flat on the slope, its bottom face 0.5 mm above it.
+    let tilt = UnitQuaternion::from_axis_angle(&Vector3::y_axis(), -10f64.to_radians());
+    let centre = Point3::origin() + tilt * Vector3::z() * (0.05 + 5e-4);
+    let mut s = probe_at(&block, centre);
+    s.trunk.pose.rotation = tilt;
+    set(&mut b, &s);
+    for _ in 0..steps_for(&params, 0.2) {
+        step_zero(&mut b);
+    }
+    let settled = b.trunk().pose.translation.vector;
+    for _ in 0..steps_for(&params, 1.0) {
+        step_zero(&mut b);
+    }
+    (b.trunk().pose.translation.vector - settled).norm()
+}
+
+/// The field has the ground friction, from the physics parameters or from the dynamics given
+/// ([`Backend::set_dynamics`], before or after the field): a block on a 10° slope stays put
+/// with friction 1 (within 1 mm over 1 s) and slides down with friction 0.1 (below
+/// tan 10° = 0.176: at least 25 cm in 1 s, where Coulomb's law gives 37 cm from rest).
 pub fn the_fields_friction_is_the_ground_friction<B: Backend>(
     _robot: &Robot,
     options: &B::Options,
 ) {
-    let block = block();
     let terrain = slope(10.0, 0.0);
-    let tilt = UnitQuaternion::from_axis_angle(&Vector3::y_axis(), -10f64.to_radians());
-    for (friction, holds) in [(1.0, true), (0.1, false)] {
-        let params = PhysicsParams {
-            ground_friction: friction,
-            ..PhysicsParams::default()
-        };
-        let mut b: B = on(&block, &params, options, &terrain);
-        // Resting flat on the slope, its bottom face 0.5 mm above it.
-        let up = tilt * Vector3::z();
-        let centre = Point3::new(0.0, 0.0, 0.0) + up * (0.05 + 5e-4);
-        let mut s = probe_at(&block, centre);
-        s.trunk.pose.rotation = tilt;
-        set(&mut b, &s);
-        for _ in 0..steps_for(&params, 0.2) {
-            step_zero(&mut b);
-        }
-        let settled = b.trunk().pose.translation.vector;
-        for _ in 0..steps_for(&params, 1.0) {
-            step_zero(&mut b);
-        }
-        let moved = (b.trunk().pose.translation.vector - settled).norm();
-        println!(
-            "{}: block on a 10° slope with friction {friction} moved {:.2} mm in 1 s",
-            B::NAME,
-            1e3 * moved
-        );
-        if holds {
-            assert!(
-                moved < 1e-3,
-                "friction {friction}: the block slid {:.2} mm",
+    for from in [
+        FrictionFrom::Params,
+        FrictionFrom::DynamicsFirst,
+        FrictionFrom::DynamicsAfter,
+    ] {
+        for (friction, holds) in [(1.0, true), (0.1, false)] {
+            let moved = block_slide::<B>(options, &terrain, friction, from);
+            println!(
+                "{}: block on a 10° slope with friction {friction} ({from:?}) moved {:.2} mm \
+                 in 1 s",
+                B::NAME,
                 1e3 * moved
             );
-        } else {
-            assert!(
-                moved > 0.25,
-                "friction {friction}: the block slid only {:.3} m",
-                moved
-            );
+            if holds {
+                assert!(
+                    moved < 1e-3,
+                    "friction {friction} ({from:?}): the block slid {:.2} mm",
+                    1e3 * moved
+                );
+            } else {
+                assert!(
+                    moved > 0.25,
+                    "friction {friction} ({from:?}): the block slid only {moved:.3} m"
+                );
+            }
         }
     }
+}
+
+/// A new ground keeps the dynamics the world was given: every body's mass properties read back
+/// the same after `set_terrain` as before, and the world runs bitwise as one given the ground
+/// first and the dynamics after.
+pub fn a_new_ground_keeps_the_worlds_dynamics<B: Backend>(robot: &Robot, options: &B::Options) {
+    let model = Arc::clone(&robot.model);
+    let params = PhysicsParams::default();
+    let mut dynamics = crate::randomize::Dynamics::nominal(&model, &params);
+    dynamics.ground_friction = 0.6;
+    dynamics.bodies[0].mass += 7.5;
+    dynamics.bodies[0].com.x += 0.02;
+    for d in &mut dynamics.joint_damping {
+        *d += 0.3;
+    }
+    let terrain = rough_ground();
+    let mut start = model.spawn_state();
+    start.trunk.pose.translation.z += terrain.height_at(0.0, 0.0) + 0.05;
+
+    let mut first: B = build_default(robot, options);
+    first
+        .set_dynamics(&dynamics)
+        .unwrap_or_else(|e| panic!("{} refused dynamics: {e}", B::NAME));
+    let before: Vec<_> = (0..model.num_links())
+        .map(|i| first.body_mass_properties(i))
+        .collect();
+    first
+        .set_terrain(&terrain)
+        .unwrap_or_else(|e| panic!("{} refused a terrain: {e}", B::NAME));
+    for (i, b) in before.iter().enumerate() {
+        assert_eq!(
+            *b,
+            first.body_mass_properties(i),
+            "body {i}'s mass properties changed with the ground"
+        );
+    }
+    set(&mut first, &start);
+    let a = random_pd_trajectory(&mut first, 6, 300);
+
+    let mut second: B = on(robot, &params, options, &terrain);
+    second
+        .set_dynamics(&dynamics)
+        .unwrap_or_else(|e| panic!("{} refused dynamics: {e}", B::NAME));
+    set(&mut second, &start);
+    let b = random_pd_trajectory(&mut second, 6, 300);
+    assert_eq!(
+        first_difference(&a, &b),
+        None,
+        "dynamics then ground differs from ground then dynamics"
+    );
 }
 
 /// `state` put down on `terrain` with its trunk tilted to the ground under its feet, the
