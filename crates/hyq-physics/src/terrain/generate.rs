@@ -88,7 +88,7 @@ pub fn generate(
     anchor: [f64; 2],
     seed: u64,
 ) -> Result<HeightGrid, TerrainError> {
-    let (columns, rows) = counts(extent)?;
+    let (columns, rows) = check(extent, relief)?;
     if !anchor.iter().all(|a| a.is_finite()) {
         return Err(TerrainError::invalid(
             "anchor",
@@ -104,9 +104,9 @@ pub fn generate(
         extent.size[1] / (rows - 1) as f64,
     ];
     let height: Box<dyn Fn(f64, f64) -> f64> = match *relief {
-        Relief::Rough(r) => Box::new(rough(&r, origin, extent, spacing, seed)?),
-        Relief::Slope(s) => Box::new(slope(&s, anchor)?),
-        Relief::Stairs(s) => Box::new(stairs(&s, anchor, spacing)?),
+        Relief::Rough(r) => Box::new(rough(&r, origin, extent, seed)),
+        Relief::Slope(s) => Box::new(slope(&s, anchor)),
+        Relief::Stairs(s) => Box::new(stairs(&s, anchor)),
     };
     let mut heights = Vec::with_capacity(columns * rows);
     for k in 0..rows {
@@ -116,6 +116,23 @@ pub fn generate(
         }
     }
     HeightGrid::new(extent.center, extent.size, columns, rows, heights)
+}
+
+/// Checks `extent` and `relief`'s parameters without generating anything (what
+/// [`generate`] checks first); returns the number of heights along x and y. Errors name the
+/// parameter out of range.
+pub fn check(extent: &Extent, relief: &Relief) -> Result<(usize, usize), TerrainError> {
+    let (columns, rows) = counts(extent)?;
+    let spacing = [
+        extent.size[0] / (columns - 1) as f64,
+        extent.size[1] / (rows - 1) as f64,
+    ];
+    match relief {
+        Relief::Rough(r) => check_rough(r, spacing)?,
+        Relief::Slope(s) => check_slope(s)?,
+        Relief::Stairs(s) => check_stairs(s, spacing)?,
+    }
+    Ok((columns, rows))
 }
 
 /// The number of heights along x and y for `extent`, checked against the grid's cap.
@@ -177,14 +194,8 @@ fn within(what: &str, value: f64, lo: f64, hi: f64, unit: &str) -> Result<(), Te
     }
 }
 
-/// The height function of rough ground over `extent` (lattice from `origin`).
-fn rough(
-    r: &Rough,
-    origin: [f64; 2],
-    extent: &Extent,
-    spacing: [f64; 2],
-    seed: u64,
-) -> Result<impl Fn(f64, f64) -> f64 + use<>, TerrainError> {
+/// Checks rough ground's parameters (`spacing`: the grid's).
+fn check_rough(r: &Rough, spacing: [f64; 2]) -> Result<(), TerrainError> {
     within("amplitude_m", r.amplitude, 0.0, 1.0, "m")?;
     let finest = spacing[0].min(spacing[1]);
     within(
@@ -193,7 +204,16 @@ fn rough(
         finest,
         0.5 * MAX_HEIGHT_M,
         "m (the resolution up to 50 m)",
-    )?;
+    )
+}
+
+/// The height function of rough ground over `extent` (lattice from `origin`).
+fn rough(
+    r: &Rough,
+    origin: [f64; 2],
+    extent: &Extent,
+    seed: u64,
+) -> impl Fn(f64, f64) -> f64 + use<> {
     // Lattice nodes cover the rectangle, the last one at or beyond its far edge.
     let nodes = |s: f64| (s / r.feature).ceil() as usize + 1;
     let (nx, ny) = (nodes(extent.size[0]), nodes(extent.size[1]));
@@ -202,7 +222,7 @@ fn rough(
         .map(|_| r.amplitude * (2.0 * rng.random::<f64>() - 1.0))
         .collect();
     let feature = r.feature;
-    Ok(move |x: f64, y: f64| {
+    move |x: f64, y: f64| {
         let locate = |p: f64, n: usize| {
             let f = p.clamp(0.0, (n - 1) as f64);
             let i = (f.floor() as usize).min(n - 2);
@@ -214,24 +234,24 @@ fn rough(
         let low = at(i, j) + u * (at(i + 1, j) - at(i, j));
         let high = at(i, j + 1) + u * (at(i + 1, j + 1) - at(i, j + 1));
         low + v * (high - low)
-    })
+    }
+}
+
+/// Checks a slope's parameters.
+fn check_slope(s: &Slope) -> Result<(), TerrainError> {
+    within("slope_deg", s.angle_deg, -45.0, 45.0, "degrees")?;
+    within("direction_deg", s.direction_deg, -360.0, 360.0, "degrees")
 }
 
 /// The height function of a slope through `anchor`.
-fn slope(s: &Slope, anchor: [f64; 2]) -> Result<impl Fn(f64, f64) -> f64 + use<>, TerrainError> {
-    within("slope_deg", s.angle_deg, -45.0, 45.0, "degrees")?;
-    within("direction_deg", s.direction_deg, -360.0, 360.0, "degrees")?;
+fn slope(s: &Slope, anchor: [f64; 2]) -> impl Fn(f64, f64) -> f64 + use<> {
     let gradient = s.angle_deg.to_radians().tan();
     let (sin, cos) = s.direction_deg.to_radians().sin_cos();
-    Ok(move |x: f64, y: f64| gradient * ((x - anchor[0]) * cos + (y - anchor[1]) * sin))
+    move |x: f64, y: f64| gradient * ((x - anchor[0]) * cos + (y - anchor[1]) * sin)
 }
 
-/// The height function of stairs from `anchor`.
-fn stairs(
-    s: &Stairs,
-    anchor: [f64; 2],
-    spacing: [f64; 2],
-) -> Result<impl Fn(f64, f64) -> f64 + use<>, TerrainError> {
+/// Checks stairs' parameters (`spacing`: the grid's).
+fn check_stairs(s: &Stairs, spacing: [f64; 2]) -> Result<(), TerrainError> {
     within("step_height_m", s.step_height, 0.0, 1.0, "m")?;
     if s.step_height <= 0.0 {
         return Err(TerrainError::invalid(
@@ -251,19 +271,23 @@ fn stairs(
         "m (twice the resolution up to 50 m)",
     )?;
     within("direction_deg", s.direction_deg, -360.0, 360.0, "degrees")?;
-    within("start_m", s.start, -MAX_HEIGHT_M, MAX_HEIGHT_M, "m")?;
+    within("start_m", s.start, -MAX_HEIGHT_M, MAX_HEIGHT_M, "m")
+}
+
+/// The height function of stairs from `anchor`.
+fn stairs(s: &Stairs, anchor: [f64; 2]) -> impl Fn(f64, f64) -> f64 + use<> {
     let rise = match s.climb {
         Climb::Up => s.step_height,
         Climb::Down => -s.step_height,
     };
     let (sin, cos) = s.direction_deg.to_radians().sin_cos();
     let (start, depth) = (s.start, s.step_depth);
-    Ok(move |x: f64, y: f64| {
+    move |x: f64, y: f64| {
         let along = (x - anchor[0]) * cos + (y - anchor[1]) * sin;
         if along < start {
             0.0
         } else {
             rise * (((along - start) / depth).floor() + 1.0)
         }
-    })
+    }
 }
