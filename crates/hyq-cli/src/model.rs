@@ -350,9 +350,14 @@ fn render(args: &ModelArgs, model: &RobotModel, config: &EnvConfig) -> Result<St
                 .engine_options("mujoco")
                 .map_err(|e| usage(e.to_string()))?;
             mujoco.validate().map_err(|e| usage(e.to_string()))?;
+            // The ground of the configuration (`[terrain]`): its first episode's, as an
+            // environment built with it starts on.
+            let ground = hyq_env::terrain::Ground::new(config, model)
+                .map_err(|e| usage(e.to_string()))?;
             let options = MjcfOptions {
                 actuators,
                 solver: mujoco,
+                terrain: ground.terrain().clone(),
                 ..MjcfOptions::from_params(&config.physics.params)
             };
             to_mjcf(model, &options)

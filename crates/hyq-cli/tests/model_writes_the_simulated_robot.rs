@@ -2,8 +2,9 @@
 //! given: the MJCF has one actuator of the chosen kind per joint in action order and the MuJoCo
 //! backend's solver and contact settings (`[physics.mujoco]`), the URDF has
 //! the chosen capsule form, the JSON facts hold the joints in action order with the
-//! configuration's gains, sub-steps and t_max; `--out` writes the file and prints nothing; bad
-//! input is a one-line error.
+//! configuration's gains, sub-steps and t_max; over `[terrain]` the MJCF's ground is the
+//! height field the environment's first episode runs on; `--out` writes the file and prints
+//! nothing; bad input is a one-line error.
 
 // In tests a failed unwrap is a failed test, with its location.
 #![allow(clippy::unwrap_used)]
@@ -39,6 +40,38 @@ fn mjcf_has_one_actuator_of_the_chosen_kind_per_joint_in_action_order() {
     assert!(!none.contains("<actuator>"));
     let fine = hyq_ok(&["model", "--format", "mjcf", "--set", "physics.dt=0.0005"]);
     assert!(fine.contains("timestep=\"0.0005\""));
+}
+
+#[test]
+fn mjcf_writes_the_terrains_height_field() {
+    let flat = hyq_ok(&["model", "--format", "mjcf"]);
+    assert!(!flat.contains("<hfield") && flat.contains("type=\"plane\""));
+    let rough = hyq_ok(&[
+        "model",
+        "--format",
+        "mjcf",
+        "--set",
+        "terrain.kind=\"rough\"",
+        "--set",
+        "terrain.size_m=[2.0, 1.0]",
+        "--set",
+        "terrain.resolution_m=0.1",
+    ]);
+    // 21 x 11 heights: MuJoCo's rows run along y, its columns along x.
+    assert!(rough.contains("<hfield name=\"terrain\" nrow=\"11\" ncol=\"21\""), "{rough}");
+    assert!(rough.contains("type=\"hfield\"") && !rough.contains("type=\"plane\""));
+    usage_error_naming(
+        &[
+            "model",
+            "--format",
+            "mjcf",
+            "--set",
+            "terrain.kind=\"heightfield\"",
+            "--set",
+            "terrain.file=\"no-such-heights.npy\"",
+        ],
+        &["terrain.file", "no-such-heights.npy"],
+    );
 }
 
 #[test]

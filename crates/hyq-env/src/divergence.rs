@@ -37,6 +37,25 @@ pub enum Divergence {
         /// The coordinate (m).
         value: f64,
     },
+    /// The trunk left the height field's rectangle, beyond which there is no ground.
+    #[error(
+        "the trunk left the terrain at ({x:.2}, {y:.2}) m: the height field spans x {x_min:.2} .. \
+         {x_max:.2} m, y {y_min:.2} .. {y_max:.2} m (terrain.size_m)"
+    )]
+    OffTerrain {
+        /// The trunk's x (m).
+        x: f64,
+        /// The trunk's y (m).
+        y: f64,
+        /// The field's lowest x (m).
+        x_min: f64,
+        /// The field's highest x (m).
+        x_max: f64,
+        /// The field's lowest y (m).
+        y_min: f64,
+        /// The field's highest y (m).
+        y_max: f64,
+    },
     /// The rules could not evaluate the state.
     #[error(transparent)]
     Rules(#[from] StepError),
@@ -76,6 +95,9 @@ impl PartialEq for Divergence {
             }
             (OutsideWorld { row, value }, OutsideWorld { row: r, value: v }) => {
                 row == r && value.to_bits() == v.to_bits()
+            }
+            (OffTerrain { x, y, .. }, OffTerrain { x: x2, y: y2, .. }) => {
+                x.to_bits() == x2.to_bits() && y.to_bits() == y2.to_bits()
             }
             (Rules(a), Rules(b)) => a == b,
             (Observation(a), Observation(b)) => a == b,

@@ -48,10 +48,11 @@ use rand_chacha::ChaCha8Rng;
 use thiserror::Error;
 
 use crate::action::{ActionError, ActionScalar, ActionSpace};
-use crate::config::{ConfigError, EnvConfig, in_world, outside_world_reason};
+use crate::config::{ConfigError, EnvConfig, ObservationExtra, in_world, outside_world_reason};
 use crate::divergence::Divergence;
 use crate::goal::{GoalSampler, sample_reset_state};
 use crate::info::{Reason, Reasons, StepInfo};
+use crate::terrain::Ground;
 
 /// Why the environment refused a call. Every variant names what was wrong.
 #[derive(Debug, Error)]
@@ -202,6 +203,12 @@ pub struct Env<B: Backend> {
     robot: RobotDescription,
     layout: ObservationLayout,
     goals: GoalSampler,
+    /// The ground of each episode.
+    ground: Ground,
+    /// The observation's groups beyond the spec's rows, in layout order.
+    extras: Vec<ObservationExtra>,
+    /// The height scan's points in the trunk's heading frame (m), if it is observed.
+    scan: Vec<[f64; 2]>,
     env_dt: f64,
     trunk_tracked: usize,
     num_feet: usize,
@@ -209,6 +216,7 @@ pub struct Env<B: Backend> {
     seeded: bool,
     goal_rng: ChaCha8Rng,
     noise_rng: ChaCha8Rng,
+    terrain_rng: ChaCha8Rng,
     episodes: u64,
     episode: Option<Episode>,
 
@@ -270,6 +278,8 @@ fn outside_world(what: &str, point: Point3<f64>) -> ConfigError {
 const GOAL_STREAM: u64 = 0;
 /// The reset-noise stream's ChaCha stream number.
 const NOISE_STREAM: u64 = 1;
+/// The terrain stream's ChaCha stream number: rough ground drawn per episode.
+const TERRAIN_STREAM: u64 = 2;
 /// The seed an environment that was never given one behaves as if reset with.
 pub const DEFAULT_SEED: u64 = 0;
 
@@ -318,9 +328,23 @@ fn robot_description(model: &RobotModel) -> Result<RobotDescription, ConfigError
 }
 
 /// The observation layout of `model` (the §3 rows, named and bounded for this robot), as an
-/// environment on any backend has it, without building one.
+/// environment on any backend has it with the default configuration, without building one.
 pub fn observation_layout_of(model: &RobotModel) -> Result<ObservationLayout, ConfigError> {
     robot_description(model).map(|robot| ObservationLayout::new(&robot))
+}
+
+/// The observation layout of `model` under `config`: the §3 rows, then the groups of
+/// `observation.extra` (see [`crate::observation`]).
+pub fn observation_layout_for(
+    model: &RobotModel,
+    config: &EnvConfig,
+) -> Result<ObservationLayout, ConfigError> {
+    let robot = robot_description(model)?;
+    Ok(crate::observation::extend(
+        ObservationLayout::new(&robot),
+        &config.observation,
+        &robot.trunk().name,
+    ))
 }
 
 impl<B: Backend> Env<B> {
@@ -346,12 +370,24 @@ impl<B: Backend> Env<B> {
         actuator.set_velocity_limit(config.control.velocity_limit);
         let space = ActionSpace::new(&model, &config.action);
         let robot = robot_description(&model)?;
-        let layout = ObservationLayout::new(&robot);
+        let layout = crate::observation::extend(
+            ObservationLayout::new(&robot),
+            &config.observation,
+            &robot.trunk().name,
+        );
         let goals = GoalSampler::new(&config, &model);
+        let ground = Ground::new(&config, &model)?;
         // A fixed goal can be checked against the spawn point once, here, rather than fail at
         // every reset.
         goals.check(&config.task)?;
-        let backend = B::build(model.clone(), &config.physics.params, &options)?;
+        let mut backend = B::build(model.clone(), &config.physics.params, &options)?;
+        backend.set_terrain(ground.terrain())?;
+        let extras = config.observation.groups();
+        let scan = if extras.contains(&ObservationExtra::HeightScan) {
+            config.observation.scan_points()
+        } else {
+            Vec::new()
+        };
         let tracked = model.tracked().len();
         let obs_len = layout.len();
         let mut env = Self {
@@ -361,6 +397,7 @@ impl<B: Backend> Env<B> {
             seeded: false,
             goal_rng: stream(DEFAULT_SEED, GOAL_STREAM),
             noise_rng: stream(DEFAULT_SEED, NOISE_STREAM),
+            terrain_rng: stream(DEFAULT_SEED, TERRAIN_STREAM),
             episodes: 0,
             episode: None,
             scratch: PdScratch::new(n),
@@ -397,8 +434,11 @@ impl<B: Backend> Env<B> {
             actuator,
             space,
             robot,
+            extras,
+            scan,
             layout,
             goals,
+            ground,
         };
         env.backend.read_state(&mut env.state);
         Ok(env)
@@ -420,39 +460,32 @@ impl<B: Backend> Env<B> {
         seed: Option<u64>,
         options: &ResetOptions,
     ) -> Result<Reset<'_>, EnvError> {
-        let (mut goal_rng, mut noise_rng) = match seed {
-            Some(s) => (stream(s, GOAL_STREAM), stream(s, NOISE_STREAM)),
-            None => (self.goal_rng.clone(), self.noise_rng.clone()),
+        let mut rngs = match seed {
+            Some(s) => [GOAL_STREAM, NOISE_STREAM, TERRAIN_STREAM].map(|k| stream(s, k)),
+            None => [
+                self.goal_rng.clone(),
+                self.noise_rng.clone(),
+                self.terrain_rng.clone(),
+            ],
         };
-        // A given state is used where it is; only a drawn one needs a place to live.
-        let drawn;
-        let state = match &options.state {
-            Some(s) => s,
-            None => {
-                drawn = sample_reset_state(&self.model, &self.config.reset, &mut noise_rng);
-                &drawn
-            }
-        };
+        let (ground, state, goal) = self.draw_episode(options, &mut rngs)?;
         state.validate(&self.model)?;
         let requested = Point3::from(state.trunk.pose.translation.vector);
         if !requested.iter().all(|v| in_world(*v)) {
             return Err(outside_world("reset option state's trunk position", requested).into());
         }
-        let goal = match options.goal {
-            Some(g) => Point3::from(g),
-            None => self.goals.sample(&mut goal_rng),
-        };
         if !goal.iter().all(|v| in_world(*v)) {
             return Err(outside_world("reset option goal", goal).into());
         }
         // Checked against the requested start before anything changes, so a refused goal leaves
         // the environment as it was.
         let requested_rules = episode_rules(&self.config.task, requested, goal)?;
-        self.backend.set_state(state)?;
+        self.backend.set_terrain(ground.terrain())?;
+        self.backend.set_state(&state)?;
 
         self.seeded |= seed.is_some();
-        self.goal_rng = goal_rng;
-        self.noise_rng = noise_rng;
+        [self.goal_rng, self.noise_rng, self.terrain_rng] = rngs;
+        self.ground = ground;
         self.episodes += 1;
         self.backend.read_state(&mut self.state);
         // C^0 is where the engine put the trunk, as the reset observation reports it; it can
@@ -467,7 +500,7 @@ impl<B: Backend> Env<B> {
         let initial = rules.initial();
         self.latching.fill(false);
         let accel = Vector3::zeros();
-        self.write_observation(accel)
+        self.write_observation(accel, &goal)
             .map_err(|e| PhysicsError::Diverged {
                 what: e.to_string(),
             })?;
@@ -557,6 +590,37 @@ impl<B: Backend> Env<B> {
         })
     }
 
+    /// The next episode's ground, start state and goal, from the goal, noise and terrain streams
+    /// `rngs` unless `options` gives the state or the goal: the ground moves on first (a new
+    /// draw, the curriculum's level), then a drawn state is put down on it and a drawn goal
+    /// placed over it. The environment itself is left as it is.
+    fn draw_episode(
+        &self,
+        options: &ResetOptions,
+        rngs: &mut [ChaCha8Rng; 3],
+    ) -> Result<(Ground, RobotState, Point3<f64>), EnvError> {
+        let [goal_rng, noise_rng, terrain_rng] = rngs;
+        let mut ground = self.ground.clone();
+        if ground.per_episode() {
+            let progress =
+                (self.episode.is_some() && self.info.t > 0).then_some(1.0 - self.info.d_n);
+            ground.next_episode(terrain_rng, progress)?;
+        }
+        // A given state is used where it is; a drawn one is put down on the ground.
+        let state = match &options.state {
+            Some(s) => s.clone(),
+            None => {
+                let drawn = sample_reset_state(&self.model, &self.config.reset, noise_rng);
+                ground.put_down(&self.model, drawn)
+            }
+        };
+        let goal = match options.goal {
+            Some(g) => Point3::from(g),
+            None => ground.goal_on_ground(self.goals.sample(goal_rng)),
+        };
+        Ok((ground, state, goal))
+    }
+
     /// Runs the sub-steps with the step's joint targets, latching contacts.
     fn run_substeps(&mut self, watch: &mut Stopwatch) -> Result<(), Divergence> {
         self.latching.fill(false);
@@ -599,6 +663,20 @@ impl<B: Backend> Env<B> {
                 value: position[axis],
             });
         }
+        if let Some(grid) = self.ground.terrain().grid()
+            && !grid.contains(position.x, position.y)
+        {
+            let [x_min, y_min] = grid.origin();
+            let [sx, sy] = grid.size();
+            return Err(Divergence::OffTerrain {
+                x: position.x,
+                y: position.y,
+                x_min,
+                x_max: x_min + sx,
+                y_min,
+                y_max: y_min + sy,
+            });
+        }
         watch.restart();
         let outcome = rules.evaluate_step(&StepSnapshot {
             step: self.info.t,
@@ -611,7 +689,7 @@ impl<B: Backend> Env<B> {
         })?;
         watch.lap(&mut self.timing.spec);
         let accel = trunk_acceleration(&previous.linvel, &self.state.trunk.linvel, self.env_dt)?;
-        self.write_observation(accel)?;
+        self.write_observation(accel, &rules.goal())?;
         // The float32 observation must be finite too.
         if let Some(index) = self
             .obs_next
@@ -671,7 +749,11 @@ impl<B: Backend> Env<B> {
 
     /// Writes the observation of the current state, with the contacts latched in `latching`,
     /// into `obs_next`.
-    fn write_observation(&mut self, accel: Vector3<f64>) -> Result<(), ObservationError> {
+    fn write_observation(
+        &mut self,
+        accel: Vector3<f64>,
+        goal: &Point3<f64>,
+    ) -> Result<(), ObservationError> {
         let trunk = &self.state.trunk;
         let observation = Observation {
             joint_angles: &self.state.q,
@@ -683,7 +765,33 @@ impl<B: Backend> Env<B> {
             trunk_position: Point3::from(trunk.pose.translation.vector),
         };
         self.layout
-            .write(&observation, Clipping::Off, &mut self.obs_next)
+            .write(&observation, Clipping::Off, &mut self.obs_next)?;
+        if !self.extras.is_empty() {
+            let tail = &mut self.obs_next[self.layout.spec_rows().end..];
+            crate::observation::write_extras(
+                &self.extras,
+                &self.scan,
+                trunk,
+                goal,
+                self.ground.terrain(),
+                tail,
+            );
+            // The groups' values come from finite state; checked like the spec's rows.
+            let start = self.layout.spec_rows().end;
+            if let Some((i, v)) = self.obs_next[start..]
+                .iter()
+                .enumerate()
+                .find(|(_, v)| !v.is_finite())
+            {
+                let row = &self.layout.rows()[start + i];
+                return Err(ObservationError::NonFinite {
+                    index: row.index,
+                    name: row.name.to_string(),
+                    value: *v,
+                });
+            }
+        }
+        Ok(())
     }
 
     fn fill_f32(&mut self) {
@@ -791,6 +899,16 @@ impl<B: Backend> Env<B> {
     /// Whether the environment was ever reset with a seed.
     pub fn was_seeded(&self) -> bool {
         self.seeded
+    }
+
+    /// The ground of the current episode (flat unless `[terrain]` says otherwise).
+    pub fn terrain(&self) -> &hyq_physics::Terrain {
+        self.ground.terrain()
+    }
+
+    /// The terrain curriculum's level of the current episode (0 without a curriculum).
+    pub fn terrain_level(&self) -> u32 {
+        self.ground.level()
     }
 
     /// The backend.

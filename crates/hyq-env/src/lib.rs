@@ -47,8 +47,10 @@
 //! | [`divergence`] | [`Divergence`]: why a step diverged, the text of the info's `divergence` |
 //! | [`policy`] | [`Stand`], [`RandomPolicy`], [`Trot`] |
 //! | [`mlp`] | [`MlpPolicy`]: a trained policy read from a safetensors file, run in plain Rust |
+//! | [`observation`] | the observation's rows beyond the spec's (`observation.extra`): height scan, goal vector, trunk velocity |
 //! | [`vec_env`] | [`VecEnv`]: N envs on rayon into flat buffers, autoreset modes |
 //! | [`record`] | [`StepRecord`]: the per-step JSONL schema |
+//! | [`terrain`] | [`terrain::Ground`]: the ground of each episode, the robot put down on it, the goal over it, the curriculum |
 //! | [`testing`] | [`testing::ScriptedBackend`]: a scripted backend for contract tests |
 //!
 //! # Measured
@@ -63,20 +65,24 @@ pub mod env;
 pub mod goal;
 pub mod info;
 pub mod mlp;
+pub mod observation;
 pub mod policy;
 pub mod record;
+pub mod terrain;
 pub mod testing;
 pub mod vec_env;
 
 pub use action::{ActionError, ActionScalar, ActionSpace};
 pub use config::{
     ActionConfig, ActionMode, ConfigError, ControlConfig, EXP_REW_SCALING_MAX, EnvConfig, Gains,
-    GoalConfig, GoalMode, JOINT_NOISE_MAX_RAD, LoadError, OutOfRange, PhysicsConfig,
-    REWARD_SCALE_MAX, ResetConfig, WORLD_HALF_EXTENT_M,
+    GoalConfig, GoalMode, JOINT_NOISE_MAX_RAD, LoadError, ObservationConfig, ObservationExtra,
+    OutOfRange, PhysicsConfig, REWARD_SCALE_MAX, ResetConfig, StairsClimb, TerrainConfig,
+    TerrainKind, TerrainSeed, WORLD_HALF_EXTENT_M,
 };
 pub use divergence::Divergence;
 pub use env::{
-    DEFAULT_SEED, Env, EnvError, Reset, ResetOptions, Step, StepTiming, observation_layout_of,
+    DEFAULT_SEED, Env, EnvError, Reset, ResetOptions, Step, StepTiming, observation_layout_for,
+    observation_layout_of,
 };
 pub use hyq_spec::TermSums;
 pub use info::{Reason, Reasons, StepInfo};

@@ -46,7 +46,7 @@ use thiserror::Error;
 
 use crate::action::ActionSpace;
 use crate::config::{ActionMode, EnvConfig};
-use crate::env::observation_layout_of;
+use crate::env::observation_layout_for;
 use crate::policy::{Policy, PolicyInput};
 
 /// The `format` metadata value of a policy file.
@@ -427,7 +427,7 @@ impl MlpPolicy {
                 model.name()
             )));
         }
-        let layout = observation_layout_of(model).map_err(|e| err(e.to_string()))?;
+        let layout = observation_layout_for(model, config).map_err(|e| err(e.to_string()))?;
         let rows: Vec<&str> = layout.rows().iter().map(|r| r.name.as_ref()).collect();
         if let Some(reason) = layout_mismatch("observation", &m.observation, &rows) {
             return Err(err(reason));

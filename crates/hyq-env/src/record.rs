@@ -6,7 +6,7 @@
 //! | `robot` | string | the robot's name (its profile's, e.g. `hyq`, `anymal_c`) |
 //! | `episode` | integer | episode number, 1 for the first since the env was built |
 //! | `t` | integer | env steps since reset, 1 for the first step |
-//! | `obs` | 39 numbers | the observation after the step (§3 order) |
+//! | `obs` | 39 numbers | the observation after the step (§3 order; then the rows of `observation.extra`, if any) |
 //! | `action` | 12 numbers | the action as given (before clipping) |
 //! | `joint_targets` | 12 numbers | the joint targets the actuator tracked (rad) |
 //! | `reward` | number | the step's reward (`terms` composed) |

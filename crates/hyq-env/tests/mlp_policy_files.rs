@@ -430,3 +430,50 @@ fn an_environment_of_another_robot_or_action_layout_is_refused() {
         .unwrap_or_default();
     assert!(e.contains("action value 0") && e.contains("lh_haa"), "{e}");
 }
+
+/// A policy trained with `observation.extra` lists those rows after the spec's: it runs in an
+/// environment with the same rows, and is refused, naming the observation, by one without them
+/// (and the spec's file by one with them).
+#[test]
+fn a_policy_file_names_the_extra_rows_it_was_trained_with() {
+    let n_obs = N_OBS + 3;
+    let mut rows = hyq_rows();
+    rows.extend(["goal_vector_x", "goal_vector_y", "goal_vector_z"].map(String::from));
+    let extended = FileSpec {
+        meta: vec![(
+            "observation",
+            serde_json::to_string(&rows).unwrap_or_default(),
+        )],
+        w0: (0..HIDDEN * n_obs).map(|i| ((i % 7) as f32 - 3.0) * 0.05).collect(),
+        mean: vec![0.0; n_obs],
+        var: vec![1.0; n_obs],
+        ..FileSpec::default()
+    };
+    let with_goal = common::config(&[
+        ("action.mode", "\"offset\""),
+        ("observation.extra", r#"["goal_vector"]"#),
+    ]);
+    let without = common::config(&[("action.mode", "\"offset\"")]);
+    let model = hyq_physics::bundled::hyq();
+    let mut policy = loaded(&extended);
+    assert_eq!(policy.widths(), vec![n_obs, HIDDEN, N_ACT]);
+    policy
+        .check_env(&model, &with_goal, "test.safetensors")
+        .unwrap_or_else(|e| panic!("{e}"));
+    let mut env = common::env::<hyq_env::testing::ScriptedBackend>(&[
+        ("action.mode", "\"offset\""),
+        ("observation.extra", r#"["goal_vector"]"#),
+    ]);
+    reset(&mut env, 0);
+    let mut action = vec![0.0; N_ACT];
+    policy.act(&env.policy_input(), &mut action);
+    assert!(action.iter().all(|a| a.is_finite()));
+    for (file, config) in [(&extended, &without), (&FileSpec::default(), &with_goal)] {
+        let e = loaded(file)
+            .check_env(&model, config, "test.safetensors")
+            .map(|()| String::new())
+            .unwrap_or_else(|e| e.to_string());
+        assert!(e.contains("observation"), "{e:?}");
+        assert!(!e.contains('\n'), "{e:?}");
+    }
+}

@@ -217,6 +217,14 @@ impl Core {
         })
     }
 
+    /// This env's observation table: its robot's §3 rows, then the rows of
+    /// `observation.extra` (see `spaces::table_rows`).
+    fn observation_table<'py>(slf: &Bound<'py, Self>) -> PyResult<Vec<crate::spaces::TableRow>> {
+        call(slf, "observation_table", |this| {
+            Ok(crate::spaces::table_rows(this.env.get().observation_layout()))
+        })
+    }
+
     /// The joints' names in action order.
     fn joint_names<'py>(slf: &Bound<'py, Self>) -> PyResult<Vec<String>> {
         call(slf, "joint_names", |this| {

@@ -28,9 +28,11 @@ fn is_invariant(layout: &ObservationLayout, i: usize) -> bool {
         || layout.trunk_rotation().contains(&i)
 }
 
-/// The unit of row `i` of `layout`.
+/// The unit of row `i` of `layout` (a group beyond the §3 rows has its own).
 fn unit_of(layout: &ObservationLayout, i: usize) -> &'static str {
-    if layout.joint_angles().contains(&i) {
+    if let Some(group) = layout.groups().iter().find(|g| g.rows.contains(&i)) {
+        group.unit
+    } else if layout.joint_angles().contains(&i) {
         "rad"
     } else if layout.joint_speeds().contains(&i) {
         "rad/s"
@@ -70,7 +72,7 @@ pub fn declared_bounds(env: &dyn EnvView, clipped: bool) -> Bounds {
 
 /// One row of the table as Python receives it: (index, name, low, high, unit, estimated,
 /// invariant).
-type TableRow = (usize, String, f64, f64, &'static str, bool, bool);
+pub type TableRow = (usize, String, f64, f64, &'static str, bool, bool);
 
 /// The §3 observation table of `robot` (a bundled name or a profile path; default HyQ, the
 /// spec's table), one tuple per row: (index, name, low,
@@ -81,7 +83,13 @@ type TableRow = (usize, String, f64, f64, &'static str, bool, bool);
 pub fn observation_table(robot: Option<&str>) -> PyResult<Vec<TableRow>> {
     let layout = hyq_env::observation_layout_of(&*crate::engines::robot(robot)?)
         .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))?;
-    Ok(layout
+    Ok(table_rows(&layout))
+}
+
+/// The rows of `layout` as Python receives them (see [`observation_table`]): an environment's
+/// own table, with the groups of `observation.extra` after the §3 rows.
+pub fn table_rows(layout: &ObservationLayout) -> Vec<TableRow> {
+    layout
         .rows()
         .iter()
         .map(|r| {
@@ -90,12 +98,12 @@ pub fn observation_table(robot: Option<&str>) -> PyResult<Vec<TableRow>> {
                 r.name.to_string(),
                 r.min,
                 r.max,
-                unit_of(&layout, r.index),
+                unit_of(layout, r.index),
                 r.estimated,
-                is_invariant(&layout, r.index),
+                is_invariant(layout, r.index),
             )
         })
-        .collect())
+        .collect()
 }
 
 /// `values` (action space bounds, f64) as the f32 a `gymnasium.spaces.Box` of float32 takes.

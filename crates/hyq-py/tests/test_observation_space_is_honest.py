@@ -93,3 +93,29 @@ def test_the_vector_env_declares_the_same_spaces() -> None:
         for _ in range(50):
             assert obs in envs.observation_space
             obs, *_ = envs.step(envs.action_space.sample())
+
+
+def test_observation_extra_and_terrain_reach_the_spaces_and_the_table() -> None:
+    """``observation.extra`` appends rows after the 39 (height scan, goal vector, trunk
+    velocity), which the space (unbounded there), the env's table (named, with units) and the
+    observations follow; the default env keeps the spec's 39 rows."""
+    env = hyq.HyQEnv(
+        terrain={"kind": "rough", "amplitude_m": 0.05, "size_m": [6.0, 6.0]},
+        observation={"extra": ["goal_vector", "height_scan", "trunk_velocity"]},
+    )
+    assert env.observation_space.shape == (235,)
+    table = env.observation_table
+    assert [r.name for r in table] == env.observation_names
+    assert [r.name for r in table[:39]] == [r.name for r in hyq.OBSERVATION_TABLE]
+    units = {r.name: r.unit for r in table}
+    assert units["height_scan_00_00"] == "m" and units["goal_vector_z"] == "m"
+    assert units["trunk_angvel_z"] == "m/s, rad/s"
+    assert not any(r.invariant for r in table[39:])
+    assert env.observation_space.high[39:].min() == F32_MAX
+    obs, info = env.reset(seed=3)
+    assert obs.shape == (235,) and env.observation_space.contains(obs)
+    # The goal vector's length is the distance to the goal.
+    assert float(np.linalg.norm(obs[226:229])) == pytest.approx(info["distance_to_goal"], rel=1e-6)
+    assert "[terrain]" in env.config_toml() and "[observation]" in env.config_toml()
+    assert "[terrain]" not in hyq.HyQEnv().config_toml()
+    env.close()

@@ -10,7 +10,8 @@ use crate::scene::{Overlay, RobotPose, Scene};
 /// The scene of the state `env`'s last reset or step left: the trunk pose and joint angles,
 /// the contact flags of [`Env::contacts`] (latched over the step's sub-steps, so a foot that
 /// touched the ground during the step is drawn in contact), the goal, and the overlay
-/// (simulated time, D^t, and `episode_return`, the episode's return so far).
+/// (simulated time, D^t, and `episode_return`, the episode's return so far), on the
+/// environment's ground ([`Env::terrain`]).
 pub fn env_scene<B: Backend>(env: &Env<B>, episode_return: f64) -> Scene<'_> {
     let info = env.info();
     Scene::new(
@@ -26,4 +27,5 @@ pub fn env_scene<B: Backend>(env: &Env<B>, episode_return: f64) -> Scene<'_> {
         distance_to_goal_m: info.distance_to_goal,
         episode_return,
     })
+    .with_terrain(env.terrain())
 }

@@ -86,7 +86,8 @@ pub use nalgebra;
 pub use attitude::{RollPitchYaw, roll_pitch_yaw};
 pub use config::{ConfigError, EXP_REW_SCALING_MAX, HeightPenalty, REWARD_SCALE_MAX, TaskConfig};
 pub use observation::{
-    Clipping, Observation, ObservationError, ObservationLayout, ObservationRow, SPEC_TABLE,
+    Clipping, Observation, ObservationError, ObservationLayout, ObservationRow, RowGroup,
+    SPEC_TABLE,
 };
 pub use robot::{JointDescription, RobotDescription, RobotError, TrunkDescription};
 pub use step::{EpisodeError, EpisodeRules, RewardBreakdown, StepError, StepOutcome, StepSnapshot};

@@ -22,6 +22,11 @@
 //!   a^t = (v^t − v^{t−1}) / Δt_env, 0 after reset ([`trunk_acceleration`]).
 //! - Values are **not** clipped by default: rows 33–38 are only estimated ranges (`*` in the
 //!   spec). [`Clipping::ToDeclaredBounds`] clips each value to its row's [min, max].
+//!
+//! Beyond the spec, an environment may append groups of rows of its own after these
+//! ([`ObservationLayout::with_group`]: a height scan, the goal in the trunk's frame, ...). The
+//! layout then names and bounds them too (their bounds estimated), [`ObservationLayout::write`]
+//! fills the §3 rows and the environment the rest; without groups the layout is the spec's.
 
 use crate::robot::RobotDescription;
 use nalgebra::{Point3, UnitQuaternion, Vector3};
@@ -201,6 +206,20 @@ pub struct ObservationLayout {
     rows: Vec<ObservationRow>,
     joints: usize,
     feet: usize,
+    /// The number of §3 rows (2N + F + 11); the groups follow them.
+    spec_len: usize,
+    groups: Vec<RowGroup>,
+}
+
+/// A group of rows an environment appends after the §3 rows (see the module docs).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RowGroup {
+    /// The group's name, e.g. `"height_scan"`.
+    pub name: Cow<'static, str>,
+    /// The unit of its rows, e.g. `"m"`.
+    pub unit: &'static str,
+    /// Its rows' indices.
+    pub rows: Range<usize>,
 }
 
 /// The trunk rows after the foot contacts: contact, quaternion (4), acceleration (3), position (3).
@@ -255,15 +274,53 @@ impl ObservationLayout {
             );
         }
         ObservationLayout {
+            spec_len: rows.len(),
             rows,
             joints: robot.joints().len(),
             feet: robot.feet().len(),
+            groups: Vec::new(),
         }
     }
 
-    /// The number of rows (2N + F + 11).
+    /// This layout with a group `name` of rows appended, each `(name, min, max)` in `unit`,
+    /// their bounds estimated (not an invariant of every value).
+    pub fn with_group(
+        mut self,
+        name: impl Into<Cow<'static, str>>,
+        unit: &'static str,
+        rows: impl IntoIterator<Item = (String, f64, f64)>,
+    ) -> Self {
+        let start = self.rows.len();
+        for (row_name, min, max) in rows {
+            self.rows.push(ObservationRow {
+                index: self.rows.len(),
+                name: Cow::Owned(row_name),
+                min,
+                max,
+                estimated: true,
+            });
+        }
+        self.groups.push(RowGroup {
+            name: name.into(),
+            unit,
+            rows: start..self.rows.len(),
+        });
+        self
+    }
+
+    /// The number of rows: 2N + F + 11, plus the groups' rows.
     pub fn len(&self) -> usize {
         self.rows.len()
+    }
+
+    /// The §3 rows (2N + F + 11 of them, first).
+    pub fn spec_rows(&self) -> Range<usize> {
+        0..self.spec_len
+    }
+
+    /// The groups appended after the §3 rows, in order.
+    pub fn groups(&self) -> &[RowGroup] {
+        &self.groups
     }
 
     /// Always false: a layout has at least the eleven trunk rows.
@@ -314,8 +371,9 @@ impl ObservationLayout {
         start..start + 3
     }
 
-    /// Writes `observation` into `out` (exactly [`Self::len`] long) in row order, as `f32` or
-    /// `f64`, clipped or not. Allocates nothing unless it fails.
+    /// Writes `observation` into the §3 rows of `out` (exactly [`Self::len`] long: the
+    /// groups' rows after them are the caller's) in row order, as `f32` or `f64`, clipped or
+    /// not. Allocates nothing unless it fails.
     ///
     /// Errors: a field or `out` of the wrong length, or a non-finite value (named by its row).
     pub fn write<T: ObservationScalar>(

@@ -29,6 +29,12 @@
 //!
 //! [reset]         # spawn placement and reset noise (see ResetConfig)
 //! joint_noise_rad = 0.0
+//!
+//! [terrain]       # the ground (see TerrainConfig)
+//! kind = "flat"
+//!
+//! [observation]   # rows beyond the spec's (see ObservationConfig)
+//! extra = []
 //! ```
 //!
 //! Every table and every key is optional: a missing one takes its default. Unknown keys are
@@ -47,10 +53,12 @@ mod action;
 mod control;
 mod goal;
 mod messages;
+mod observation;
 mod parse;
 mod physics;
 mod reset;
 mod task;
+mod terrain;
 mod validate;
 
 pub use action::{ActionConfig, ActionMode, OutOfRange};
@@ -58,9 +66,14 @@ pub use control::{ControlConfig, Gains};
 pub use goal::{GoalConfig, GoalMode};
 pub use hyq_spec::{EXP_REW_SCALING_MAX, REWARD_SCALE_MAX, TaskConfig};
 pub use messages::{ConfigError, LoadError};
+pub use observation::{MAX_SCAN_POINTS, MAX_SCAN_REACH_M, ObservationConfig, ObservationExtra};
 pub use parse::CONFIG_FILE_MAX_BYTES;
 pub use physics::{ENGINE_TABLES, PhysicsConfig};
 pub use reset::{JOINT_NOISE_MAX_RAD, ResetConfig};
+pub(crate) use terrain::keyed as terrain_error;
+pub use terrain::{
+    MAX_LEVELS, MAX_SLOPE_DEG, StairsClimb, TerrainConfig, TerrainKind, TerrainSeed,
+};
 pub use validate::{Table, WORLD_HALF_EXTENT_M};
 pub(crate) use validate::{in_world, outside_world_reason};
 
@@ -118,6 +131,14 @@ env_config! {
         physics: PhysicsConfig,
         /// Spawn placement and reset noise. (default: at the origin, facing +x, no noise)
         reset: ResetConfig,
+        /// The ground ([`crate::terrain`]). (default: flat, the spec's, and the table is not
+        /// written, so a written default configuration is what it was without terrain)
+        #[serde(skip_serializing_if = "TerrainConfig::is_default")]
+        terrain: TerrainConfig,
+        /// Observation rows beyond the spec's ([`crate::observation`]). (default: none, the
+        /// spec's 39 rows for HyQ, and the table is not written)
+        #[serde(skip_serializing_if = "ObservationConfig::is_default")]
+        observation: ObservationConfig,
     }
 }
 

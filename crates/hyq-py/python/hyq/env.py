@@ -12,7 +12,7 @@ from gymnasium import spaces
 from hyq import _core
 from hyq._checks import RENDER_SIDES, as_actions, check_count, check_flag
 from hyq._config import config_pairs, split_options
-from hyq.observation import ObservationRow, observation_table
+from hyq.observation import ObservationRow
 
 #: The render modes this environment implements.
 RENDER_MODES = ["rgb_array"]
@@ -104,6 +104,14 @@ class HyQEnv(gymnasium.Env):
     ``clip_observations=True`` declares the table as the space and clips each value to its row's
     bounds (``info["observation_clipped"]`` says when). The table itself is
     ``hyq.OBSERVATION_TABLE`` for HyQ (``env.observation_table`` for the env's robot).
+    ``observation={"extra": ["height_scan", "goal_vector", "trunk_velocity"]}`` (any of them,
+    off by default) appends rows after the §3 ones: the terrain's heights around the trunk, the
+    goal in the trunk's frame, the trunk's velocity in its frame (``env.observation_table``
+    names and bounds them; docs/terrain.md).
+
+    **Ground**: flat by default; ``terrain={"kind": "rough", "amplitude_m": 0.05}`` (or
+    ``"slope"``, ``"stairs"``, ``"heightfield"`` with ``"file"``) walks on a height field, the
+    robot put down standing on it and the goal's height following it (docs/terrain.md).
 
     **Action**: ``Box(-1, 1, (12,), float32)`` joint position targets in the default
     ``normalized`` mode (−1 a joint's lower limit, +1 its upper); ``action={"mode":
@@ -161,7 +169,6 @@ class HyQEnv(gymnasium.Env):
         )
         # Simulated frames per second of an episode: one frame per env step.
         self.metadata = {**self.metadata, "render_fps": round(1.0 / self._core.env_dt)}
-        self._robot_choice = core_options(env_options)["robot"]
         self._table: tuple[ObservationRow, ...] | None = None
         self._closed = False
 
@@ -182,10 +189,10 @@ class HyQEnv(gymnasium.Env):
 
     @property
     def observation_table(self) -> tuple[ObservationRow, ...]:
-        """The robot's observation table (the spec's section 3 table for HyQ): each row's
-        name, bounds, unit and kind."""
+        """This env's observation table (the spec's section 3 table for HyQ, then the rows of
+        ``observation.extra`` if any): each row's name, bounds, unit and kind."""
         if self._table is None:
-            self._table = observation_table(self._robot_choice)
+            self._table = tuple(ObservationRow(*row) for row in self._core.observation_table())
         return self._table
 
     @property

@@ -1,0 +1,333 @@
+//! `[terrain]`: the ground the robot walks on. Flat by default (the spec's environment, exactly
+//! as without the table); rough ground, a slope, stairs or a user's height file otherwise, each
+//! made into one height grid ([`hyq_physics::HeightGrid`]) that every engine builds.
+
+use std::fmt;
+use std::path::PathBuf;
+
+use hyq_physics::terrain::generate::{self, Climb, Extent, Relief, Rough, Slope, Stairs};
+use serde::de::{self, Visitor};
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+use super::validate::{finite_positive, in_range, invalid};
+use super::in_world;
+use super::{ConfigError, EnvConfig, Table};
+
+/// The steepest slope (degrees) the robot is put down on: steeper, a standing quadruped's
+/// feet slide or it tips over before the episode starts.
+pub const MAX_SLOPE_DEG: f64 = 30.0;
+
+/// The most difficulty levels of a terrain curriculum (`terrain.levels`).
+pub const MAX_LEVELS: u32 = 100;
+
+/// The ground (`[terrain]`).
+///
+/// Every generated terrain is one grid of `size_m` at `resolution_m` centred on `center_m`;
+/// its relief is anchored at the spawn point (`reset.spawn_xy_m`): a slope passes through
+/// height 0 there and stairs start `start_m` ahead of it. Keys of another kind are ignored.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct TerrainConfig {
+    /// `"flat"` (the plane z = 0), `"rough"`, `"slope"`, `"stairs"` or `"heightfield"` (a
+    /// user's file, `file`). (default: `"flat"`)
+    pub kind: TerrainKind,
+    /// Rough: heights are drawn uniformly in ± this (m), in [0, 1]. (default: 0.05)
+    pub amplitude_m: f64,
+    /// Rough: the distance (m) between drawn heights, the size of a bump; at least
+    /// `resolution_m`. (default: 0.4)
+    pub feature_m: f64,
+    /// Slope: its angle (degrees) within ±[`MAX_SLOPE_DEG`], negative descending towards
+    /// `direction_deg`. (default: 10.0)
+    pub slope_deg: f64,
+    /// Slope and stairs: the direction they rise in (degrees about +z from +x, +x being towards
+    /// the default goal), within ±360. (default: 0.0)
+    pub direction_deg: f64,
+    /// Stairs: the height of a step (m), in (0, 1]. (default: 0.1)
+    pub step_height_m: f64,
+    /// Stairs: the depth of a step (m), at least twice `resolution_m`. (default: 0.3)
+    pub step_depth_m: f64,
+    /// Stairs: `"up"` or `"down"` along `direction_deg`. (default: `"up"`)
+    pub stairs: StairsClimb,
+    /// Stairs: where the first step begins, ahead of the spawn point along `direction_deg`
+    /// (m), within ±100. (default: 1.0)
+    pub start_m: f64,
+    /// Heightfield: the file of heights, NumPy `.npy` (a[i, j] at the i-th x and j-th y) or a
+    /// grayscale PNG (a map seen from above), laid over the grid's rectangle; relative paths
+    /// are read from the working directory. Required for `"heightfield"`. (default: unset)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub file: Option<PathBuf>,
+    /// Heightfield: metres per unit of a `.npy` file's values, or the height of white in a
+    /// PNG; finite and > 0. (default: 1.0)
+    pub vertical_scale: f64,
+    /// The grid's side lengths along x and y (m), each in (0, 200], the whole rectangle inside
+    /// the world. (default: [16.0, 16.0], every goal up to 8 m from the spawn point)
+    pub size_m: [f64; 2],
+    /// The grid's centre [x, y] (m). (default: unset, the spawn point)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub center_m: Option<[f64; 2]>,
+    /// The spacing of generated heights (m); at most 1,048,576 heights in all. (default: 0.05)
+    pub resolution_m: f64,
+    /// Rough ground's random stream: a non-negative integer (the same ground every episode),
+    /// or `"episode"` (new ground each episode, drawn from the reset seed). (default: 0)
+    pub seed: TerrainSeed,
+    /// A curriculum (legged_gym's rule): the relief (amplitude, slope, step height) is scaled
+    /// by (level + 1) / `levels`, starting at level 0; an episode that brings the robot at
+    /// least half way to the goal raises the level for the next, one that brings it less than
+    /// a quarter of the way lowers it. Rough, slope and stairs only. (default: false)
+    pub curriculum: bool,
+    /// The number of curriculum levels, in 1..=[`MAX_LEVELS`]. (default: 10)
+    pub levels: u32,
+}
+
+impl Default for TerrainConfig {
+    fn default() -> Self {
+        Self {
+            kind: TerrainKind::Flat,
+            amplitude_m: 0.05,
+            feature_m: 0.4,
+            slope_deg: 10.0,
+            direction_deg: 0.0,
+            step_height_m: 0.1,
+            step_depth_m: 0.3,
+            stairs: StairsClimb::Up,
+            start_m: 1.0,
+            file: None,
+            vertical_scale: 1.0,
+            size_m: [16.0, 16.0],
+            center_m: None,
+            resolution_m: 0.05,
+            seed: TerrainSeed::Fixed(0),
+            curriculum: false,
+            levels: 10,
+        }
+    }
+}
+
+/// The kinds of ground; see [`TerrainConfig::kind`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TerrainKind {
+    /// The plane z = 0.
+    Flat,
+    /// Random bumps.
+    Rough,
+    /// A plane slope.
+    Slope,
+    /// Straight stairs.
+    Stairs,
+    /// A user's file of heights.
+    Heightfield,
+}
+
+impl TerrainKind {
+    /// The kind as written in TOML.
+    pub const fn as_str(self) -> &'static str {
+        match self {
+            TerrainKind::Flat => "flat",
+            TerrainKind::Rough => "rough",
+            TerrainKind::Slope => "slope",
+            TerrainKind::Stairs => "stairs",
+            TerrainKind::Heightfield => "heightfield",
+        }
+    }
+}
+
+/// Which way stairs go; see [`TerrainConfig::stairs`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StairsClimb {
+    /// Each step higher.
+    Up,
+    /// Each step lower.
+    Down,
+}
+
+/// Where rough ground's random heights come from; see [`TerrainConfig::seed`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TerrainSeed {
+    /// The same ground every episode.
+    Fixed(u64),
+    /// New ground each episode, from the reset seed's terrain stream.
+    Episode,
+}
+
+impl Serialize for TerrainSeed {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        match self {
+            TerrainSeed::Fixed(n) => s.serialize_u64(*n),
+            TerrainSeed::Episode => s.serialize_str("episode"),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for TerrainSeed {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct SeedVisitor;
+        impl Visitor<'_> for SeedVisitor {
+            type Value = TerrainSeed;
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str("a non-negative integer or \"episode\"")
+            }
+            fn visit_u64<E: de::Error>(self, v: u64) -> Result<TerrainSeed, E> {
+                Ok(TerrainSeed::Fixed(v))
+            }
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<TerrainSeed, E> {
+                u64::try_from(v)
+                    .map(TerrainSeed::Fixed)
+                    .map_err(|_| E::invalid_value(de::Unexpected::Signed(v), &self))
+            }
+            fn visit_str<E: de::Error>(self, v: &str) -> Result<TerrainSeed, E> {
+                match v {
+                    "episode" => Ok(TerrainSeed::Episode),
+                    _ => Err(E::invalid_value(de::Unexpected::Str(v), &self)),
+                }
+            }
+        }
+        d.deserialize_any(SeedVisitor)
+    }
+}
+
+impl TerrainConfig {
+    /// Whether every key holds its default (the table is then not written).
+    pub fn is_default(&self) -> bool {
+        *self == Self::default()
+    }
+
+    /// The rectangle and resolution of the grid for a robot spawned at `spawn`.
+    pub fn extent(&self, spawn: [f64; 2]) -> Extent {
+        Extent {
+            center: self.center_m.unwrap_or(spawn),
+            size: self.size_m,
+            resolution: self.resolution_m,
+        }
+    }
+
+    /// The relief of a generated kind at curriculum scale `scale` (1 without a curriculum);
+    /// `None` for flat ground and height files.
+    pub fn relief(&self, scale: f64) -> Option<Relief> {
+        match self.kind {
+            TerrainKind::Flat | TerrainKind::Heightfield => None,
+            TerrainKind::Rough => Some(Relief::Rough(Rough {
+                amplitude: self.amplitude_m * scale,
+                feature: self.feature_m,
+            })),
+            TerrainKind::Slope => Some(Relief::Slope(Slope {
+                angle_deg: self.slope_deg * scale,
+                direction_deg: self.direction_deg,
+            })),
+            TerrainKind::Stairs => Some(Relief::Stairs(Stairs {
+                step_height: self.step_height_m * scale,
+                step_depth: self.step_depth_m,
+                direction_deg: self.direction_deg,
+                climb: match self.stairs {
+                    StairsClimb::Up => Climb::Up,
+                    StairsClimb::Down => Climb::Down,
+                },
+                start: self.start_m,
+            })),
+        }
+    }
+}
+
+/// `[terrain]`: the generator's ranges for the kind chosen (named `terrain.<key>`), the slope
+/// within ±[`MAX_SLOPE_DEG`], a file for `"heightfield"`, the curriculum's levels and kinds.
+impl Table for TerrainConfig {
+    fn validate(&self, config: &EnvConfig) -> Result<(), ConfigError> {
+        if self.kind == TerrainKind::Flat {
+            return Ok(());
+        }
+        let max_side = hyq_physics::terrain::MAX_SIDE_M;
+        if !self
+            .size_m
+            .iter()
+            .all(|s| s.is_finite() && *s > 0.0 && *s <= max_side)
+        {
+            return Err(invalid(
+                "terrain.size_m",
+                self.size_m,
+                &format!("each side must be in (0, {max_side}] m"),
+            ));
+        }
+        if let Some(c) = self.center_m
+            && !c.iter().all(|v| v.is_finite())
+        {
+            return Err(invalid("terrain.center_m", c, "must be finite (m)"));
+        }
+        let [cx, cy] = self.center_m.unwrap_or(config.reset.spawn_xy_m);
+        let inside = |c: f64, side: f64| in_world(c - 0.5 * side) && in_world(c + 0.5 * side);
+        if !(inside(cx, self.size_m[0]) && inside(cy, self.size_m[1])) {
+            return Err(invalid(
+                "terrain.size_m",
+                self.size_m,
+                &format!(
+                    "puts the field's edge outside the world around its centre ({cx}, {cy}): {}",
+                    super::outside_world_reason()
+                ),
+            ));
+        }
+        in_range(
+            "terrain.slope_deg",
+            self.slope_deg,
+            -MAX_SLOPE_DEG,
+            MAX_SLOPE_DEG,
+            &format!(
+                "must be within ±{MAX_SLOPE_DEG} degrees: on a steeper slope the robot cannot \
+                 be put down standing"
+            ),
+        )?;
+        if self.kind == TerrainKind::Heightfield {
+            finite_positive("terrain.vertical_scale", self.vertical_scale)?;
+            if self.file.is_none() {
+                return Err(invalid(
+                    "terrain.file",
+                    "unset",
+                    "is required when terrain.kind = \"heightfield\" (a .npy or .png file)",
+                ));
+            }
+        }
+        if self.curriculum && matches!(self.kind, TerrainKind::Heightfield) {
+            return Err(invalid(
+                "terrain.curriculum",
+                true,
+                "needs a generated kind (rough, slope or stairs): a file has no difficulty to scale",
+            ));
+        }
+        if !(1..=MAX_LEVELS).contains(&self.levels) {
+            return Err(invalid(
+                "terrain.levels",
+                self.levels,
+                &format!("must be in 1..={MAX_LEVELS}"),
+            ));
+        }
+        let extent = self.extent(config.reset.spawn_xy_m);
+        match self.relief(1.0) {
+            Some(relief) => generate::check(&extent, &relief).map(|_| ()).map_err(keyed),
+            None => Ok(()),
+        }
+    }
+}
+
+/// A terrain error as a configuration error: a generator's parameter named `terrain.<name>`
+/// (its reasons start with the value), a height file's fault under `terrain.file`.
+pub(crate) fn keyed(e: hyq_physics::TerrainError) -> ConfigError {
+    match e {
+        hyq_physics::TerrainError::Invalid { what, reason } => {
+            let (value, expected) = reason.split_once(' ').unwrap_or(("", reason.as_str()));
+            ConfigError::Invalid {
+                key: format!("terrain.{what}"),
+                value: value.to_owned(),
+                expected: expected.to_owned(),
+            }
+        }
+        hyq_physics::TerrainError::File { path, reason } => ConfigError::Invalid {
+            key: "terrain.file".into(),
+            value: format!("{:?}", path.display().to_string()),
+            expected: reason,
+        },
+        other => ConfigError::Invalid {
+            key: "terrain".into(),
+            value: String::new(),
+            expected: other.to_string(),
+        },
+    }
+}

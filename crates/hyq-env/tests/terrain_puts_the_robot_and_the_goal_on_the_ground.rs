@@ -1,0 +1,373 @@
+//! Invariant: `[terrain]` is flat by default and then the spec's environment bit for bit; over a
+//! height field the robot is put down standing on the surface under its spawn point, the goal's
+//! height follows the surface under the goal, the trunk touching the field is a fall and the
+//! trunk leaving it ends the episode as diverged; rough ground drawn per episode follows the reset
+//! seed; the curriculum moves its level by legged_gym's rule; bad terrain input is refused in one
+//! line naming the key or the file before anything runs (docs/spec.md §7.10).
+
+mod common;
+
+use common::{config, rapier, scripted, stand_action};
+use hyq_env::terrain::Ground;
+use hyq_env::{Env, EnvConfig, Reason, ResetOptions, TerrainKind, TerrainSeed};
+use hyq_physics::na::{Isometry3, UnitQuaternion};
+use hyq_physics::{Backend, RobotModel, RobotState, Terrain};
+use hyq_rapier::RapierBackend;
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+
+const ROUGH: &[(&str, &str)] = &[
+    ("terrain.kind", "\"rough\""),
+    ("terrain.amplitude_m", "0.05"),
+    ("terrain.seed", "3"),
+];
+
+/// The lowest clearance of the robot's feet above `terrain` in `state` (m).
+fn lowest_foot(model: &RobotModel, terrain: &Terrain, state: &RobotState) -> f64 {
+    let mut poses = vec![Isometry3::identity(); model.num_links()];
+    model
+        .link_poses(&state.trunk.pose, &state.q, &mut poses)
+        .unwrap_or_else(|e| panic!("{e}"));
+    model.tracked()[..model.num_feet()]
+        .iter()
+        .flat_map(|t| {
+            let link = &model.links()[t.link];
+            let pose = poses[t.link];
+            t.shapes.iter().map(move |&s| {
+                let c = &link.collisions[s];
+                terrain.clearance(&c.shape, &(pose * c.origin)).lower
+            })
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+fn bits(v: &[f64]) -> Vec<u64> {
+    v.iter().map(|x| x.to_bits()).collect()
+}
+
+/// Flat ground written out (with keys of other kinds, which flat ground ignores) is the
+/// default: the same written configuration and the same episode, bit for bit.
+#[test]
+fn flat_terrain_is_the_spec_environment_bit_for_bit() {
+    let written = EnvConfig::default().to_toml_string();
+    assert!(!written.contains("[terrain]") && !written.contains("[observation]"));
+    let mut plain: Env<RapierBackend> = rapier(&[]);
+    let mut flat: Env<RapierBackend> = rapier(&[
+        ("terrain.kind", "\"flat\""),
+        ("terrain.amplitude_m", "0.2"),
+        ("observation.extra", "[]"),
+    ]);
+    assert!(flat.terrain().is_flat() && flat.backend().terrain().is_flat());
+    let options = ResetOptions::default();
+    let a = bits(plain.reset(Some(5), &options).unwrap_or_else(|e| panic!("{e}")).observation);
+    let b = bits(flat.reset(Some(5), &options).unwrap_or_else(|e| panic!("{e}")).observation);
+    assert_eq!(a, b);
+    let action = stand_action(&plain);
+    for t in 1..=30 {
+        let a = plain.step(&action).unwrap_or_else(|e| panic!("{e}"));
+        let a = (bits(a.observation), a.reward.to_bits());
+        let b = flat.step(&action).unwrap_or_else(|e| panic!("{e}"));
+        let b = (bits(b.observation), b.reward.to_bits());
+        assert_eq!(a, b, "step {t}");
+    }
+}
+
+/// On rough ground the reset state has the feet's lowest clearance it has above flat ground,
+/// the goal is the standing height above the surface under it, and the robot then stands:
+/// its trunk never touches the ground and all four feet are down.
+#[test]
+fn the_robot_spawns_standing_on_rough_ground_and_the_goal_follows_the_surface() {
+    let model = hyq_physics::bundled::hyq();
+    let flat_clearance = lowest_foot(&model, &Terrain::Flat, &model.spawn_state());
+    let mut env: Env<RapierBackend> = rapier(ROUGH);
+    let r = env
+        .reset(Some(1), &ResetOptions::default())
+        .unwrap_or_else(|e| panic!("{e}"));
+    let goal = r.info.goal;
+    let terrain = env.terrain().clone();
+    assert!(!terrain.is_flat() && env.backend().terrain().same_as(&terrain));
+    let surface = terrain.height_at(goal[0], goal[1]);
+    assert!(surface.abs() > 1e-3, "the goal's ground is level: {surface}");
+    assert_eq!(goal, [5.0, 0.0, model.standing_height() + surface]);
+    let state = env.state().clone();
+    let clearance = lowest_foot(&model, &terrain, &state);
+    assert!(
+        (clearance - flat_clearance).abs() < 1e-6,
+        "{clearance} vs {flat_clearance} on flat ground"
+    );
+    let (roll, pitch, _) = state.trunk.pose.rotation.euler_angles();
+    assert!(roll != 0.0 || pitch != 0.0, "the trunk was not tilted to the ground");
+
+    let action = stand_action(&env);
+    let flags = env.observation_layout().foot_contacts();
+    let trunk_row = env.observation_layout().trunk_contact();
+    let mut last = Vec::new();
+    for t in 1..=60 {
+        let s = env.step(&action).unwrap_or_else(|e| panic!("{e}"));
+        assert!(!s.terminated, "t = {t}: {:?}", s.info.reasons);
+        assert_eq!(s.observation[trunk_row], 0.0, "t = {t}");
+        last = s.observation[flags.clone()].to_vec();
+    }
+    assert_eq!(last, vec![1.0; 4], "not every foot is down");
+}
+
+/// Dropped upside down onto a 0.5 m step, the trunk touches the step's top (far above the
+/// flat floor) and that is a fall.
+#[test]
+fn touching_the_terrain_is_a_fall() {
+    let mut env: Env<RapierBackend> = rapier(&[
+        ("terrain.kind", "\"stairs\""),
+        ("terrain.step_height_m", "0.5"),
+        ("terrain.step_depth_m", "2.0"),
+        ("terrain.start_m", "1.0"),
+    ]);
+    let mut state = env.model().spawn_state();
+    state.trunk.pose.translation.vector.x = 2.0;
+    state.trunk.pose.translation.vector.z = 0.5 + 0.25;
+    state.trunk.pose.rotation = UnitQuaternion::from_euler_angles(std::f64::consts::PI, 0.0, 0.0);
+    let options = ResetOptions {
+        state: Some(state),
+        ..ResetOptions::default()
+    };
+    env.reset(Some(0), &options)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let action = stand_action(&env);
+    for t in 1..=40 {
+        let s = env.step(&action).unwrap_or_else(|e| panic!("{e}"));
+        if s.terminated {
+            assert!(s.info.reasons.contains(Reason::Fell), "t = {t}: {:?}", s.info.reasons);
+            let z = env.state().trunk.pose.translation.z;
+            assert!(z > 0.5, "the trunk fell through the step to z = {z}");
+            return;
+        }
+    }
+    panic!("the trunk lay on the step for 40 steps without a fall");
+}
+
+/// Beyond the field's rectangle there is no ground: a trunk there ends the episode as diverged,
+/// the info naming where it is and where the field is.
+#[test]
+fn leaving_the_field_ends_the_episode_as_diverged() {
+    let mut env = scripted(&[
+        ("terrain.kind", "\"slope\""),
+        ("terrain.slope_deg", "5"),
+        ("terrain.size_m", "[2.0, 2.0]"),
+        ("terrain.resolution_m", "0.1"),
+    ]);
+    let mut state = env.model().spawn_state();
+    state.trunk.pose.translation.vector.x = 1.5;
+    let options = ResetOptions {
+        state: Some(state),
+        ..ResetOptions::default()
+    };
+    env.reset(Some(0), &options)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let action = stand_action(&env);
+    let s = env.step(&action).unwrap_or_else(|e| panic!("{e}"));
+    assert!(s.terminated && s.info.reasons.contains(Reason::Diverged));
+    assert!(s.observation.iter().all(|v| v.is_finite()));
+    let why = s.info.divergence.as_ref().map(ToString::to_string);
+    let why = why.unwrap_or_default();
+    assert!(
+        why.contains("left the terrain") && why.contains("-1.00 .. 1.00"),
+        "{why}"
+    );
+}
+
+/// `seed = "episode"` draws the ground from the reset seed (the same seed, the same ground; a
+/// new seed, new ground), where a fixed seed keeps one ground, not even rebuilt.
+#[test]
+fn rough_ground_drawn_per_episode_follows_the_reset_seed() {
+    let heights = |env: &Env<hyq_env::testing::ScriptedBackend>| {
+        let grid = env.terrain().grid().map(|g| g.heights().to_vec());
+        grid.unwrap_or_default()
+    };
+    let mut per_episode = scripted(&[
+        ("terrain.kind", "\"rough\""),
+        ("terrain.seed", "\"episode\""),
+        ("terrain.size_m", "[4.0, 4.0]"),
+    ]);
+    let mut seen = Vec::new();
+    for seed in [1, 2, 1] {
+        common::reset(&mut per_episode, seed);
+        assert!(per_episode.backend().terrain().same_as(per_episode.terrain()));
+        seen.push(heights(&per_episode));
+    }
+    assert!(!seen[0].is_empty());
+    assert_ne!(seen[0], seen[1]);
+    assert_eq!(bits(&seen[0]), bits(&seen[2]));
+
+    let mut fixed = scripted(&[
+        ("terrain.kind", "\"rough\""),
+        ("terrain.seed", "7"),
+        ("terrain.size_m", "[4.0, 4.0]"),
+    ]);
+    common::reset(&mut fixed, 1);
+    let first = fixed.terrain().clone();
+    common::reset(&mut fixed, 2);
+    match (&first, fixed.terrain()) {
+        (Terrain::Field(a), Terrain::Field(b)) => assert!(std::sync::Arc::ptr_eq(a, b)),
+        other => panic!("not a field: {other:?}"),
+    }
+}
+
+/// The curriculum starts at level 0 with the relief scaled by 1 / levels, goes up a level after
+/// an episode that covered half the way, down after one that covered less than a quarter, and
+/// stays within 0 ..= levels − 1.
+#[test]
+fn the_curriculum_raises_the_level_on_progress_and_lowers_it_on_failure() {
+    let c = config(&[
+        ("terrain.kind", "\"rough\""),
+        ("terrain.amplitude_m", "0.08"),
+        ("terrain.curriculum", "true"),
+        ("terrain.levels", "4"),
+        ("terrain.size_m", "[4.0, 4.0]"),
+    ]);
+    let model = hyq_physics::bundled::hyq();
+    let mut ground = Ground::new(&c, &model).unwrap_or_else(|e| panic!("{e}"));
+    let relief = |g: &Ground| {
+        let grid = g.terrain().grid().map(|g| (g.min_height(), g.max_height()));
+        let (lo, hi) = grid.unwrap_or((f64::NAN, f64::NAN));
+        lo.abs().max(hi.abs())
+    };
+    assert_eq!(ground.level(), 0);
+    assert!(relief(&ground) <= 0.02 + 1e-12 && relief(&ground) > 0.01);
+    let mut rng = ChaCha8Rng::seed_from_u64(0);
+    let mut levels = Vec::new();
+    for progress in [0.6, 0.3, 0.5, 0.9, 0.9, 0.9, 0.1, 0.24, 0.24] {
+        ground
+            .next_episode(&mut rng, Some(progress))
+            .unwrap_or_else(|e| panic!("{e}"));
+        levels.push(ground.level());
+        let scale = f64::from(ground.level() + 1) / 4.0;
+        assert!(relief(&ground) <= 0.08 * scale + 1e-12, "level {}", ground.level());
+    }
+    assert_eq!(levels, [1, 1, 2, 3, 3, 3, 2, 1, 0]);
+    ground
+        .next_episode(&mut rng, None)
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(ground.level(), 0);
+}
+
+/// Every key the scripts rely on is read by its name.
+#[test]
+fn the_terrain_keys_are_read_by_their_names() {
+    let c = config(&[
+        ("terrain.kind", "\"stairs\""),
+        ("terrain.amplitude_m", "0.03"),
+        ("terrain.feature_m", "0.5"),
+        ("terrain.slope_deg", "-12"),
+        ("terrain.step_height_m", "0.12"),
+        ("terrain.step_depth_m", "0.35"),
+        ("terrain.file", "\"ground.npy\""),
+        ("terrain.seed", "\"episode\""),
+        ("terrain.size_m", "[10.0, 6.0]"),
+        ("terrain.resolution_m", "0.04"),
+        ("observation.extra", "[\"height_scan\", \"goal_vector\", \"trunk_velocity\"]"),
+    ]);
+    let t = &c.terrain;
+    assert_eq!(t.kind, TerrainKind::Stairs);
+    assert_eq!(
+        (t.amplitude_m, t.feature_m, t.slope_deg, t.step_height_m, t.step_depth_m),
+        (0.03, 0.5, -12.0, 0.12, 0.35)
+    );
+    assert_eq!(t.file.as_deref(), Some(std::path::Path::new("ground.npy")));
+    assert_eq!(t.seed, TerrainSeed::Episode);
+    assert_eq!((t.size_m, t.resolution_m), ([10.0, 6.0], 0.04));
+    assert_eq!(c.observation.extra.len(), 3);
+    let again = EnvConfig::from_toml_str(&c.to_toml_string(), "round trip")
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(again, c);
+}
+
+fn refused(overrides: &[(&str, &str)]) -> String {
+    let mut c = EnvConfig::default();
+    let msg = match c.set_all(overrides) {
+        Err(e) => e.to_string(),
+        Ok(()) => match Env::<hyq_env::testing::ScriptedBackend>::new(hyq_physics::bundled::hyq(), c)
+        {
+            Err(e) => e.to_string(),
+            Ok(_) => panic!("{overrides:?} was accepted"),
+        },
+    };
+    assert!(!msg.contains('\n'), "{msg}");
+    msg
+}
+
+/// Bad terrain and observation input, each refused in one line naming what was wrong, before an
+/// environment exists.
+#[test]
+fn bad_terrain_input_is_refused_in_one_line_naming_the_key() {
+    let dir = std::env::temp_dir().join(format!("hyq-terrain-bad-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+    let text = dir.join("words.npy");
+    std::fs::write(&text, "not numbers").unwrap_or_else(|e| panic!("{e}"));
+    let missing = dir.join("missing.npy");
+    let path = |p: &std::path::Path| format!("{:?}", p.display().to_string());
+    let cases: Vec<(Vec<(&str, String)>, Vec<&str>)> = vec![
+        (vec![("terrain.kind", "\"lava\"".into())], vec!["terrain.kind", "lava"]),
+        (vec![("terrain.bumpiness", "1".into())], vec!["bumpiness"]),
+        (
+            vec![("terrain.kind", "\"slope\"".into()), ("terrain.slope_deg", "40".into())],
+            vec!["terrain.slope_deg", "40"],
+        ),
+        (
+            vec![("terrain.kind", "\"rough\"".into()), ("terrain.amplitude_m", "-0.1".into())],
+            vec!["terrain.amplitude_m"],
+        ),
+        (
+            vec![("terrain.kind", "\"rough\"".into()), ("terrain.size_m", "[0.0, 4.0]".into())],
+            vec!["terrain.size_m"],
+        ),
+        (vec![("terrain.seed", "-1".into())], vec!["terrain.seed"]),
+        (
+            vec![("terrain.kind", "\"heightfield\"".into())],
+            vec!["terrain.file", "required"],
+        ),
+        (
+            vec![("terrain.kind", "\"heightfield\"".into()), ("terrain.file", path(&missing))],
+            vec!["terrain.file", "missing.npy"],
+        ),
+        (
+            vec![("terrain.kind", "\"heightfield\"".into()), ("terrain.file", path(&text))],
+            vec!["terrain.file", "words.npy"],
+        ),
+        (
+            vec![
+                ("terrain.kind", "\"heightfield\"".into()),
+                ("terrain.file", path(&text)),
+                ("terrain.curriculum", "true".into()),
+            ],
+            vec!["terrain.curriculum"],
+        ),
+        (
+            vec![
+                ("terrain.kind", "\"stairs\"".into()),
+                ("terrain.step_height_m", "0.5".into()),
+                ("terrain.start_m", "-0.2".into()),
+            ],
+            vec!["terrain.step_height_m", "cannot be put down standing"],
+        ),
+        (vec![("observation.extra", "[\"lidar\"]".into())], vec!["observation.extra", "lidar"]),
+        (
+            vec![("observation.extra", "[\"goal_vector\", \"goal_vector\"]".into())],
+            vec!["observation.extra", "twice"],
+        ),
+        (
+            vec![("observation.height_scan_x_m", "[0.5, -0.5]".into())],
+            vec!["observation.height_scan_x_m"],
+        ),
+        (
+            vec![("observation.height_scan_spacing_m", "0.02".into())],
+            vec!["observation.height_scan_spacing_m", "1024"],
+        ),
+    ];
+    for (overrides, words) in &cases {
+        let pairs: Vec<(&str, &str)> = overrides.iter().map(|(k, v)| (*k, v.as_str())).collect();
+        let msg = refused(&pairs);
+        for w in words {
+            assert!(msg.contains(w), "{overrides:?}: {msg:?} does not name {w:?}");
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
