@@ -102,6 +102,22 @@ pub struct CompareArgs {
         conflicts_with = "policy"
     )]
     set_b: Vec<String>,
+    /// The ground on every side: `--set terrain.kind="KIND"` with the `[terrain]` table's
+    /// defaults (rough: ±5 cm bumps 0.4 m apart, seed 0; slope: 10° rising towards the goal;
+    /// stairs: 10 cm steps 30 cm deep from 1 m ahead), tuned further with --set. The ledger's
+    /// entries measured on that ground judge the scenarios (docs/terrain.md).
+    #[arg(long, value_name = "KIND", value_parser = ["flat", "rough", "slope", "stairs"])]
+    terrain: Option<String>,
+}
+
+impl CompareArgs {
+    /// `--terrain KIND` as the first `--set`, so that a later --set tunes it.
+    fn terrain_as_set(mut self) -> Self {
+        if let Some(kind) = self.terrain.take() {
+            self.set.insert(0, format!("terrain.kind=\"{kind}\""));
+        }
+        self
+    }
 }
 
 /// The backends to compare: two, or three different ones.
@@ -169,6 +185,7 @@ fn command_line() -> String {
 
 /// Runs `hyq compare`.
 pub fn execute(args: CompareArgs) -> Result<(), Failure> {
+    let args = args.terrain_as_set();
     let choices = args.backends.0.clone();
     let model = args.robot.model()?;
     if let Some(missing) = choices.iter().copied().find(|c| !c.built()) {

@@ -256,10 +256,13 @@ impl Plan {
         let series = Series::from_runs(traj_a, traj_b).with_divergences(&trajectory, env_dt);
         let engines = [traj_a.engine, traj_b.engine];
         let robot = self.model.name();
+        // The ledger's entries for the ground both sides share (`--set terrain.kind=...`).
+        let terrain = side_config(spec, &self.base, &[])?.terrain.kind.as_str();
         let checks: Vec<Check> = values
             .iter()
             .map(|(metric, value)| {
-                let (tolerance, source) = ledger.tolerance(robot, engines, scenario, *metric);
+                let (tolerance, source) =
+                    ledger.tolerance_on(robot, engines, scenario, terrain, *metric);
                 Check {
                     metric: *metric,
                     value: *value,

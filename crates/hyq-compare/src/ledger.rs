@@ -5,7 +5,9 @@
 //! robot (the profile's `name`). A metric's tolerance for a comparison of engines {E1, E2} on
 //! robot R in scenario S is, in this order: the `[[known]]` entry for R, {E1, E2} (either
 //! order), S and that metric; else the entry for R, {E1, E2}, scenario `"all"` and that
-//! metric; else `[default]`'s value. `[default]` says how
+//! metric; else `[default]`'s value. An entry holds on one ground: its `terrain`, a
+//! `terrain.kind` (`"flat"` when not given, the ground of every entry measured before terrain
+//! existed), so a comparison on rough ground is judged by the entries measured there. `[default]` says how
 //! closely two backends simulating the same model must agree when nothing is known: two runs of
 //! the same engine with the same inputs agree exactly, so it is the strict claim a new engine
 //! pair has to earn entries against. A metric passes when its value ≤ its tolerance (a NaN never
@@ -23,6 +25,7 @@
 //! metric = "trunk_position_max_m"
 //! tolerance = 0.1
 //! reason = "why the engines differ here, with the measured value"
+//! # terrain = "rough"                 # the ground it was measured on (default "flat")
 //! ```
 
 use std::collections::BTreeMap;
@@ -167,6 +170,8 @@ pub struct Known {
     pub scenario: ScenarioScope,
     /// The metric.
     pub metric: Metric,
+    /// The ground it was measured on: a `terrain.kind` (`"flat"` by default).
+    pub terrain: String,
     /// The widened tolerance.
     pub tolerance: f64,
     /// Why the engines differ here (one reason).
@@ -174,8 +179,9 @@ pub struct Known {
 }
 
 impl Known {
-    fn covers(&self, robot: &str, engines: [&str; 2], scenario: Scenario) -> bool {
+    fn covers(&self, robot: &str, engines: [&str; 2], scenario: Scenario, terrain: &str) -> bool {
         let pair = self.robot == robot
+            && self.terrain == terrain
             && ((self.backends[0] == engines[0] && self.backends[1] == engines[1])
                 || (self.backends[0] == engines[1] && self.backends[1] == engines[0]));
         pair && match self.scenario {
@@ -226,9 +232,19 @@ struct RawKnown {
     backends: [String; 2],
     scenario: String,
     metric: String,
+    #[serde(default = "flat")]
+    terrain: String,
     tolerance: f64,
     reason: String,
 }
+
+/// The ground of an entry that names none.
+fn flat() -> String {
+    "flat".to_owned()
+}
+
+/// The grounds an entry may name (`terrain.kind`'s values).
+const TERRAINS: [&str; 5] = ["flat", "rough", "slope", "stairs", "heightfield"];
 
 fn check_tolerance(value: f64) -> Result<(), String> {
     if value.is_finite() && value >= 0.0 {
@@ -300,11 +316,19 @@ impl Ledger {
             if k.backends.iter().any(|b| b.trim().is_empty()) {
                 return Err(bad(format!("{at}: a backend name is empty")));
             }
+            if !TERRAINS.contains(&k.terrain.as_str()) {
+                return Err(bad(format!(
+                    "{at}: unknown terrain {:?} (one of {})",
+                    k.terrain,
+                    TERRAINS.join(", ")
+                )));
+            }
             let entry = Known {
                 robot: k.robot,
                 backends: k.backends,
                 scenario,
                 metric,
+                terrain: k.terrain,
                 tolerance: k.tolerance,
                 reason: k.reason.split_whitespace().collect::<Vec<_>>().join(" "),
             };
@@ -316,6 +340,7 @@ impl Ledger {
             if known.iter().any(|o| {
                 o.metric == entry.metric
                     && o.robot == entry.robot
+                    && o.terrain == entry.terrain
                     && o.scenario == entry.scenario
                     && pair(&o.backends) == pair(&entry.backends)
             }) {
@@ -330,8 +355,8 @@ impl Ledger {
         })
     }
 
-    /// The tolerance of `metric` for engines `engines` on `robot` in `scenario`, and where it
-    /// came from.
+    /// The tolerance of `metric` for engines `engines` on `robot` in `scenario` on flat
+    /// ground, and where it came from.
     pub fn tolerance(
         &self,
         robot: &str,
@@ -339,9 +364,24 @@ impl Ledger {
         scenario: Scenario,
         metric: Metric,
     ) -> (f64, ToleranceSource) {
+        self.tolerance_on(robot, engines, scenario, "flat", metric)
+    }
+
+    /// The tolerance of `metric` for engines `engines` on `robot` in `scenario` on the ground
+    /// `terrain` (a `terrain.kind`), and where it came from.
+    pub fn tolerance_on(
+        &self,
+        robot: &str,
+        engines: [&str; 2],
+        scenario: Scenario,
+        terrain: &str,
+        metric: Metric,
+    ) -> (f64, ToleranceSource) {
         let find = |want: ScenarioScope| {
             self.known.iter().find(|k| {
-                k.metric == metric && k.scenario == want && k.covers(robot, engines, scenario)
+                k.metric == metric
+                    && k.scenario == want
+                    && k.covers(robot, engines, scenario, terrain)
             })
         };
         match find(ScenarioScope::One(scenario)).or_else(|| find(ScenarioScope::All)) {

@@ -1,7 +1,7 @@
 //! Invariant: the ledger is checked when it is read. The shipped ledger parses, gives every
 //! metric a default, and every known divergence has a reason; a malformed ledger is an error that
 //! names the entry and the offending key or value; the most specific entry wins, an engine
-//! pair matches in either order, and an entry holds only for the robot it names.
+//! pair matches in either order, and an entry holds only for the robot and the ground it names.
 
 #![allow(clippy::unwrap_used)]
 
@@ -146,4 +146,30 @@ fn malformed_ledgers_are_errors_naming_what_is_wrong() {
         missing_file.contains("/nonexistent/ledger.toml"),
         "{missing_file}"
     );
+}
+
+/// An entry holds on the ground it was measured on: one without `terrain` on flat ground only,
+/// one with `terrain = "rough"` on rough ground only; the same metric may have both; an unknown
+/// ground is an error naming the entry.
+#[test]
+fn an_entry_holds_on_the_ground_it_names() {
+    let rough = known("trot", "return_diff", "0.9", "measured on rough ground, a reason")
+        .replace("tolerance", "terrain = \"rough\"\ntolerance");
+    let text = format!(
+        "{DEFAULTS}{}{rough}",
+        known("trot", "return_diff", "0.7", "measured on flat ground, a reason")
+    );
+    let ledger = Ledger::parse(&text, "test.toml").unwrap();
+    let engines = ["rapier", "dart"];
+    let on = |terrain: &str| {
+        ledger
+            .tolerance_on("hyq", engines, Scenario::Trot, terrain, Metric::ReturnDiff)
+            .0
+    };
+    assert_eq!((on("flat"), on("rough"), on("slope")), (0.7, 0.9, 1e-3));
+    let (flat, _) = ledger.tolerance("hyq", engines, Scenario::Trot, Metric::ReturnDiff);
+    assert_eq!(flat, 0.7);
+    let lava = format!("{DEFAULTS}{}", rough.replace("\"rough\"", "\"lava\""));
+    assert!(error(&lava).contains("unknown terrain \"lava\""), "{}", error(&lava));
+    assert!(error(&format!("{DEFAULTS}{rough}{rough}")).contains("duplicates"));
 }
