@@ -352,8 +352,8 @@ fn render(args: &ModelArgs, model: &RobotModel, config: &EnvConfig) -> Result<St
             mujoco.validate().map_err(|e| usage(e.to_string()))?;
             // The ground of the configuration (`[terrain]`): its first episode's, as an
             // environment built with it starts on.
-            let ground = hyq_env::terrain::Ground::new(config, model)
-                .map_err(|e| usage(e.to_string()))?;
+            let ground =
+                hyq_env::terrain::Ground::new(config, model).map_err(|e| usage(e.to_string()))?;
             let options = MjcfOptions {
                 actuators,
                 solver: mujoco,

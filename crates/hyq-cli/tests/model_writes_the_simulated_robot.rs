@@ -58,7 +58,10 @@ fn mjcf_writes_the_terrains_height_field() {
         "terrain.resolution_m=0.1",
     ]);
     // 21 x 11 heights: MuJoCo's rows run along y, its columns along x.
-    assert!(rough.contains("<hfield name=\"terrain\" nrow=\"11\" ncol=\"21\""), "{rough}");
+    assert!(
+        rough.contains("<hfield name=\"terrain\" nrow=\"11\" ncol=\"21\""),
+        "{rough}"
+    );
     assert!(rough.contains("type=\"hfield\"") && !rough.contains("type=\"plane\""));
     usage_error_naming(
         &[

@@ -153,11 +153,21 @@ fn malformed_ledgers_are_errors_naming_what_is_wrong() {
 /// ground is an error naming the entry.
 #[test]
 fn an_entry_holds_on_the_ground_it_names() {
-    let rough = known("trot", "return_diff", "0.9", "measured on rough ground, a reason")
-        .replace("tolerance", "terrain = \"rough\"\ntolerance");
+    let rough = known(
+        "trot",
+        "return_diff",
+        "0.9",
+        "measured on rough ground, a reason",
+    )
+    .replace("tolerance", "terrain = \"rough\"\ntolerance");
     let text = format!(
         "{DEFAULTS}{}{rough}",
-        known("trot", "return_diff", "0.7", "measured on flat ground, a reason")
+        known(
+            "trot",
+            "return_diff",
+            "0.7",
+            "measured on flat ground, a reason"
+        )
     );
     let ledger = Ledger::parse(&text, "test.toml").unwrap();
     let engines = ["rapier", "dart"];
@@ -170,6 +180,10 @@ fn an_entry_holds_on_the_ground_it_names() {
     let (flat, _) = ledger.tolerance("hyq", engines, Scenario::Trot, Metric::ReturnDiff);
     assert_eq!(flat, 0.7);
     let lava = format!("{DEFAULTS}{}", rough.replace("\"rough\"", "\"lava\""));
-    assert!(error(&lava).contains("unknown terrain \"lava\""), "{}", error(&lava));
+    assert!(
+        error(&lava).contains("unknown terrain \"lava\""),
+        "{}",
+        error(&lava)
+    );
     assert!(error(&format!("{DEFAULTS}{rough}{rough}")).contains("duplicates"));
 }

@@ -444,7 +444,9 @@ fn a_policy_file_names_the_extra_rows_it_was_trained_with() {
             "observation",
             serde_json::to_string(&rows).unwrap_or_default(),
         )],
-        w0: (0..HIDDEN * n_obs).map(|i| ((i % 7) as f32 - 3.0) * 0.05).collect(),
+        w0: (0..HIDDEN * n_obs)
+            .map(|i| ((i % 7) as f32 - 3.0) * 0.05)
+            .collect(),
         mean: vec![0.0; n_obs],
         var: vec![1.0; n_obs],
         ..FileSpec::default()

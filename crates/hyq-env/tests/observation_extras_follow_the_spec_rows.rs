@@ -17,8 +17,7 @@ const ALL: &str = r#"["trunk_velocity", "height_scan", "goal_vector"]"#;
 fn without_extras_the_layout_is_the_spec_table() {
     let model = hyq_physics::bundled::hyq();
     let spec = observation_layout_of(&model).unwrap_or_else(|e| panic!("{e}"));
-    let default =
-        observation_layout_for(&model, &config(&[])).unwrap_or_else(|e| panic!("{e}"));
+    let default = observation_layout_for(&model, &config(&[])).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(default.rows(), spec.rows());
     assert!(default.groups().is_empty());
     assert_eq!(default.len(), 39);
@@ -58,16 +57,25 @@ fn extras_come_after_the_spec_rows_in_a_fixed_order_named_and_bounded() {
             ("trunk_velocity", "m/s, rad/s", 229..235),
         ]
     );
-    let names: Vec<&str> = listed.rows()[39..].iter().map(|r| r.name.as_ref()).collect();
+    let names: Vec<&str> = listed.rows()[39..]
+        .iter()
+        .map(|r| r.name.as_ref())
+        .collect();
     assert_eq!(names[0], "height_scan_00_00");
     assert_eq!(names[10], "height_scan_00_10");
     assert_eq!(names[186], "height_scan_16_10");
-    assert_eq!(names[187..190], ["goal_vector_x", "goal_vector_y", "goal_vector_z"]);
+    assert_eq!(
+        names[187..190],
+        ["goal_vector_x", "goal_vector_y", "goal_vector_z"]
+    );
     assert_eq!(names[190], "trunk_linvel_x");
     assert_eq!(names[195], "trunk_angvel_z");
     for (i, row) in listed.rows().iter().enumerate().skip(39) {
         assert_eq!(row.index, i);
-        assert!(row.estimated && row.min < 0.0 && row.max == -row.min, "{row:?}");
+        assert!(
+            row.estimated && row.min < 0.0 && row.max == -row.min,
+            "{row:?}"
+        );
     }
     let mut env = scripted(&[("observation.extra", ALL)]);
     reset(&mut env, 0);
@@ -110,7 +118,11 @@ fn extras_are_the_height_scan_goal_vector_and_trunk_velocity_in_the_trunk_frame(
         for j in 0..11 {
             let p = heading * Vector3::new(-0.8 + 0.1 * i as f64, -0.5 + 0.1 * j as f64, 0.0);
             let want = terrain.height_at(c.x + p.x, c.y + p.y) - c.z;
-            assert!((obs[row] - want).abs() < 1e-12, "scan {i} {j}: {} vs {want}", obs[row]);
+            assert!(
+                (obs[row] - want).abs() < 1e-12,
+                "scan {i} {j}: {} vs {want}",
+                obs[row]
+            );
             row += 1;
         }
     }
@@ -118,7 +130,12 @@ fn extras_are_the_height_scan_goal_vector_and_trunk_velocity_in_the_trunk_frame(
     let goal = to_trunk * (Vector3::new(g[0], g[1], g[2]) - c);
     let v = to_trunk * trunk.linvel;
     let w = to_trunk * trunk.angvel;
-    let want: Vec<f64> = goal.iter().chain(v.iter()).chain(w.iter()).copied().collect();
+    let want: Vec<f64> = goal
+        .iter()
+        .chain(v.iter())
+        .chain(w.iter())
+        .copied()
+        .collect();
     assert_eq!(obs[226..235], want[..]);
     assert!(v.norm() > 0.0, "the trunk did not move at all");
     // A record carries every row.

@@ -59,8 +59,17 @@ fn flat_terrain_is_the_spec_environment_bit_for_bit() {
     ]);
     assert!(flat.terrain().is_flat() && flat.backend().terrain().is_flat());
     let options = ResetOptions::default();
-    let a = bits(plain.reset(Some(5), &options).unwrap_or_else(|e| panic!("{e}")).observation);
-    let b = bits(flat.reset(Some(5), &options).unwrap_or_else(|e| panic!("{e}")).observation);
+    let a = bits(
+        plain
+            .reset(Some(5), &options)
+            .unwrap_or_else(|e| panic!("{e}"))
+            .observation,
+    );
+    let b = bits(
+        flat.reset(Some(5), &options)
+            .unwrap_or_else(|e| panic!("{e}"))
+            .observation,
+    );
     assert_eq!(a, b);
     let action = stand_action(&plain);
     for t in 1..=30 {
@@ -87,7 +96,10 @@ fn the_robot_spawns_standing_on_rough_ground_and_the_goal_follows_the_surface() 
     let terrain = env.terrain().clone();
     assert!(!terrain.is_flat() && env.backend().terrain().same_as(&terrain));
     let surface = terrain.height_at(goal[0], goal[1]);
-    assert!(surface.abs() > 1e-3, "the goal's ground is level: {surface}");
+    assert!(
+        surface.abs() > 1e-3,
+        "the goal's ground is level: {surface}"
+    );
     assert_eq!(goal, [5.0, 0.0, model.standing_height() + surface]);
     let state = env.state().clone();
     let clearance = lowest_foot(&model, &terrain, &state);
@@ -96,7 +108,10 @@ fn the_robot_spawns_standing_on_rough_ground_and_the_goal_follows_the_surface() 
         "{clearance} vs {flat_clearance} on flat ground"
     );
     let (roll, pitch, _) = state.trunk.pose.rotation.euler_angles();
-    assert!(roll != 0.0 || pitch != 0.0, "the trunk was not tilted to the ground");
+    assert!(
+        roll != 0.0 || pitch != 0.0,
+        "the trunk was not tilted to the ground"
+    );
 
     let action = stand_action(&env);
     let flags = env.observation_layout().foot_contacts();
@@ -135,7 +150,11 @@ fn touching_the_terrain_is_a_fall() {
     for t in 1..=40 {
         let s = env.step(&action).unwrap_or_else(|e| panic!("{e}"));
         if s.terminated {
-            assert!(s.info.reasons.contains(Reason::Fell), "t = {t}: {:?}", s.info.reasons);
+            assert!(
+                s.info.reasons.contains(Reason::Fell),
+                "t = {t}: {:?}",
+                s.info.reasons
+            );
             let z = env.state().trunk.pose.translation.z;
             assert!(z > 0.5, "the trunk fell through the step to z = {z}");
             return;
@@ -190,7 +209,12 @@ fn rough_ground_drawn_per_episode_follows_the_reset_seed() {
     let mut seen = Vec::new();
     for seed in [1, 2, 1] {
         common::reset(&mut per_episode, seed);
-        assert!(per_episode.backend().terrain().same_as(per_episode.terrain()));
+        assert!(
+            per_episode
+                .backend()
+                .terrain()
+                .same_as(per_episode.terrain())
+        );
         seen.push(heights(&per_episode));
     }
     assert!(!seen[0].is_empty());
@@ -240,7 +264,11 @@ fn the_curriculum_raises_the_level_on_progress_and_lowers_it_on_failure() {
             .unwrap_or_else(|e| panic!("{e}"));
         levels.push(ground.level());
         let scale = f64::from(ground.level() + 1) / 4.0;
-        assert!(relief(&ground) <= 0.08 * scale + 1e-12, "level {}", ground.level());
+        assert!(
+            relief(&ground) <= 0.08 * scale + 1e-12,
+            "level {}",
+            ground.level()
+        );
     }
     assert_eq!(levels, [1, 1, 2, 3, 3, 3, 2, 1, 0]);
     ground
@@ -263,12 +291,21 @@ fn the_terrain_keys_are_read_by_their_names() {
         ("terrain.seed", "\"episode\""),
         ("terrain.size_m", "[10.0, 6.0]"),
         ("terrain.resolution_m", "0.04"),
-        ("observation.extra", "[\"height_scan\", \"goal_vector\", \"trunk_velocity\"]"),
+        (
+            "observation.extra",
+            "[\"height_scan\", \"goal_vector\", \"trunk_velocity\"]",
+        ),
     ]);
     let t = &c.terrain;
     assert_eq!(t.kind, TerrainKind::Stairs);
     assert_eq!(
-        (t.amplitude_m, t.feature_m, t.slope_deg, t.step_height_m, t.step_depth_m),
+        (
+            t.amplitude_m,
+            t.feature_m,
+            t.slope_deg,
+            t.step_height_m,
+            t.step_depth_m
+        ),
         (0.03, 0.5, -12.0, 0.12, 0.35)
     );
     assert_eq!(t.file.as_deref(), Some(std::path::Path::new("ground.npy")));
@@ -284,11 +321,12 @@ fn refused(overrides: &[(&str, &str)]) -> String {
     let mut c = EnvConfig::default();
     let msg = match c.set_all(overrides) {
         Err(e) => e.to_string(),
-        Ok(()) => match Env::<hyq_env::testing::ScriptedBackend>::new(hyq_physics::bundled::hyq(), c)
-        {
-            Err(e) => e.to_string(),
-            Ok(_) => panic!("{overrides:?} was accepted"),
-        },
+        Ok(()) => {
+            match Env::<hyq_env::testing::ScriptedBackend>::new(hyq_physics::bundled::hyq(), c) {
+                Err(e) => e.to_string(),
+                Ok(_) => panic!("{overrides:?} was accepted"),
+            }
+        }
     };
     assert!(!msg.contains('\n'), "{msg}");
     msg
@@ -305,18 +343,30 @@ fn bad_terrain_input_is_refused_in_one_line_naming_the_key() {
     let missing = dir.join("missing.npy");
     let path = |p: &std::path::Path| format!("{:?}", p.display().to_string());
     let cases: Vec<(Vec<(&str, String)>, Vec<&str>)> = vec![
-        (vec![("terrain.kind", "\"lava\"".into())], vec!["terrain.kind", "lava"]),
+        (
+            vec![("terrain.kind", "\"lava\"".into())],
+            vec!["terrain.kind", "lava"],
+        ),
         (vec![("terrain.bumpiness", "1".into())], vec!["bumpiness"]),
         (
-            vec![("terrain.kind", "\"slope\"".into()), ("terrain.slope_deg", "40".into())],
+            vec![
+                ("terrain.kind", "\"slope\"".into()),
+                ("terrain.slope_deg", "40".into()),
+            ],
             vec!["terrain.slope_deg", "40"],
         ),
         (
-            vec![("terrain.kind", "\"rough\"".into()), ("terrain.amplitude_m", "-0.1".into())],
+            vec![
+                ("terrain.kind", "\"rough\"".into()),
+                ("terrain.amplitude_m", "-0.1".into()),
+            ],
             vec!["terrain.amplitude_m"],
         ),
         (
-            vec![("terrain.kind", "\"rough\"".into()), ("terrain.size_m", "[0.0, 4.0]".into())],
+            vec![
+                ("terrain.kind", "\"rough\"".into()),
+                ("terrain.size_m", "[0.0, 4.0]".into()),
+            ],
             vec!["terrain.size_m"],
         ),
         (vec![("terrain.seed", "-1".into())], vec!["terrain.seed"]),
@@ -325,11 +375,17 @@ fn bad_terrain_input_is_refused_in_one_line_naming_the_key() {
             vec!["terrain.file", "required"],
         ),
         (
-            vec![("terrain.kind", "\"heightfield\"".into()), ("terrain.file", path(&missing))],
+            vec![
+                ("terrain.kind", "\"heightfield\"".into()),
+                ("terrain.file", path(&missing)),
+            ],
             vec!["terrain.file", "missing.npy"],
         ),
         (
-            vec![("terrain.kind", "\"heightfield\"".into()), ("terrain.file", path(&text))],
+            vec![
+                ("terrain.kind", "\"heightfield\"".into()),
+                ("terrain.file", path(&text)),
+            ],
             vec!["terrain.file", "words.npy"],
         ),
         (
@@ -348,9 +404,15 @@ fn bad_terrain_input_is_refused_in_one_line_naming_the_key() {
             ],
             vec!["terrain.step_height_m", "cannot be put down standing"],
         ),
-        (vec![("observation.extra", "[\"lidar\"]".into())], vec!["observation.extra", "lidar"]),
         (
-            vec![("observation.extra", "[\"goal_vector\", \"goal_vector\"]".into())],
+            vec![("observation.extra", "[\"lidar\"]".into())],
+            vec!["observation.extra", "lidar"],
+        ),
+        (
+            vec![(
+                "observation.extra",
+                "[\"goal_vector\", \"goal_vector\"]".into(),
+            )],
             vec!["observation.extra", "twice"],
         ),
         (
@@ -366,7 +428,10 @@ fn bad_terrain_input_is_refused_in_one_line_naming_the_key() {
         let pairs: Vec<(&str, &str)> = overrides.iter().map(|(k, v)| (*k, v.as_str())).collect();
         let msg = refused(&pairs);
         for w in words {
-            assert!(msg.contains(w), "{overrides:?}: {msg:?} does not name {w:?}");
+            assert!(
+                msg.contains(w),
+                "{overrides:?}: {msg:?} does not name {w:?}"
+            );
         }
     }
     std::fs::remove_dir_all(&dir).ok();

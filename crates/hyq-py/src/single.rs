@@ -221,7 +221,9 @@ impl Core {
     /// `observation.extra` (see `spaces::table_rows`).
     fn observation_table<'py>(slf: &Bound<'py, Self>) -> PyResult<Vec<crate::spaces::TableRow>> {
         call(slf, "observation_table", |this| {
-            Ok(crate::spaces::table_rows(this.env.get().observation_layout()))
+            Ok(crate::spaces::table_rows(
+                this.env.get().observation_layout(),
+            ))
         })
     }
 

@@ -9,8 +9,8 @@ use hyq_physics::terrain::generate::{self, Climb, Extent, Relief, Rough, Slope, 
 use serde::de::{self, Visitor};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-use super::validate::{finite_positive, in_range, invalid};
 use super::in_world;
+use super::validate::{finite_positive, in_range, invalid};
 use super::{ConfigError, EnvConfig, Table};
 
 /// The steepest slope (degrees) the robot is put down on: steeper, a standing quadruped's
