@@ -177,6 +177,17 @@ fn padded_range<'a>(values: impl IntoIterator<Item = &'a f64>, also: &'a [f64]) 
     (lo - 0.06 * span, hi + 0.06 * span)
 }
 
+/// The upper end of an axis that starts near 0: the largest finite value of `values`, at least
+/// `at_least`, within [`AXIS_LIMIT`], times `scale` (at most 2, for padding). Every axis of the
+/// plots is made by this or [`padded_range`], so no value of any series can make one infinite.
+fn axis_end(values: impl IntoIterator<Item = f64>, at_least: f64, scale: f64) -> f64 {
+    let max = values
+        .into_iter()
+        .filter(|v| v.is_finite())
+        .fold(at_least, f64::max);
+    max.min(AXIS_LIMIT) * scale
+}
+
 fn t_range(t: &[f64]) -> (f64, f64) {
     let (lo, hi) = (t[0], t[t.len() - 1]);
     if hi - lo < 1e-9 {
@@ -527,7 +538,9 @@ pub fn plot_distance(
         .d_n
         .iter()
         .zip(&series.distance_to_goal)
-        .find_map(|(d, &dist)| d.filter(|d| *d > 1e-9).map(|d| dist / d));
+        .find_map(|(d, &dist)| d.filter(|d| *d > 1e-9).map(|d| dist / d))
+        // Only a K the environment could have had is shown (a foreign record may hold any).
+        .filter(|k| k.is_finite() && k.abs() < 1e6);
     // The exponential reward against its §4.3 curve: Σ r_e is R_e(D_n).
     let cum_e = cumulative(series.term("r_e").unwrap_or_default());
     let points: Vec<(f64, f64)> = series
@@ -564,7 +577,7 @@ fn draw_distance_over_time(
     d_n: &[(f64, f64)],
 ) -> Result<(), String> {
     let (t0, t1) = t_range(t);
-    let y_hi = d_n.iter().map(|p| p.1).fold(1.0, f64::max) * 1.08;
+    let y_hi = axis_end(d_n.iter().map(|p| p.1), 1.0, 1.08);
     let mut chart = styled_chart(
         left,
         "Normalised distance D_n = D / K (§4.2)",
@@ -603,7 +616,7 @@ fn draw_exponential_curve(
     points: &[(f64, f64)],
     k_exp: Option<f64>,
 ) -> Result<(), String> {
-    let x_hi = points.iter().map(|p| p.0).fold(1.2, f64::max) * 1.06;
+    let x_hi = axis_end(points.iter().map(|p| p.0), 1.2, 1.06);
     let curve: Vec<(f64, f64)> = match k_exp {
         Some(k) => (0..=600)
             .map(|i| {
