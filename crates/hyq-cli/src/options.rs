@@ -174,7 +174,7 @@ fn file_keys(path: &std::path::Path) -> Result<Vec<String>, Failure> {
     }
     // The loader has read and validated the file already; these errors are for a file changed
     // in between.
-    let text = std::fs::read_to_string(path)
+    let text = hyq_physics::input::read_text(path, &hyq_physics::input::CONFIG)
         .map_err(|e| usage(format!("--config {}: {e}", path.display())))?;
     let table: toml::Table = text.parse().map_err(|e: toml::de::Error| {
         usage(format!("--config {}: {}", path.display(), e.message()))

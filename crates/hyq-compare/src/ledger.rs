@@ -30,6 +30,7 @@ use std::fmt;
 use std::path::Path;
 use std::str::FromStr;
 
+use hyq_physics::input;
 use serde::{Deserialize, Serialize};
 
 use crate::error::CompareError;
@@ -244,13 +245,14 @@ impl Ledger {
         Self::parse(BUILT_IN, "built-in")
     }
 
-    /// Reads a ledger file.
+    /// Reads a ledger file of at most hyq-physics' [`input::LEDGER`] cap.
     pub fn from_file(path: impl AsRef<Path>) -> Result<Self, CompareError> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|e| CompareError::LedgerRead {
-            path: path.to_owned(),
-            message: e.to_string(),
-        })?;
+        let text =
+            input::read_text(path, &input::LEDGER).map_err(|e| CompareError::LedgerRead {
+                path: path.to_owned(),
+                message: e.to_string(),
+            })?;
         Self::parse(&text, &path.display().to_string())
     }
 
