@@ -235,7 +235,10 @@ fn check_tolerance(value: f64) -> Result<(), String> {
     if value.is_finite() && value >= 0.0 {
         Ok(())
     } else {
-        Err(format!("tolerance {value} must be finite and ≥ 0"))
+        Err(format!(
+            "tolerance {} must be finite and ≥ 0",
+            hyq_physics::bounds::short(value)
+        ))
     }
 }
 
@@ -265,12 +268,23 @@ impl Ledger {
             origin: origin.to_owned(),
             message,
         };
-        let raw: RawLedger =
-            toml::from_str(text).map_err(|e| bad(e.to_string().replace('\n', " ")))?;
+        // The parser's own words and the line, without the excerpt of the file it draws (which
+        // holds whatever the file holds).
+        let raw: RawLedger = toml::from_str(text).map_err(|e| {
+            let line = e
+                .span()
+                .and_then(|s| text.get(..s.start))
+                .map(|before| format!("line {}: ", 1 + before.matches('\n').count()));
+            bad(format!(
+                "{}{}",
+                line.unwrap_or_default(),
+                e.message().escape_debug()
+            ))
+        })?;
         let mut default = BTreeMap::new();
         for (name, value) in &raw.default {
             let metric: Metric = name.parse().map_err(|e| bad(format!("[default]: {e}")))?;
-            check_tolerance(*value).map_err(|e| bad(format!("[default] {name}: {e}")))?;
+            check_tolerance(*value).map_err(|e| bad(format!("[default] {name:?}: {e}")))?;
             default.insert(metric, *value);
         }
         if let Some(missing) = Metric::ALL.iter().find(|m| !default.contains_key(m)) {
@@ -278,8 +292,9 @@ impl Ledger {
         }
         let mut known: Vec<Known> = Vec::with_capacity(raw.known.len());
         for (i, k) in raw.known.into_iter().enumerate() {
+            // Quoted with escapes: the names are the file's, whatever they hold.
             let at = format!(
-                "[[known]] entry {} ({} {} {} {})",
+                "[[known]] entry {} ({:?} {:?} {:?} {:?})",
                 i + 1,
                 k.robot,
                 k.backends.join(","),
