@@ -88,13 +88,11 @@ impl Bound {
     }
 }
 
-/// A number in short form for messages: `1.7e308` rather than 309 digits, `1e6` rather than
-/// `1000000`, `0.75` as it is.
+/// A number in short form for messages: `1.7e308` rather than 309 digits, `1e-46` rather than
+/// 46 zeros, `1e6` rather than `1000000`; a figure from 0.001 to a million as it is (`0.75`).
 pub fn short(value: f64) -> String {
-    let plain = format!("{value}");
-    let magnitude = value.abs();
-    if value == 0.0 || !value.is_finite() || (1e-3..1e5).contains(&magnitude) && plain.len() <= 12 {
-        plain
+    if value == 0.0 || !value.is_finite() || (1e-3..1e6).contains(&value.abs()) {
+        format!("{value}")
     } else {
         format!("{value:e}")
     }

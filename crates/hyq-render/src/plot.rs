@@ -188,6 +188,14 @@ fn axis_end(values: impl IntoIterator<Item = f64>, at_least: f64, scale: f64) ->
     max.min(AXIS_LIMIT) * scale
 }
 
+/// `p` moved onto the chart whose axes span `x` and `y`: a value beyond an axis (a foreign
+/// record's, or a sum past [`AXIS_LIMIT`]) is drawn at the edge, where the plotting library's
+/// pixel arithmetic cannot overflow. Points inside are unchanged.
+fn within(p: (f64, f64), x: (f64, f64), y: (f64, f64)) -> (f64, f64) {
+    let clamp = |v: f64, (a, b): (f64, f64)| v.clamp(a.min(b), a.max(b));
+    (clamp(p.0, x), clamp(p.1, y))
+}
+
 fn t_range(t: &[f64]) -> (f64, f64) {
     let (lo, hi) = (t[0], t[t.len() - 1]);
     if hi - lo < 1e-9 {
@@ -290,7 +298,10 @@ fn line_panel(
         let colour = line.colour;
         chart
             .draw_series(LineSeries::new(
-                t.iter().copied().zip(line.ys.iter().copied()),
+                t.iter()
+                    .copied()
+                    .zip(line.ys.iter().copied())
+                    .map(|p| within(p, (t0, t1), y_range)),
                 colour.stroke_width(line.width),
             ))
             .map_err(|e| e.to_string())?
@@ -303,7 +314,7 @@ fn line_panel(
             .draw_series(
                 points
                     .iter()
-                    .map(|&(x, y)| Circle::new((x, y), 5, colour.filled())),
+                    .map(|&p| Circle::new(within(p, (t0, t1), y_range), 5, colour.filled())),
             )
             .map_err(|e| e.to_string())?
             .label(label.as_str())
@@ -601,7 +612,10 @@ fn draw_distance_over_time(
             .legend(move |(x, y)| PathElement::new([(x, y), (x + 22, y)], colour.stroke_width(2)));
     }
     chart
-        .draw_series(LineSeries::new(d_n.iter().copied(), BLUE.stroke_width(3)))
+        .draw_series(LineSeries::new(
+            d_n.iter().map(|&p| within(p, (t0, t1), (-0.04, y_hi))),
+            BLUE.stroke_width(3),
+        ))
         .map_err(|e| e.to_string())?
         .label("D_n")
         .legend(|(x, y)| PathElement::new([(x, y), (x + 22, y)], BLUE.stroke_width(3)));
@@ -635,7 +649,7 @@ fn draw_exponential_curve(
     if !curve.is_empty() {
         chart
             .draw_series(LineSeries::new(
-                curve.iter().copied(),
+                curve.iter().map(|&p| within(p, (0.0, x_hi), (y_lo, y_hi))),
                 GREEN.stroke_width(3),
             ))
             .map_err(|e| e.to_string())?
@@ -649,7 +663,7 @@ fn draw_exponential_curve(
             let s = i as f64 / n as f64;
             let mix = |a: u8, b: u8| (f64::from(a) + (f64::from(b) - f64::from(a)) * s) as u8;
             let c = RGBColor(mix(0xa6, 0x1f), mix(0xc8, 0x3a), mix(0xe8, 0x6b));
-            Circle::new(p, 4, c.filled())
+            Circle::new(within(p, (0.0, x_hi), (y_lo, y_hi)), 4, c.filled())
         }))
         .map_err(|e| e.to_string())?
         .label("(D_n^t, Σ r_e), light → dark with time")

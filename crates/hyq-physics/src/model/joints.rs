@@ -10,7 +10,7 @@ use super::index::UrdfIndex;
 use super::profile_values;
 use super::tree::BodyBuild;
 use super::{Joint, Link};
-use crate::bounds::{self, Bound};
+use crate::bounds::{self, Bound, short};
 use crate::error::ModelError;
 use crate::profile::{JointEntry, Profile};
 
@@ -35,7 +35,8 @@ pub(super) fn resolve(
                     .joints
                     .iter()
                     .filter(|j| is_movable(&j.joint_type))
-                    .map(|j| j.name.as_str())
+                    // Escaped: the names are the file's, whatever they hold.
+                    .map(|j| j.name.escape_debug().to_string())
                     .collect::<Vec<_>>()
                     .join(", "),
             })?;
@@ -143,7 +144,10 @@ pub(super) fn check_standing(profile: &Profile, joints: &[Joint]) -> Result<(), 
                 field: format!("joints[{pi}].standing"),
                 reason: format!(
                     "{} rad is outside joint {:?}'s limits [{}, {}]",
-                    entry.standing, entry.urdf, joint.lower, joint.upper
+                    short(entry.standing),
+                    entry.urdf,
+                    short(joint.lower),
+                    short(joint.upper)
                 ),
             });
         }
@@ -267,16 +271,20 @@ impl Limits {
         urdf_bound("upper position limit", "upper", upper, &bounds::JOINT_ANGLE)?;
         if lower >= upper {
             return Err(invalid(format!(
-                "position limits [{lower}, {upper}] must have lower < upper \
+                "position limits [{}, {}] must have lower < upper \
                  (the profile's {} and {} override the URDF's)",
+                short(lower),
+                short(upper),
                 field("lower"),
                 field("upper")
             )));
         }
         bounds::JOINT_SPAN.check(upper - lower).map_err(|reason| {
             invalid(format!(
-                "position limits [{lower}, {upper}]: the range {reason} (the profile's {} and \
+                "position limits [{}, {}]: the range {reason} (the profile's {} and \
                  {} override the URDF's)",
+                short(lower),
+                short(upper),
                 field("lower"),
                 field("upper")
             ))

@@ -263,7 +263,16 @@ impl RobotModel {
             )));
         }
         input::check_xml_depth(urdf_text, input::XML_MAX_DEPTH).map_err(malformed)?;
-        let robot = urdf_rs::read_from_string(urdf_text).map_err(|e| malformed(e.to_string()))?;
+        // The parser's message folded onto one line, anything unprintable escaped: it may quote
+        // the file.
+        let robot = urdf_rs::read_from_string(urdf_text).map_err(|e| {
+            let folded = e
+                .to_string()
+                .split_whitespace()
+                .collect::<Vec<_>>()
+                .join(" ");
+            malformed(folded.escape_debug().to_string())
+        })?;
         check_counts(&robot)?;
         Self::from_urdf_robot(&robot, profile)
     }

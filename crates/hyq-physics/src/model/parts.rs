@@ -89,7 +89,11 @@ fn collision(
     c: &urdf_rs::Collision,
     in_body: &Isometry3<f64>,
 ) -> Result<Collision, ModelError> {
-    let label = c.name.clone().unwrap_or_else(|| format!("#{ci}"));
+    // Escaped: the name is the file's, whatever it holds.
+    let label = c
+        .name
+        .as_ref()
+        .map_or_else(|| format!("#{ci}"), |n| n.escape_debug().to_string());
     let invalid = |reason: String| ModelError::InvalidGeometry {
         link: link.name.clone(),
         collision: label.clone(),

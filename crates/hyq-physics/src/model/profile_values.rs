@@ -1,7 +1,7 @@
 //! Phase 0 of building a model: the profile's own values, those that need no URDF, each
 //! checked against its row of [`crate::bounds`].
 
-use crate::bounds::{self, Bound};
+use crate::bounds::{self, Bound, short};
 use crate::error::ModelError;
 use crate::profile::{ObservationBounds, Profile};
 
@@ -84,7 +84,7 @@ pub(super) fn check_observation_bounds(
             if min >= max {
                 return Err(ModelError::InvalidProfile {
                     field,
-                    reason: format!("[{min}, {max}] must have min < max"),
+                    reason: format!("[{}, {}] must have min < max", short(*min), short(*max)),
                 });
             }
         }

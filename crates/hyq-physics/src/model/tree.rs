@@ -159,7 +159,11 @@ pub(super) fn check_masses(bodies: &[BodyBuild]) -> Result<(), ModelError> {
             format!(
                 "the body of link {:?} and the links fixed to it ({}) ",
                 body.name,
-                body.lumped.join(", ")
+                body.lumped
+                    .iter()
+                    .map(|l| l.escape_debug().to_string())
+                    .collect::<Vec<_>>()
+                    .join(", ")
             )
         };
         let invalid = |reason: String| ModelError::InvalidInertia {
@@ -170,7 +174,7 @@ pub(super) fn check_masses(bodies: &[BodyBuild]) -> Result<(), ModelError> {
             return Err(invalid(format!(
                 "has total mass {} kg; a moving body's mass must be positive: give the link \
                  (or a link fixed to it) an <inertial> with a mass",
-                body.mass.mass
+                bounds::short(body.mass.mass)
             )));
         }
         bounds::BODY_MASS.check(body.mass.mass).map_err(|reason| {
