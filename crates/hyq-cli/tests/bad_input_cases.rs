@@ -553,7 +553,7 @@ fn robot_files_outside_the_bounds_table() {
             "--seconds",
             "0.1",
             "--out",
-            &scratch("r.gif").to_str().unwrap(),
+            scratch("r.gif").to_str().unwrap(),
         ],
         &["[1e-4, 100] m"],
     );
@@ -601,5 +601,115 @@ fn urdfs_with_too_many_parts() {
         2,
         &["run", "--robot", &p],
         &["links", "more than the 1000 allowed"],
+    );
+}
+
+/// The committed policy file with its metadata's `env_config` replaced by `env_config` (a JSON
+/// object of dotted keys to TOML values), written to scratch file `name`.
+fn policy_with_env_config(name: &str, env_config: &str) -> String {
+    let bytes = std::fs::read(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/policies/hyq_walk.safetensors"),
+    )
+    .unwrap();
+    let len = u64::from_le_bytes(bytes[..8].try_into().unwrap()) as usize;
+    let mut header: serde_json::Value = serde_json::from_slice(&bytes[8..8 + len]).unwrap();
+    header["__metadata__"]["env_config"] = serde_json::Value::String(env_config.to_owned());
+    let header = serde_json::to_vec(&header).unwrap();
+    let mut out = (header.len() as u64).to_le_bytes().to_vec();
+    out.extend(header);
+    out.extend(&bytes[8 + len..]);
+    write(name, &out)
+}
+
+#[test]
+fn policy_files() {
+    // An endless policy file stops at its cap (it was read until memory ran out).
+    fails(
+        2,
+        &["run", "--policy", "mlp:/dev/zero"],
+        &["/dev/zero", "256 MiB"],
+    );
+    // A bad entry of the policy's own environment names the file, not `--set`.
+    let bad = policy_with_env_config(
+        "bad-env-config.safetensors",
+        r#"{"action.mode": "\"offset\"", "action.max_offset_rad": "0.5", "task.exp_rew_scaling": "1000"}"#,
+    );
+    let out = hyq(&["run", "--policy", &format!("mlp:{bad}")]);
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("bad-env-config.safetensors: its env_config")
+            && err.contains("task.exp_rew_scaling")
+            && !err.contains("--set"),
+        "{err}"
+    );
+    // A bad `--set` beside it is still the user's.
+    fails(
+        2,
+        &[
+            "run",
+            "--policy",
+            &format!("mlp:{bad}"),
+            "--set",
+            "task.bogus=1",
+        ],
+        &["--set", "task.bogus"],
+    );
+}
+
+#[test]
+fn configuration_overrides_mean_what_they_say() {
+    // A table key by key (each `--set` used to be read alone: `missing field tolerance_m`).
+    hyq_ok(&[
+        "run",
+        "--set",
+        "task.max_time_steps=3",
+        "--set",
+        "task.height_penalty.nominal_height_m=0.58",
+        "--set",
+        "task.height_penalty.tolerance_m=0.05",
+        "--set",
+        "task.height_penalty.rate_per_m=1",
+    ]);
+    // Text after a line break was dropped silently (1000 steps ran).
+    fails(
+        2,
+        &["run", "--set", "task.fall_penalty=1\ntask.max_time_steps=3"],
+        &["task.fall_penalty", "more than one TOML value"],
+    );
+    // A spawn point on the world's edge: every episode ended at step 1 as diverged.
+    fails(
+        2,
+        &["run", "--set", "reset.spawn_xy_m=[-100,0]"],
+        &["reset.spawn_xy_m", "no room"],
+    );
+    // A spawn point that pushes the default goal out names itself, not only the goal.
+    fails(
+        2,
+        &["run", "--set", "reset.spawn_xy_m=[100,0]"],
+        &["goal.distance_m", "reset.spawn_xy_m = [100.0, 0.0]"],
+    );
+}
+
+#[test]
+fn comparison_ledgers() {
+    // An endless ledger stops at its cap (it was read until memory ran out).
+    let out = scratch("ledger-zero-out");
+    fails(
+        2,
+        &[
+            "compare",
+            "--scenario",
+            "stand",
+            "--backends",
+            "rapier,rapier",
+            "--seconds",
+            "0.1",
+            "--ledger",
+            "/dev/zero",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        &["/dev/zero", "4 MiB"],
     );
 }

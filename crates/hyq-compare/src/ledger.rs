@@ -231,6 +231,20 @@ struct RawKnown {
     reason: String,
 }
 
+/// The TOML parser's own words and the line, without the excerpt of the file it draws (which
+/// holds whatever the file holds), control characters escaped.
+fn parser_message(text: &str, e: &toml::de::Error) -> String {
+    let line = e
+        .span()
+        .and_then(|s| text.get(..s.start))
+        .map(|before| format!("line {}: ", 1 + before.matches('\n').count()));
+    format!(
+        "{}{}",
+        line.unwrap_or_default(),
+        hyq_physics::printable(e.message())
+    )
+}
+
 fn check_tolerance(value: f64) -> Result<(), String> {
     if value.is_finite() && value >= 0.0 {
         Ok(())
@@ -268,19 +282,7 @@ impl Ledger {
             origin: origin.to_owned(),
             message,
         };
-        // The parser's own words and the line, without the excerpt of the file it draws (which
-        // holds whatever the file holds).
-        let raw: RawLedger = toml::from_str(text).map_err(|e| {
-            let line = e
-                .span()
-                .and_then(|s| text.get(..s.start))
-                .map(|before| format!("line {}: ", 1 + before.matches('\n').count()));
-            bad(format!(
-                "{}{}",
-                line.unwrap_or_default(),
-                e.message().escape_debug()
-            ))
-        })?;
+        let raw: RawLedger = toml::from_str(text).map_err(|e| bad(parser_message(text, &e)))?;
         let mut default = BTreeMap::new();
         for (name, value) in &raw.default {
             let metric: Metric = name.parse().map_err(|e| bad(format!("[default]: {e}")))?;

@@ -43,7 +43,7 @@ pub mod urdf_export;
 pub use actuator::{Actuator, PdScratch, apply_pd, apply_pd_to_valid_targets, pd_substep};
 pub use backend::{Backend, PhysicsParams, RobotState, TrunkState, check_joint_values};
 pub use bundled::resolve as resolve_robot;
-pub use error::{ModelError, PhysicsError, one_line};
+pub use error::{ModelError, PhysicsError, one_line, printable};
 pub use model::{Collision, Joint, Link, RobotModel, Shape, TrackedBody};
 pub use model::{Gait, GaitLeg};
 pub use profile::Profile;

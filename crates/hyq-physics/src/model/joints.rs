@@ -36,7 +36,7 @@ pub(super) fn resolve(
                     .iter()
                     .filter(|j| is_movable(&j.joint_type))
                     // Escaped: the names are the file's, whatever they hold.
-                    .map(|j| j.name.escape_debug().to_string())
+                    .map(|j| crate::printable(&j.name))
                     .collect::<Vec<_>>()
                     .join(", "),
             })?;
@@ -257,8 +257,25 @@ impl Limits {
                 field("upper")
             )));
         }
-        // The URDF's figures, each against its bound; the profile's overrides were checked
-        // above, under their own keys.
+        let limits = Self {
+            lower,
+            upper,
+            effort,
+            velocity,
+        };
+        limits.check(&joint.name, pi)?;
+        Ok(limits)
+    }
+
+    /// Checks the limits (the URDF's figures and the profile's overrides, which were checked
+    /// under their own keys already) against the bounds table, and the range for lower < upper.
+    fn check(&self, joint: &str, pi: usize) -> Result<(), ModelError> {
+        let field = |key: &str| format!("joints[{pi}].{key}");
+        let invalid = |reason: String| ModelError::InvalidJoint {
+            joint: joint.to_owned(),
+            reason,
+        };
+        let (lower, upper, effort, velocity) = (self.lower, self.upper, self.effort, self.velocity);
         let urdf_bound = |what: &str, key: &str, v: f64, bound: &Bound| {
             bound.check(v).map_err(|reason| {
                 invalid(format!(
@@ -296,11 +313,6 @@ impl Limits {
             velocity,
             &bounds::JOINT_VELOCITY,
         )?;
-        Ok(Self {
-            lower,
-            upper,
-            effort,
-            velocity,
-        })
+        Ok(())
     }
 }

@@ -73,6 +73,22 @@ pub enum Shape {
 }
 
 impl Shape {
+    /// The radius (m) of the smallest sphere about the shape's origin that holds it.
+    pub fn bounding_radius(&self) -> f64 {
+        match *self {
+            Shape::Box { half_extents } => half_extents.norm(),
+            Shape::Sphere { radius } => radius,
+            Shape::Capsule {
+                radius,
+                half_length,
+            } => radius + half_length,
+            Shape::Cylinder {
+                radius,
+                half_length,
+            } => radius.hypot(half_length),
+        }
+    }
+
     /// The lowest world z reached by this shape when its frame is at `pose` (world frame, z up).
     ///
     /// Used to measure a shape's clearance above flat ground without a simulator.
@@ -271,7 +287,7 @@ impl RobotModel {
                 .split_whitespace()
                 .collect::<Vec<_>>()
                 .join(" ");
-            malformed(folded.escape_debug().to_string())
+            malformed(crate::printable(&folded))
         })?;
         check_counts(&robot)?;
         Self::from_urdf_robot(&robot, profile)
@@ -537,6 +553,23 @@ impl RobotModel {
                 c.shape.lowest_z(&(link_poses[t.link] * c.origin))
             })
             .fold(f64::INFINITY, f64::min)
+    }
+
+    /// The farthest (m) any collision shape reaches from the trunk frame's origin when the
+    /// robot stands at its standing pose: the room it needs around its spawn point.
+    pub fn standing_reach(&self) -> f64 {
+        let mut poses = vec![Isometry3::identity(); self.links.len()];
+        // One angle per joint and one pose per body: the call cannot fail.
+        let _ = self.link_poses(&Isometry3::identity(), &self.standing, &mut poses);
+        self.links
+            .iter()
+            .zip(&poses)
+            .flat_map(|(l, p)| {
+                l.collisions.iter().map(move |c| {
+                    (p * c.origin).translation.vector.norm() + c.shape.bounding_radius()
+                })
+            })
+            .fold(0.0, f64::max)
     }
 
     /// The lowest world z of all the robot's collision shapes for body poses from

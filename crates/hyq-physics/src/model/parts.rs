@@ -93,7 +93,7 @@ fn collision(
     let label = c
         .name
         .as_ref()
-        .map_or_else(|| format!("#{ci}"), |n| n.escape_debug().to_string());
+        .map_or_else(|| format!("#{ci}"), |n| crate::printable(n));
     let invalid = |reason: String| ModelError::InvalidGeometry {
         link: link.name.clone(),
         collision: label.clone(),

@@ -92,7 +92,7 @@ fn collision_names(body: &Link, link: &str) -> String {
         .map(|(i, c)| {
             c.name
                 .as_ref()
-                .map_or_else(|| format!("#{i}"), |n| n.escape_debug().to_string())
+                .map_or_else(|| format!("#{i}"), |n| crate::printable(n))
         })
         .collect();
     if names.is_empty() {

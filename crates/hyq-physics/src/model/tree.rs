@@ -161,7 +161,7 @@ pub(super) fn check_masses(bodies: &[BodyBuild]) -> Result<(), ModelError> {
                 body.name,
                 body.lumped
                     .iter()
-                    .map(|l| l.escape_debug().to_string())
+                    .map(|l| crate::printable(l))
                     .collect::<Vec<_>>()
                     .join(", ")
             )
