@@ -205,10 +205,9 @@ fn the_bundled_robots_lie_inside_every_row() {
 
 #[test]
 fn the_documentation_prints_the_table() {
-    let doc = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../docs/adding-a-robot.md"
-    ))
+    let doc = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/adding-a-robot.md"),
+    )
     .expect("docs/adding-a-robot.md");
     for b in TABLE {
         let row = format!("| {} | {} |", b.quantity, b.range());

@@ -576,7 +576,13 @@ impl Renderer {
         let mut cells = std::mem::take(&mut self.quads);
         quads(grid, cam, &target, &light, &mut cells);
         for q in &cells {
-            if let Some(path) = self.world_polygon_path(cam, &q.corners) {
+            let Some(path) = self.world_polygon_path(cam, &q.corners) else {
+                continue;
+            };
+            // Cut to the rasteriser's safe range like every other path: a cell of a tall
+            // field just past the near plane projects to millions of pixels.
+            let (w, h) = (self.pixmap.width(), self.pixmap.height());
+            if let Some(path) = clip::for_fill(&path, w, h) {
                 let colour = GROUND.scale(0.9 * q.shade).tint(q.tint).opaque();
                 self.pixmap.fill_path(
                     &path,
