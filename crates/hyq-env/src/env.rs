@@ -380,6 +380,7 @@ impl<B: Backend> Env<B> {
         // A fixed goal can be checked against the spawn point once, here, rather than fail at
         // every reset.
         goals.check(&config.task)?;
+        crate::goal::check_spawn_fits(&model, &config.reset)?;
         let mut backend = B::build(model.clone(), &config.physics.params, &options)?;
         backend.set_terrain(ground.terrain())?;
         let extras = config.observation.groups();
