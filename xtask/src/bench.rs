@@ -43,9 +43,8 @@ use std::process::Command;
 use serde_json::Value;
 
 use crate::cli::{positive, strings, value};
-use crate::mujoco;
 use crate::stages::{
-    DART_BULLET_HEADER, PYTHON_INSTALL, PYTHON_MIN, run_cargo, venv_python, workspace_root,
+    PYTHON_INSTALL, PYTHON_MIN, run_cargo, venv_python, workspace_root,
 };
 
 /// The anchor harness, relative to the workspace root.
@@ -379,19 +378,9 @@ pub const SEQUENCE: [Measure; 7] = [
 /// Why backend `name` cannot be measured on this machine (`None`: it can); `root` is the
 /// workspace root (MuJoCo is looked for in `$MUJOCO_DIR`, else its `target/mujoco`).
 pub fn backend_missing(name: &str, root: &Path) -> Option<String> {
-    match name {
-        "dart" if !Path::new(DART_BULLET_HEADER).exists() => Some(format!(
-            "DART is not installed ({DART_BULLET_HEADER} missing), so the DART backend was not \
-             measured"
-        )),
-        "mujoco" => mujoco::check(&mujoco::mujoco_dir(root)).err().map(|why| {
-            format!(
-                "MuJoCo is not set up ({why}; `{}`), so the MuJoCo backend was not measured",
-                mujoco::SETUP_COMMAND
-            )
-        }),
-        _ => None,
-    }
+    let engine = hyq_engines::find(name)?;
+    crate::stages::engine_missing(engine, root)
+        .map(|why| format!("{why}, so the {} backend was not measured", engine.title))
 }
 
 /// The figures of one repetition (a series is absent when its run was skipped or failed).

@@ -118,7 +118,10 @@ fn parse_backends(s: &str) -> Result<Backends, String> {
     }
     let pick = |name: &str| {
         BackendChoice::from_str(name, false).map_err(|_| {
-            format!("unknown backend {name:?} (possible backends: rapier, dart, mujoco)")
+            format!(
+                "unknown backend {name:?} (possible backends: {})",
+                hyq_engines::NAMES.join(", ")
+            )
         })
     };
     let choices = names

@@ -66,6 +66,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(backends, m)?)?;
     m.add("ROBOTS", hyq_physics::bundled::NAMES.to_vec())?;
     m.add("DEFAULT_ROBOT", hyq_physics::bundled::DEFAULT)?;
+    m.add("DEFAULT_BACKEND", hyq_engines::DEFAULT.name)?;
     // The configuration's tables, which keyword arguments may give as dicts.
     m.add("CONFIG_TABLES", hyq_env::EnvConfig::TABLES.to_vec())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

@@ -115,7 +115,7 @@ impl VecCore {
     /// `"next_step"`, `"same_step"` or `"disabled"`, on rayon's global pool or on a pool of
     /// `threads` threads.
     #[new]
-    #[pyo3(signature = (pairs, num_envs, autoreset_mode="next_step", config_file=None, threads=None, clip_observations=crate::CLIP_OBSERVATIONS_DEFAULT, render_width=hyq_render::DEFAULT_WIDTH_PX, render_height=hyq_render::DEFAULT_HEIGHT_PX, robot=None, backend="rapier"))]
+    #[pyo3(signature = (pairs, num_envs, autoreset_mode="next_step", config_file=None, threads=None, clip_observations=crate::CLIP_OBSERVATIONS_DEFAULT, render_width=hyq_render::DEFAULT_WIDTH_PX, render_height=hyq_render::DEFAULT_HEIGHT_PX, robot=None, backend=hyq_engines::DEFAULT.name))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         pairs: Vec<(String, String)>,

@@ -66,7 +66,7 @@ def core_options(env_options: Mapping[str, Any]) -> dict[str, Any]:
     height = env_options.get("render_height", _core.RENDER_HEIGHT_DEFAULT)
     return {
         "robot": check_choice("robot", env_options.get("robot"), _core.DEFAULT_ROBOT),
-        "backend": check_choice("backend", env_options.get("backend"), "rapier"),
+        "backend": check_choice("backend", env_options.get("backend"), _core.DEFAULT_BACKEND),
         "clip_observations": check_flag("clip_observations", clip),
         "render_width": check_count("render_width", width, *RENDER_SIDES),
         "render_height": check_count("render_height", height, *RENDER_SIDES),
