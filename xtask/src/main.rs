@@ -8,6 +8,7 @@
 
 mod bench;
 mod cli;
+mod codegen;
 mod docs;
 mod mujoco;
 mod rllib;
@@ -53,6 +54,9 @@ commands:
                                         multibody tests pass on it (also a stage of `test`)
   vendor-diff                           prints what vendor/rapier3d holds beyond the published
                                         crate and vendor/patches, as an upstream-ready patch
+  codegen [--check]                     write the documents' tables made from the code (the
+                                        info and step record schemas, the reward terms, the
+                                        configuration's tables); --check fails if one is stale
   help                                  this text
 ";
 
@@ -65,6 +69,7 @@ fn main() -> ExitCode {
         Some("bench-vs-anchors") => bench::bench_vs_anchors(&args[1..]),
         Some("vendor-check") => vendor::vendor_check(&args[1..]),
         Some("vendor-diff") => vendor::vendor_diff(&args[1..]),
+        Some("codegen") => codegen::codegen(&args[1..]),
         Some("help") | Some("--help") | Some("-h") | None => {
             print!("{HELP}");
             Ok(())

@@ -79,6 +79,13 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("CLIP_OBSERVATIONS_DEFAULT", CLIP_OBSERVATIONS_DEFAULT)?;
     m.add("RENDER_WIDTH_DEFAULT", hyq_render::DEFAULT_WIDTH_PX)?;
     m.add("RENDER_HEIGHT_DEFAULT", hyq_render::DEFAULT_HEIGHT_PX)?;
+    // The info's keys and their types (`hyq.INFO_SCHEMA`), for the default robot.
+    let default_robot = hyq_physics::resolve_robot(hyq_physics::bundled::DEFAULT)
+        .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))?;
+    m.add(
+        "INFO_SCHEMA",
+        info::info_schema(default_robot.joints().len()),
+    )?;
     // The reward terms' names in hyq-spec's table order: the info's term keys.
     m.add(
         "REWARD_TERMS",

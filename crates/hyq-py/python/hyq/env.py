@@ -111,9 +111,8 @@ class HyQEnv(gymnasium.Env):
     of ±``max_delta_rad`` from the current angle, ``action={"mode": "offset"}`` an offset of
     ±``max_offset_rad`` from the standing pose. A NaN or a wrong shape raises ``ValueError``.
 
-    **Reward and info**: the spec's reward; ``info`` holds every term (``r_b``, ``r_n``,
-    ``r_e``, ``r_reach``, ``m_yaw``, ``m_pitch``, ``m_height``, ``joint_penalty``,
-    ``fall_penalty``), every reason the episode ended (``reasons`` and one flag each), the
+    **Reward and info**: the spec's reward; ``info`` holds every term of
+    ``hyq.REWARD_TERMS``, every reason the episode ended (``reasons`` and one flag each), the
     distance to the goal, the attitude, the goal and the joint targets: every key of
     ``hyq.INFO_SCHEMA`` on every step, each with one type.
 
