@@ -307,7 +307,7 @@ mod tests {
             "`cargo xtask setup mujoco` fetches that engine's library",
         ),
         (
-            "xtask/src/bench.rs",
+            "xtask/src/bench/",
             "bench-vs-anchors measures chosen engines against the MuJoCo and DART anchors",
         ),
     ];
