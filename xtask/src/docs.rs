@@ -2,8 +2,9 @@
 //! heading in ARCHITECTURE.md's code map, CI runs the test command the README gives, the
 //! observation tables of the README and of docs/spec.md are hyq-spec's `SPEC_TABLE` row for row,
 //! and docs/spec.md has a heading for every section of the original spec, marks its three
-//! deviations, and names only tests that exist; that no front lists the engines itself, and that
-//! every install line is the engine registry's.
+//! deviations, and names only tests that exist; that every crate root's module table names every
+//! public module; that no front lists the engines itself, and that every install line is the
+//! engine registry's.
 
 #[cfg(test)]
 mod tests {
@@ -413,6 +414,85 @@ mod tests {
             engine_mentions(python, true),
             ["line 4: 'dart'", "line 5: hyq_mujoco"]
         );
+    }
+
+    /// The public modules a crate root declares (`pub mod name;`, `pub mod name {}`), in order.
+    fn declared_modules(root: &str) -> Vec<&str> {
+        root.lines()
+            .filter_map(|line| line.strip_prefix("pub mod "))
+            .filter_map(|rest| rest.split([';', ' ', '{']).next())
+            .collect()
+    }
+
+    /// The modules a crate root's module table names: its rows `//! | [`name`] | ...` (a link
+    /// target after the span, as in ``[`env`](mod@env)``, is left out).
+    fn tabled_modules(root: &str) -> Vec<&str> {
+        root.lines()
+            .filter_map(|line| line.strip_prefix("//! | [`"))
+            .filter_map(|rest| rest.split_once("`]").map(|(name, _)| name))
+            .collect()
+    }
+
+    /// What a crate root's module table gets wrong: a public module it omits, a row naming no
+    /// module. Empty for a root without a table.
+    fn module_table_mismatches(root: &str) -> Vec<String> {
+        let declared = declared_modules(root);
+        let tabled = tabled_modules(root);
+        if tabled.is_empty() {
+            return Vec::new();
+        }
+        let omitted = declared.iter().filter(|m| !tabled.contains(m));
+        let unknown = tabled.iter().filter(|m| !declared.contains(m));
+        omitted
+            .map(|m| format!("module `{m}` is not in the table"))
+            .chain(unknown.map(|m| format!("the table names `{m}`, which is no module")))
+            .collect()
+    }
+
+    /// A crate whose root documents its modules in a table (hyq-spec's sections, hyq-env's
+    /// parts) lists every public module there, so that a new module is not left out of the map.
+    #[test]
+    fn every_module_table_names_every_module() {
+        let root = workspace_root();
+        let mut tables = 0;
+        let mut problems = Vec::new();
+        for dir in ["crates", "."] {
+            let entries =
+                std::fs::read_dir(root.join(dir)).unwrap_or_else(|e| panic!("{dir}: {e}"));
+            for entry in entries.flatten() {
+                let lib = entry.path().join("src").join("lib.rs");
+                let Ok(text) = std::fs::read_to_string(&lib) else {
+                    continue;
+                };
+                if !tabled_modules(&text).is_empty() {
+                    tables += 1;
+                }
+                for problem in module_table_mismatches(&text) {
+                    problems.push(format!("{}: {problem}", lib.display()));
+                }
+            }
+        }
+        assert!(tables >= 2, "only {tables} module tables found");
+        assert!(problems.is_empty(), "{problems:#?}");
+    }
+
+    #[test]
+    fn a_module_table_that_omits_a_module_is_noticed() {
+        let root = "//! | [`env`](mod@env) | the env |\n//! | [`goal`] | goals |\n\
+                    pub mod env;\npub mod goal;\npub mod info;\nmod private;\npub mod page {}\n";
+        assert_eq!(
+            module_table_mismatches(root),
+            [
+                "module `info` is not in the table",
+                "module `page` is not in the table"
+            ]
+        );
+        let extra = "//! | [`gone`] | gone |\npub mod here;\n//! | [`here`] | here |\n";
+        assert_eq!(
+            module_table_mismatches(extra),
+            ["the table names `gone`, which is no module"]
+        );
+        assert!(module_table_mismatches("pub mod untabled;\n").is_empty());
     }
 
     /// Every file that tells users how to install an engine's library gives the line hyq-engines'
