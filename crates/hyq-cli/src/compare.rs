@@ -20,8 +20,8 @@ use clap::builder::TypedValueParser as _;
 use clap::{Args, ValueEnum as _};
 use hyq_compare::policy::MAX_EPISODES;
 use hyq_compare::{
-    ComparisonSpec, DEFAULT_ONE_STEP_STATES, Ledger, MARKDOWN_FILE, Plan, PolicyPlan, PolicySpec,
-    Report, Scenario, check_seconds, compare_all, parse_override, prepare_output_dir,
+    ComparisonSpec, DEFAULT_ONE_STEP_STATES, Ledger, MARKDOWN_FILE, Plan, PolicyPlan, PolicyReport,
+    PolicySpec, Report, Scenario, check_seconds, compare_all, parse_override, prepare_output_dir,
 };
 
 use crate::Failure;
@@ -359,43 +359,9 @@ fn execute_policy(
     choices: &[BackendChoice],
     model: std::sync::Arc<hyq_physics::RobotModel>,
 ) -> Result<(), Failure> {
-    let configuration = ConfigArgs {
-        config: args.config.clone(),
-        set: args.set.clone(),
-    };
-    let trained = TrainedPolicy::load(file, &configuration)?;
-    check_mlp(&trained.policy, file, &model, &trained.config)?;
-    let mut applied: Vec<String> = trained
-        .inherited
-        .iter()
-        .map(|(k, v)| format!("{k}={v} (the policy file)"))
-        .collect();
-    if let Some(path) = &args.config {
-        applied.push(format!("--config {}", path.display()));
-    }
-    applied.extend(args.set.iter().map(|s| format!("{} (--set)", s.trim())));
-    let spec = PolicySpec {
-        policy: format!("mlp:{}", file.display()),
-        seed: args.seed,
-        episodes: args.episodes.unwrap_or(DEFAULT_EPISODES),
-        configuration: applied,
-    };
-    let plan =
-        PolicyPlan::new(model, trained.config, trained.policy, spec).map_err(compare_failure)?;
+    let plan = policy_plan(args, file, model)?;
     prepare_output_dir(&args.out).map_err(|e| usage(format!("--out: {e}")))?;
-
-    // Self-comparisons get their second label apart, as in the scenario comparison.
-    let labels: Vec<String> = choices
-        .iter()
-        .enumerate()
-        .map(|(k, c)| {
-            if choices[..k].contains(c) {
-                format!("{} (B)", c.name())
-            } else {
-                c.name().to_owned()
-            }
-        })
-        .collect();
+    let labels = side_labels(choices);
     let mut sides = Vec::with_capacity(choices.len());
     for (&choice, label) in choices.iter().zip(&labels) {
         let side = with_backend!(choice, B => {
@@ -419,6 +385,60 @@ fn execute_policy(
             status: 1,
             message: e.to_string(),
         })?;
+    print_policy_summary(&report, args);
+    Ok(())
+}
+
+/// The policy comparison's plan: the trained policy of `file` and the environment it was
+/// trained in, with `--config` and `--set` applied on top, each named in the report.
+fn policy_plan(
+    args: &CompareArgs,
+    file: &std::path::Path,
+    model: std::sync::Arc<hyq_physics::RobotModel>,
+) -> Result<PolicyPlan<hyq_env::MlpPolicy>, Failure> {
+    let configuration = ConfigArgs {
+        config: args.config.clone(),
+        set: args.set.clone(),
+    };
+    let trained = TrainedPolicy::load(file, &configuration)?;
+    check_mlp(&trained.policy, file, &model, &trained.config)?;
+    let mut applied: Vec<String> = trained
+        .inherited
+        .iter()
+        .map(|(k, v)| format!("{k}={v} (the policy file)"))
+        .collect();
+    if let Some(path) = &args.config {
+        applied.push(format!("--config {}", path.display()));
+    }
+    applied.extend(args.set.iter().map(|s| format!("{} (--set)", s.trim())));
+    let spec = PolicySpec {
+        policy: format!("mlp:{}", file.display()),
+        seed: args.seed,
+        episodes: args.episodes.unwrap_or(DEFAULT_EPISODES),
+        configuration: applied,
+    };
+    PolicyPlan::new(model, trained.config, trained.policy, spec).map_err(compare_failure)
+}
+
+/// Each backend's label in a comparison: its name, and a self-comparison's second side's name
+/// with ` (B)` to tell them apart, as in the scenario comparison.
+fn side_labels(choices: &[BackendChoice]) -> Vec<String> {
+    choices
+        .iter()
+        .enumerate()
+        .map(|(k, c)| {
+            if choices[..k].contains(c) {
+                format!("{} (B)", c.name())
+            } else {
+                c.name().to_owned()
+            }
+        })
+        .collect()
+}
+
+/// Prints the policy comparison's summary on stdout (write failures ignored, as in
+/// [`print_summary`]: the reports are already written).
+fn print_policy_summary(report: &PolicyReport, args: &CompareArgs) {
     let mut out = std::io::stdout().lock();
     let _ = writeln!(
         out,
@@ -467,7 +487,6 @@ fn execute_policy(
         "not judged against the ledger (closed loop); reports written to {}",
         args.out.display()
     );
-    Ok(())
 }
 
 /// Prints the summary on stdout. A closed stdout (e.g. piped into `head`) is not an error of

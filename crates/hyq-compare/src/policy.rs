@@ -534,10 +534,27 @@ impl PolicyReport {
         })
     }
 
-    /// The Markdown report; `command` is the command line that produced it.
+    /// The Markdown report; `command` is the command line that produced it: the run's
+    /// description, the per-engine table, the pairs, the open-loop replay, every episode and
+    /// the plot.
     pub fn to_markdown(&self, command: &str) -> String {
         let mut m = String::new();
-        let w = &mut m;
+        self.markdown_header(&mut m, command);
+        self.markdown_per_engine(&mut m);
+        self.markdown_pairs(&mut m);
+        self.markdown_replay(&mut m);
+        self.markdown_episodes(&mut m);
+        // Writing into a String cannot fail.
+        let _ = writeln!(
+            m,
+            "\n## Plot\n\n![first episode: trunk x per engine, closed loop and replayed; trunk position divergence per pair]({PLOT_FILE})"
+        );
+        m
+    }
+
+    /// The title, the robot, the command, how the episodes ran, the configuration and why the
+    /// report is not judged.
+    fn markdown_header(&self, w: &mut String, command: &str) {
         let labels: Vec<&str> = self.sides.iter().map(|s| s.label.as_str()).collect();
         // Writing into a String cannot fail.
         let _ = writeln!(
@@ -564,7 +581,12 @@ impl PolicyReport {
             w,
             "**Not judged against the ledger.** Closed-loop runs part by nature (every difference changes the next observation and so the next action), so no tolerance fits them: this report states the gap, it does not pass or fail. The ledger judges identical action scripts (`--scenario`).\n"
         );
+    }
 
+    /// Each engine's episode statistics, a column per engine.
+    fn markdown_per_engine(&self, w: &mut String) {
+        let labels: Vec<&str> = self.sides.iter().map(|s| s.label.as_str()).collect();
+        // Writing into a String cannot fail.
         let _ = writeln!(w, "## Per engine ({} episodes each)\n", self.episodes);
         let _ = writeln!(w, "| | {} |", labels.join(" | "));
         let _ = writeln!(w, "|---|{}", "---|".repeat(labels.len()));
@@ -592,7 +614,11 @@ impl PolicyReport {
                 .collect::<Vec<_>>()
                 .join(", ")
         });
+    }
 
+    /// Each pair's divergence over the first episodes and the gaps between their means.
+    fn markdown_pairs(&self, w: &mut String) {
+        // Writing into a String cannot fail.
         let _ = writeln!(w, "\n## Per pair\n");
         let _ = writeln!(
             w,
@@ -622,7 +648,11 @@ impl PolicyReport {
                 p.return_gap
             );
         }
+    }
 
+    /// The first engine's first-episode actions replayed open loop on every engine.
+    fn markdown_replay(&self, w: &mut String) {
+        // Writing into a String cannot fail.
         let _ = writeln!(
             w,
             "\n## Open loop: {} actions replayed\n",
@@ -664,7 +694,11 @@ impl PolicyReport {
                 }
             }
         }
+    }
 
+    /// Every episode of every engine.
+    fn markdown_episodes(&self, w: &mut String) {
+        // Writing into a String cannot fail.
         let _ = writeln!(w, "\n## Episodes\n");
         let _ = writeln!(
             w,
@@ -686,11 +720,6 @@ impl PolicyReport {
                 );
             }
         }
-        let _ = writeln!(
-            w,
-            "\n## Plot\n\n![first episode: trunk x per engine, closed loop and replayed; trunk position divergence per pair]({PLOT_FILE})"
-        );
-        m
     }
 
     fn replay_title(&self) -> String {
