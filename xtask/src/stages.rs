@@ -281,10 +281,14 @@ pub fn test(args: &[String]) -> Result<(), String> {
     };
     results.push((Part::Python.name(), python));
 
-    // Optional stages, run only when asked for (`--with rllib`).
+    // Optional stages, run only when asked for (`--with rllib`, `--with train`).
     if with.iter().any(|w| w == "rllib") {
         let tests = crate::rllib::stage(&root)?;
         results.push(("rllib (--with rllib)", Outcome::Passed { tests }));
+    }
+    if with.iter().any(|w| w == "train") {
+        let tests = crate::train::stage(&root)?;
+        results.push(("train (--with train)", Outcome::Passed { tests }));
     }
 
     summarize(&results, &required)
@@ -450,7 +454,7 @@ fn python_stage(root: &Path, venv: &Path, with_mujoco: bool) -> Result<u64, Stri
 /// The number of passed tests on pytest's closing summary line, or `None` if `line` is not one.
 /// The line is `49 passed in 3.70s` with `-q`, `==== 1 failed, 48 passed, 2 warnings in 3.70s
 /// ====` otherwise, and `no tests ran in 0.01s` when nothing ran (0 passed).
-fn pytest_passed_count(line: &str) -> Option<u64> {
+pub(crate) fn pytest_passed_count(line: &str) -> Option<u64> {
     let body = line.trim().trim_matches('=').trim();
     let (counts, time) = body.rsplit_once(" in ")?;
     if !time.starts_with(|c: char| c.is_ascii_digit()) || !time.contains('s') {
