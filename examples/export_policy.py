@@ -50,6 +50,15 @@ def sb3_actor(run: Path, args: argparse.Namespace, robot: str, names: list[str])
 
     model_path = args.model or run / "model.zip"
     stats_path = args.vecnormalize or run / "vecnormalize.pkl"
+    if args.checkpoint == "best":
+        evaluation = run / "eval.json"
+        if not evaluation.is_file():
+            fail(f"{evaluation}: no such file (--checkpoint best needs a finished run)")
+        steps = json.loads(evaluation.read_text()).get("best_checkpoint_env_steps")
+        if steps is None:
+            fail(f"{evaluation}: names no best checkpoint (the run evaluated none)")
+        model_path = run / "checkpoints" / f"model_{steps}.zip"
+        stats_path = run / "checkpoints" / f"vecnormalize_{steps}.pkl"
     for path, what in ((model_path, "model"), (stats_path, "normalisation statistics")):
         if not Path(path).is_file():
             fail(f"{path}: no {what} file (is {run} a finished run of examples/train_sb3_ppo.py?)")
@@ -232,6 +241,8 @@ def main() -> None:
     parser.add_argument("--policy", type=Path, help="an existing policy file (with --onnx: write its ONNX twin)")
     parser.add_argument("--model", type=Path, help="the model (default: RUN/model.zip, or RUN's last model_<i>.pt)")
     parser.add_argument("--vecnormalize", type=Path, help="SB3's statistics .pkl (default: RUN/vecnormalize.pkl)")
+    parser.add_argument("--checkpoint", choices=["final", "best"], default="final",
+                        help="SB3 runs: the final model, or the best evaluated checkpoint (eval.json)")
     parser.add_argument("--out", type=Path, help="the policy file to write (with --run)")
     parser.add_argument("--onnx", action="store_true", help="also write the policy's ONNX twin (FILE.onnx)")
     parser.add_argument("--fixture", type=Path, help="also write observations and SB3's actions here")
