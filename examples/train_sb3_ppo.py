@@ -75,7 +75,7 @@ RECIPE_NET: dict[str, Any] = {"pi": [128, 128], "vf": [128, 128], "log_std_init"
 RECIPE_STEPS: dict[str, tuple[int, int]] = {
     "walk": (200_000, 100_000),
     "reach": (600_000, 100_000),
-    "anymal_walk": (300_000, 100_000),
+    "anymal_walk": (200_000, 100_000),
 }
 #: Each recipe's changes to RECIPE_PPO. The reach: a learning rate falling linearly to 0 over the
 #: budget ("lr_schedule"), since at a constant 3e-4 the deterministic policy reached the goal in

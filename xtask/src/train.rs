@@ -64,11 +64,14 @@ pub fn stage(root: &Path) -> Result<u64, String> {
     let stdout = String::from_utf8_lossy(&out.stdout);
     print!("{stdout}");
     if !out.status.success() {
-        return Err(format!("the training stage's pytest failed ({})", out.status));
+        return Err(format!(
+            "the training stage's pytest failed ({})",
+            out.status
+        ));
     }
     stdout
         .lines()
-        .filter_map(pytest_passed_count)
-        .last()
+        .rev()
+        .find_map(pytest_passed_count)
         .ok_or_else(|| "the training stage's pytest printed no summary line".to_string())
 }

@@ -737,7 +737,11 @@ mod tests {
             reasons: reasons.into(),
             episodes,
         };
-        let ends = [end("reached", 15), end("reached+timeout", 3), end("timeout", 2)];
+        let ends = [
+            end("reached", 15),
+            end("reached+timeout", 3),
+            end("timeout", 2),
+        ];
         assert_eq!(reach_rate(&ends), "18 of 20 (90 %)");
         assert_eq!(reach_rate(&[end("timeout", 20)]), "0 of 20 (0 %)");
         assert_eq!(reach_rate(&[]), "0 of 0 (0 %)");
