@@ -99,14 +99,9 @@ impl From<anyhow::Error> for Failure {
 
 /// Prints `message` as the one error line `hyq` ever prints, folding any line breaks.
 fn print_error(message: &str) {
-    let one_line = message
-        .lines()
-        .map(str::trim)
-        .filter(|l| !l.is_empty())
-        .collect::<Vec<_>>()
-        .join(" ");
+    let line = hyq_physics::one_line(message);
     // Nothing is left to do if stderr is closed too.
-    let _ = writeln!(std::io::stderr().lock(), "hyq: error: {one_line}");
+    let _ = writeln!(std::io::stderr().lock(), "hyq: error: {line}");
 }
 
 fn main() -> ExitCode {

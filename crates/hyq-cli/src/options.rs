@@ -45,23 +45,19 @@ impl RobotArgs {
             usage(format!(
                 "--robot {}: {}",
                 self.choice,
-                one_line(&e.to_string())
+                hyq_physics::one_line(&e.to_string())
             ))
         })
     }
-}
-
-/// `text` on one line: line breaks (from a parser's multi-line message) become spaces.
-fn one_line(text: &str) -> String {
-    text.split_whitespace().collect::<Vec<_>>().join(" ")
 }
 
 /// The configuration options alone: a file and `--set` overrides (`hyq plot` reads k_exp and
 /// the env step from them without building an environment).
 #[derive(Debug, Clone, Args)]
 pub struct ConfigArgs {
-    /// A TOML configuration file (tables [task], [goal], [action], [control], [physics],
-    /// [reset]; every key optional). Unknown keys are errors.
+    /// A TOML configuration file: a table per concern ([task] the spec's user variables, [goal],
+    /// [action], [physics], ...: the crate README lists them), every key optional. Unknown keys
+    /// are errors.
     #[arg(long, value_name = "FILE")]
     pub config: Option<PathBuf>,
     /// Override one configuration value, after the file: `table.key=value`, e.g.

@@ -2,8 +2,10 @@
 //! actuator (read q and q̇, compute 12 torques), set the torques, step DART, read back the
 //! contact flags. Two workloads: standing still on four feet (settled for 1 s first), and
 //! random joint targets redrawn every 10 sub-steps (feet landing and lifting, joints at their
-//! limits), and the cost of `set_state` (which installs a fresh collision detector). The
-//! workloads are hyq-physics' `SubstepWorkloads`, which the MuJoCo backend's bench times too.
+//! limits), the cost of `set_state` (which installs a fresh collision detector), and of a
+//! randomised episode's reset (`set_dynamics` with other masses, damping and friction, then
+//! `set_state`). The workloads are hyq-physics' `SubstepWorkloads`, which the MuJoCo
+//! backend's bench times too.
 //!
 //! Run: `cargo bench -p hyq-dart --bench step`.
 
@@ -18,6 +20,9 @@ fn step(c: &mut Criterion) {
     group.bench_function("standing", |bench| bench.iter(|| w.standing()));
     group.bench_function("random_targets", |bench| bench.iter(|| w.random_targets()));
     group.bench_function("set_state", |bench| bench.iter(|| w.set_state()));
+    group.bench_function("randomized_reset", |bench| {
+        bench.iter(|| w.randomized_reset())
+    });
     group.finish();
 }
 

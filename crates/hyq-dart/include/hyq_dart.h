@@ -36,6 +36,7 @@ struct BodyDesc;
 struct ShapeDesc;
 struct WorldDesc;
 struct BaseState;
+struct Inertial;
 
 // One simulated world: the robot skeleton, a static ground box, the
 // constraint solver and the collision detector. Not thread-safe; one thread
@@ -66,6 +67,19 @@ class Sim {
   // World pose of every body frame: x, y, z, qw, qx, qy, qz per body.
   void body_poses(rust::Slice<double> out) const;
   double total_mass() const;
+
+  // Per-episode dynamics (domain randomisation); set_state must follow before
+  // the next step. The friction coefficient of every shape, the ground's
+  // included.
+  void set_friction(double friction);
+  // A body's mass, centre of mass and inertia (its description frame); the
+  // root's frames follow its centre of mass.
+  void set_inertial(std::size_t body, const Inertial& inertial);
+  Inertial inertial(std::size_t body) const;
+  void set_joint_damping(std::size_t joint, double damping);
+  // Adds dv (world frame) to the root's linear velocity now: nothing else
+  // changes.
+  void add_base_velocity(rust::Slice<const double> dv);
   // For each tracked link: did one of its collision shapes touch or
   // penetrate the ground in the contacts the last step's solver used.
   void contacts(rust::Slice<bool> out) const;

@@ -4,17 +4,27 @@
 //! inertia tensor, joint frame, axis, limits, damping, primitive collision shapes), so DART and
 //! every other backend simulate the same robot by construction. The torques come from the
 //! shared actuator ([`hyq_physics::pd_substep`]); DART adds none of its own.
+//!
+//! Per-episode dynamics ([`Backend::apply_dynamics`]) are set in place on the DART world: the
+//! friction of every shape node, the ground's included (DART takes the smaller of a contact's
+//! two), each body node's inertia, each joint's damping; the root body's frame sits at its
+//! centre of mass, so a moved centre of mass moves the root's shape and child-joint frames
+//! with it, exactly as the build places them (a world given dynamics runs bit for bit as one
+//! built with them). A push adds to the free joint's velocity.
 
 use std::sync::Arc;
 
 use hyq_physics::na::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3};
 use hyq_physics::{
-    Backend, Link, PhysicsError, PhysicsParams, RobotModel, RobotState, Shape, TrunkState,
+    Backend, Dynamics, Link, MassProperties, PhysicsError, PhysicsParams, RobotModel, RobotState,
+    Shape, TrunkState,
 };
 use serde::{Deserialize, Serialize};
 
 use crate::error::DartError;
-use crate::sim::{BaseState, BodyDesc, JointKind, Pose, ShapeDesc, ShapeKind, Sim, WorldDesc};
+use crate::sim::{
+    BaseState, BodyDesc, Inertial, JointKind, Pose, ShapeDesc, ShapeKind, Sim, WorldDesc,
+};
 
 /// Half the side (m) of the square ground box whose top face is the plane z = 0. Bullet works in
 /// single precision, and its contact geometry for a box loses precision in proportion to the
@@ -58,6 +68,9 @@ pub struct DartBackend {
     /// Set when the world cannot be stepped until the next state change (a failed state change
     /// or a diverged step).
     blocked: Option<String>,
+    /// Set when DART refused dynamics (which were validated, so unexpectedly): the world
+    /// cannot be stepped until dynamics are given again.
+    refused_dynamics: Option<String>,
 }
 
 fn backend_error(message: String) -> PhysicsError {
@@ -243,6 +256,31 @@ impl DartBackend {
         self.sim.time()
     }
 
+    /// Gives the DART world `d`'s friction, mass properties and damping.
+    fn give_dynamics(&mut self, d: &Dynamics) -> Result<(), DartError> {
+        self.sim.set_friction(d.ground_friction)?;
+        for (i, b) in d.bodies.iter().enumerate() {
+            let t = b.inertia;
+            let inertial = Inertial {
+                mass: b.mass,
+                com: [b.com.x, b.com.y, b.com.z],
+                inertia: [
+                    t[(0, 0)],
+                    t[(1, 1)],
+                    t[(2, 2)],
+                    t[(0, 1)],
+                    t[(0, 2)],
+                    t[(1, 2)],
+                ],
+            };
+            self.sim.set_inertial(i, &inertial)?;
+        }
+        for (j, &damping) in d.joint_damping.iter().enumerate() {
+            self.sim.set_joint_damping(j, damping)?;
+        }
+        Ok(())
+    }
+
     /// Re-reads the body poses the contact test and [`Backend::link_poses`] use.
     fn refresh_poses(&mut self) {
         self.sim.body_poses(&mut self.poses);
@@ -318,6 +356,7 @@ impl Backend for DartBackend {
             qd: vec![0.0; n],
             params: params.clone(),
             blocked: None,
+            refused_dynamics: None,
             model,
         };
         let spawn = backend.model.spawn_state();
@@ -358,6 +397,11 @@ impl Backend for DartBackend {
     }
 
     fn step(&mut self) -> Result<(), PhysicsError> {
+        if let Some(reason) = &self.refused_dynamics {
+            return Err(backend_error(format!(
+                "{reason}; call set_dynamics before stepping again"
+            )));
+        }
         if let Some(reason) = &self.blocked {
             return Err(backend_error(format!(
                 "{reason}; call set_state before stepping again"
@@ -426,6 +470,31 @@ impl Backend for DartBackend {
 
     fn total_mass(&self) -> f64 {
         self.sim.total_mass()
+    }
+
+    fn apply_dynamics(&mut self, dynamics: &Dynamics) {
+        self.refused_dynamics = self.give_dynamics(dynamics).err().map(|e| {
+            // The dynamics were validated, so DART refusing them is unexpected; the trait gives
+            // this method no error channel, so the next step reports it.
+            format!("DART refused the dynamics: {e}")
+        });
+    }
+
+    fn body_mass_properties(&self, link: usize) -> MassProperties {
+        let i = self.sim.inertial(link);
+        let [ixx, iyy, izz, ixy, ixz, iyz] = i.inertia;
+        MassProperties {
+            mass: i.mass,
+            com: Vector3::from(i.com),
+            inertia: hyq_physics::na::Matrix3::new(ixx, ixy, ixz, ixy, iyy, iyz, ixz, iyz, izz),
+        }
+    }
+
+    fn apply_trunk_velocity_change(&mut self, dv: &Vector3<f64>) {
+        if let Err(e) = self.sim.add_base_velocity([dv.x, dv.y, dv.z]) {
+            // The change was validated (finite); see `apply_state`.
+            self.blocked = Some(format!("the trunk push failed: {e}"));
+        }
     }
 }
 

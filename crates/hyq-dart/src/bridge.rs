@@ -122,6 +122,18 @@ pub(crate) mod ffi {
         angular_velocity: [f64; 3],
     }
 
+    /// A body's mass properties in its description frame.
+    #[derive(Debug, Clone, Copy, PartialEq, Default)]
+    struct Inertial {
+        /// Mass (kg), > 0.
+        mass: f64,
+        /// Centre of mass in the body's frame (m).
+        com: [f64; 3],
+        /// Inertia tensor about the centre of mass, in the body's axes (kg·m²): ixx, iyy, izz,
+        /// ixy, ixz, iyz.
+        inertia: [f64; 6],
+    }
+
     // ---------------------------------------------------------------------------------------
     // Rust items exposed to C++: none. C++ never calls back into Rust.
     // ---------------------------------------------------------------------------------------
@@ -165,6 +177,18 @@ pub(crate) mod ffi {
         fn body_poses(self: &Sim, out: &mut [f64]);
         /// Total mass of the robot's bodies (kg) as DART holds them.
         fn total_mass(self: &Sim) -> f64;
+        /// Sets the friction coefficient of every shape, the ground's included (set_state must
+        /// follow before a step, as for the three setters below).
+        fn set_friction(self: Pin<&mut Sim>, friction: f64) -> Result<()>;
+        /// Sets a body's mass properties (description frame); the root's frames follow its
+        /// centre of mass.
+        fn set_inertial(self: Pin<&mut Sim>, body: usize, inertial: &Inertial) -> Result<()>;
+        /// A body's mass properties as DART holds them (description frame).
+        fn inertial(self: &Sim, body: usize) -> Inertial;
+        /// Sets an actuated joint's viscous damping (N·m·s/rad).
+        fn set_joint_damping(self: Pin<&mut Sim>, joint: usize, damping: f64) -> Result<()>;
+        /// Adds three values (world frame, m/s) to the root's linear velocity now.
+        fn add_base_velocity(self: Pin<&mut Sim>, dv: &[f64]) -> Result<()>;
         /// Per tracked link: one of its shapes touched or penetrated the ground in the contacts
         /// of the last step.
         fn contacts(self: &Sim, out: &mut [bool]);

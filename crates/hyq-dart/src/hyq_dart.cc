@@ -117,6 +117,11 @@ struct Sim::Impl {
   // the index of each in the skeleton's generalized coordinates.
   std::vector<dart::dynamics::Joint*> actuated;
   std::vector<std::size_t> actuated_dof;
+  // The joints hanging from the root and the shapes on it, each with its frame
+  // as described (in the root's description frame): their frames in the root
+  // body frame follow the root's centre of mass when set_inertial moves it.
+  std::vector<std::pair<dart::dynamics::Joint*, Eigen::Isometry3d>> root_child_joints;
+  std::vector<std::pair<ShapeNode*, Eigen::Isometry3d>> root_shapes;
   // Collision shapes that set a contact flag, and the flag they set.
   std::vector<std::pair<const ShapeNode*, std::size_t>> tracked_shapes;
   std::size_t num_tracked = 0;
@@ -240,6 +245,10 @@ std::unique_ptr<Sim> new_sim(rust::Slice<const BodyDesc> bodies,
       joint->setPositionLimitEnforced(true);
       joint->setDampingCoefficient(0, b.damping);
       joint->setActuatorType(Joint::FORCE);
+      if (b.parent == 0) {
+        impl->root_child_joints.emplace_back(joint,
+                                             to_isometry(b.joint_origin, what + " joint origin"));
+      }
       const std::size_t slot = b.joint_index;
       require(slot < bodies.size(),
               what + ": joint_index " + std::to_string(slot) + " out of range");
@@ -259,6 +268,10 @@ std::unique_ptr<Sim> new_sim(rust::Slice<const BodyDesc> bodies,
           parent, props, body_props);
       joint = require_ptr(pair.first, "WeldJoint for " + what);
       node = pair.second;
+      if (b.parent == 0) {
+        impl->root_child_joints.emplace_back(joint,
+                                             to_isometry(b.joint_origin, what + " joint origin"));
+      }
     } else {
       throw std::invalid_argument(what + ": unknown joint kind");
     }
@@ -321,6 +334,7 @@ std::unique_ptr<Sim> new_sim(rust::Slice<const BodyDesc> bodies,
     require_ptr(sn, "ShapeNode for " + what);
     Eigen::Isometry3d shape_tf = to_isometry(s.pose, what + " pose");
     if (s.body == 0) {
+      impl->root_shapes.emplace_back(sn, shape_tf);
       shape_tf.pretranslate(-impl->root_com);
     }
     sn->setRelativeTransform(shape_tf);
@@ -514,6 +528,94 @@ void Sim::body_poses(rust::Slice<double> out) const {
 }
 
 double Sim::total_mass() const { return impl_->robot->getMass(); }
+
+void Sim::set_friction(double friction) {
+  require(friction >= 0.0 && std::isfinite(friction),
+          "set_friction: friction must be finite and >= 0, got " + std::to_string(friction));
+  // Every shape of every skeleton, the ground's whatever its shape: DART takes
+  // the smaller coefficient of a contact's two shapes.
+  for (const auto& skeleton : {impl_->robot, impl_->ground}) {
+    for (std::size_t b = 0; b < skeleton->getNumBodyNodes(); ++b) {
+      BodyNode* node = skeleton->getBodyNode(b);
+      for (ShapeNode* shape : node->getShapeNodesWith<dart::dynamics::DynamicsAspect>()) {
+        shape->getDynamicsAspect()->setFrictionCoeff(friction);
+      }
+    }
+  }
+}
+
+void Sim::set_inertial(std::size_t body, const Inertial& in) {
+  using dart::dynamics::Inertia;
+  Impl& s = *impl_;
+  const std::string what = "set_inertial: body " + std::to_string(body);
+  require(body < s.bodies.size(), what + " out of range");
+  require(in.mass > 0.0 && std::isfinite(in.mass), what + ": mass must be finite and > 0");
+  require(finite3(in.com), what + ": centre of mass must be finite");
+  for (double v : in.inertia) {
+    require(std::isfinite(v), what + ": inertia must be finite");
+  }
+  Eigen::Vector3d com(in.com[0], in.com[1], in.com[2]);
+  if (body == 0) {
+    // The root body frame sits at the centre of mass (see Impl): move it, and
+    // the frames described in the root's description frame with it, exactly
+    // as new_sim places them.
+    s.root_com = com;
+    Eigen::Isometry3d from_parent = Eigen::Isometry3d::Identity();
+    from_parent.translation() = -s.root_com;
+    for (const auto& [joint, origin] : s.root_child_joints) {
+      joint->setTransformFromParentBodyNode(from_parent * origin);
+    }
+    for (const auto& [shape, origin] : s.root_shapes) {
+      Eigen::Isometry3d tf = origin;
+      tf.pretranslate(-s.root_com);
+      shape->setRelativeTransform(tf);
+    }
+    com = Eigen::Vector3d::Zero();
+  }
+  const auto& i = in.inertia;
+  s.bodies[body]->setInertia(
+      Inertia(in.mass, com.x(), com.y(), com.z(), i[0], i[1], i[2], i[3], i[4], i[5]));
+}
+
+Inertial Sim::inertial(std::size_t body) const {
+  Inertial out{};
+  if (body >= impl_->bodies.size()) {
+    return out;
+  }
+  const auto& inertia = impl_->bodies[body]->getInertia();
+  Eigen::Vector3d com = inertia.getLocalCOM();
+  if (body == 0) {
+    com += impl_->root_com;
+  }
+  const Eigen::Matrix3d moment = inertia.getMoment();
+  out.mass = inertia.getMass();
+  out.com = {com.x(), com.y(), com.z()};
+  out.inertia = {moment(0, 0), moment(1, 1), moment(2, 2),
+                 moment(0, 1), moment(0, 2), moment(1, 2)};
+  return out;
+}
+
+void Sim::set_joint_damping(std::size_t joint, double damping) {
+  require(joint < impl_->actuated.size(),
+          "set_joint_damping: joint " + std::to_string(joint) + " out of range");
+  require(damping >= 0.0 && std::isfinite(damping),
+          "set_joint_damping: damping must be finite and >= 0");
+  impl_->actuated[joint]->setDampingCoefficient(0, damping);
+}
+
+void Sim::add_base_velocity(rust::Slice<const double> dv) {
+  require(dv.size() == 3, "add_base_velocity: expected 3 values");
+  require(std::isfinite(dv[0]) && std::isfinite(dv[1]) && std::isfinite(dv[2]),
+          "add_base_velocity: the velocity change must be finite");
+  Impl& s = *impl_;
+  // The free joint's velocity is the root body's twist in its own axes
+  // [angular; linear of the centre of mass]; with the angular part unchanged,
+  // every point of the root gains dv.
+  const Eigen::Matrix3d rt = s.root->getWorldTransform().linear().transpose();
+  Eigen::Vector6d v = s.root_joint->getVelocities();
+  v.tail<3>() += rt * Eigen::Vector3d(dv[0], dv[1], dv[2]);
+  s.root_joint->setVelocities(v);
+}
 
 void Sim::contacts(rust::Slice<bool> out) const {
   for (auto& flag : out) {

@@ -6,7 +6,9 @@ use cxx::UniquePtr;
 use crate::bridge::ffi;
 use crate::error::DartError;
 
-pub(crate) use ffi::{BaseState, BodyDesc, JointKind, Pose, ShapeDesc, ShapeKind, WorldDesc};
+pub(crate) use ffi::{
+    BaseState, BodyDesc, Inertial, JointKind, Pose, ShapeDesc, ShapeKind, WorldDesc,
+};
 
 impl Pose {
     /// The identity transform.
@@ -119,6 +121,44 @@ impl Sim {
     /// Total mass of the robot as DART holds it (kg).
     pub(crate) fn total_mass(&self) -> f64 {
         self.get().total_mass()
+    }
+
+    /// Sets the friction coefficient of every shape, the ground's included.
+    pub(crate) fn set_friction(&mut self, friction: f64) -> Result<(), DartError> {
+        self.pin().set_friction(friction)?;
+        Ok(())
+    }
+
+    /// Sets body `body`'s mass properties (description frame).
+    pub(crate) fn set_inertial(
+        &mut self,
+        body: usize,
+        inertial: &Inertial,
+    ) -> Result<(), DartError> {
+        self.pin().set_inertial(body, inertial)?;
+        Ok(())
+    }
+
+    /// Body `body`'s mass properties as DART holds them; `body` must be a body index.
+    pub(crate) fn inertial(&self, body: usize) -> Inertial {
+        assert!(body < self.num_bodies, "inertial: body {body} out of range");
+        self.get().inertial(body)
+    }
+
+    /// Sets actuated joint `joint`'s viscous damping.
+    pub(crate) fn set_joint_damping(
+        &mut self,
+        joint: usize,
+        damping: f64,
+    ) -> Result<(), DartError> {
+        self.pin().set_joint_damping(joint, damping)?;
+        Ok(())
+    }
+
+    /// Adds `dv` (world frame) to the root's linear velocity now.
+    pub(crate) fn add_base_velocity(&mut self, dv: [f64; 3]) -> Result<(), DartError> {
+        self.pin().add_base_velocity(&dv)?;
+        Ok(())
     }
 
     /// Contact flag per tracked link; `out.len()` must equal the description's `num_tracked`.

@@ -1,8 +1,8 @@
 //! The HyQ walk-to-goal environment: IIT's HyQ quadruped (87 kg, 12 joints) must walk its trunk
 //! to a goal. The spec's rules (`hyq-spec`: rewards, penalties, terminations, the observation
-//! layout) run on a physics backend (`hyq-physics`' `Backend`: rapier by default, DART as a
-//! second engine), with actions, goals, resets, scripted policies, a vector env and one record
-//! schema around them.
+//! layout) run on a physics backend (`hyq-physics`' `Backend`: rapier by default, DART and
+//! MuJoCo beside it), with actions, goals, resets, scripted and trained policies, a vector env
+//! and one record schema around them.
 //!
 //! # Quickstart
 //!
@@ -29,21 +29,24 @@
 //!
 //! # Configuration
 //!
-//! One TOML file ([`EnvConfig`]): `[task]` (the spec's user variables, `hyq_spec::TaskConfig`),
-//! `[goal]`, `[action]`, `[control]`, `[physics]` with `[physics.rapier]` / `[physics.dart]`,
-//! `[reset]`. Every key has a documented default, unknown keys are errors naming the key, and
-//! [`EnvConfig::set_all`] overrides by dotted key (`"task.fall_penalty"`, `"1.5"`).
+//! One TOML file ([`EnvConfig`]), a table per concern ([`EnvConfig::TABLES`]): `[task]` (the
+//! spec's user variables, `hyq_spec::TaskConfig`), where the goal is, how actions map to joint
+//! targets, the actuator, the physics (with one table per engine) and the reset. Every key has
+//! a documented default, unknown keys are errors naming the key, and [`EnvConfig::set_all`]
+//! overrides by dotted key (`"task.fall_penalty"`, `"1.5"`).
 //!
 //! # Modules
 //!
 //! | module | what |
 //! |---|---|
 //! | [`env`](mod@env) | [`Env`]: reset, step, the sub-step loop, divergence, timing |
-//! | [`config`] | [`EnvConfig`] and its tables |
+//! | [`config`] | [`EnvConfig`] and its tables, one file each; reading, validation, messages |
 //! | [`action`] | [`ActionSpace`]: checking actions and mapping them to joint targets |
 //! | [`goal`] | goal sampling and the reset state |
 //! | [`info`] | [`StepInfo`], [`Reason`], [`Reasons`] |
+//! | [`divergence`] | [`Divergence`]: why a step diverged, the text of the info's `divergence` |
 //! | [`policy`] | [`Stand`], [`RandomPolicy`], [`Trot`] |
+//! | [`mlp`] | [`MlpPolicy`]: a trained policy read from a safetensors file, run in plain Rust |
 //! | [`vec_env`] | [`VecEnv`]: N envs on rayon into flat buffers, autoreset modes |
 //! | [`record`] | [`StepRecord`]: the per-step JSONL schema |
 //! | [`testing`] | [`testing::ScriptedBackend`]: a scripted backend for contract tests |

@@ -191,13 +191,13 @@ impl MlpPolicy {
             err(format!(
                 "not a safetensors policy file ({}): expected a `{FORMAT}` file as \
                  examples/export_policy.py writes",
-                one_line(&e.to_string())
+                hyq_physics::one_line(&e.to_string())
             ))
         })?;
         let tensors = SafeTensors::deserialize(bytes).map_err(|e| {
             err(format!(
                 "not a valid safetensors file: {}",
-                one_line(&e.to_string())
+                hyq_physics::one_line(&e.to_string())
             ))
         })?;
         let raw: BTreeMap<String, String> = header
@@ -508,10 +508,6 @@ fn layout_mismatch(what: &str, trained: &[String], env: &[&str]) -> Option<Strin
             trained[i], env[i]
         )
     })
-}
-
-fn one_line(text: &str) -> String {
-    text.split_whitespace().collect::<Vec<_>>().join(" ")
 }
 
 impl Policy for MlpPolicy {

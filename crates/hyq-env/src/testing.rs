@@ -4,9 +4,10 @@
 //! about sub-steps can be tested exactly: a contact that happens only in a middle sub-step, a
 //! trunk velocity with a known change, a NaN reading, a `Diverged` error.
 //!
-//! The model: each joint is a unit inertia driven by its torque and damped by the model's joint
-//! damping, integrated with semi-implicit Euler and stopped at its limits; the trunk moves with
-//! its velocity (no gravity, no ground). After each sub-step every foot reads as touching the
+//! The model: each joint is a unit inertia driven by its torque and damped by the joint damping
+//! (the model's, or the last dynamics given), integrated with semi-implicit Euler and stopped at its limits; the trunk moves with
+//! its velocity (no gravity, no ground: the ground friction and the masses it is given are only
+//! reported back), and a push adds to that velocity. After each sub-step every foot reads as touching the
 //! ground and the trunk as not touching ([`ScriptedOptions::feet_touch`]), then the script, if
 //! any, runs.
 //!
@@ -15,8 +16,11 @@
 use std::fmt;
 use std::sync::Arc;
 
-use hyq_physics::na::{Isometry3, UnitQuaternion};
-use hyq_physics::{Backend, PhysicsError, PhysicsParams, RobotModel, RobotState, TrunkState};
+use hyq_physics::na::{Isometry3, UnitQuaternion, Vector3};
+use hyq_physics::{
+    Backend, Dynamics, MassProperties, PhysicsError, PhysicsParams, RobotModel, RobotState,
+    TrunkState,
+};
 use serde::{Deserialize, Serialize};
 
 /// Options of [`ScriptedBackend`] (`[physics.scripted]` is not read: use `Default` or
@@ -73,6 +77,7 @@ pub struct ScriptedBackend {
     contacts: Vec<bool>,
     substep: u64,
     script: Option<Script>,
+    dynamics: Dynamics,
 }
 
 impl fmt::Debug for ScriptedBackend {
@@ -143,6 +148,7 @@ impl Backend for ScriptedBackend {
             contacts: vec![false; tracked],
             substep: 0,
             script: None,
+            dynamics: Dynamics::nominal(&model, params),
             model,
         })
     }
@@ -172,7 +178,7 @@ impl Backend for ScriptedBackend {
         let dt = self.params.dt;
         let inertia = self.options.joint_inertia;
         for (i, joint) in self.model.joints().iter().enumerate() {
-            let acc = (self.torques[i] - joint.damping * self.qd[i]) / inertia;
+            let acc = (self.torques[i] - self.dynamics.joint_damping[i] * self.qd[i]) / inertia;
             self.qd[i] += dt * acc;
             self.q[i] += dt * self.qd[i];
             if self.q[i] < joint.lower || self.q[i] > joint.upper {
@@ -228,6 +234,18 @@ impl Backend for ScriptedBackend {
     }
 
     fn total_mass(&self) -> f64 {
-        self.model.total_mass()
+        self.dynamics.total_mass()
+    }
+
+    fn apply_dynamics(&mut self, dynamics: &Dynamics) {
+        self.dynamics.clone_from(dynamics);
+    }
+
+    fn body_mass_properties(&self, link: usize) -> MassProperties {
+        self.dynamics.bodies[link]
+    }
+
+    fn apply_trunk_velocity_change(&mut self, dv: &Vector3<f64>) {
+        self.trunk.linvel += dv;
     }
 }

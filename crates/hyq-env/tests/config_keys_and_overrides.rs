@@ -105,6 +105,29 @@ fn a_full_file_reads_every_table() {
     assert_eq!(env.actuator().kp(), &[2000.0; 12]);
 }
 
+/// A table is registered once, by its row in `EnvConfig`: the list of tables, the tables of the
+/// written-out configuration and the tables whose keys are checked are the same.
+#[test]
+fn every_registered_table_is_written_read_and_checked() {
+    let written: toml::Table =
+        toml::from_str(&EnvConfig::default().to_toml_string()).unwrap_or_else(|e| panic!("{e}"));
+    let mut tables: Vec<&str> = written.keys().map(String::as_str).collect();
+    let mut registered = EnvConfig::TABLES.to_vec();
+    tables.sort_unstable();
+    registered.sort_unstable();
+    assert_eq!(tables, registered);
+    for table in EnvConfig::TABLES {
+        let msg = parse_err(&format!("[{table}]\nno_such_key = 1\n"));
+        assert!(msg.contains("no_such_key"), "{table}: {msg}");
+        let mut c = EnvConfig::default();
+        let msg = c
+            .set(&format!("{table}.no_such_key"), "1")
+            .expect_err("refused")
+            .to_string();
+        assert!(msg.contains("no_such_key"), "{table}: {msg}");
+    }
+}
+
 #[test]
 fn unknown_keys_are_errors_naming_the_key() {
     for (text, key) in [

@@ -18,8 +18,11 @@ use std::sync::Arc;
 
 use hyq_env::testing::ScriptedBackend;
 use hyq_env::{Env, EnvConfig, Policy, RandomPolicy, ResetOptions};
-use hyq_physics::na::Isometry3;
-use hyq_physics::{Backend, PhysicsError, PhysicsParams, RobotModel, RobotState, TrunkState};
+use hyq_physics::na::{Isometry3, Vector3};
+use hyq_physics::{
+    Backend, Dynamics, MassProperties, PhysicsError, PhysicsParams, RobotModel, RobotState,
+    TrunkState,
+};
 use hyq_rapier::RapierBackend;
 
 /// Allocations (and reallocations) made by `f` on this thread. allocation-counter installs a
@@ -90,6 +93,15 @@ impl Backend for Tallied {
     }
     fn total_mass(&self) -> f64 {
         self.inner.total_mass()
+    }
+    fn apply_dynamics(&mut self, dynamics: &Dynamics) {
+        self.inner.apply_dynamics(dynamics);
+    }
+    fn body_mass_properties(&self, link: usize) -> MassProperties {
+        self.inner.body_mass_properties(link)
+    }
+    fn apply_trunk_velocity_change(&mut self, dv: &Vector3<f64>) {
+        self.inner.apply_trunk_velocity_change(dv);
     }
 }
 

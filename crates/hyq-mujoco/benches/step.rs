@@ -3,8 +3,10 @@
 //! contact flags. Two workloads: standing still on four feet (settled for 1 s first), and
 //! random joint targets redrawn every 10 sub-steps (feet landing and lifting, joints at their
 //! limits; reset to the spawn state when the trunk touches the ground, as an episode would
-//! end), and the cost of `set_state` (which resets all of MuJoCo's data). The workloads are
-//! hyq-physics' `SubstepWorkloads`, which the DART backend's bench times too.
+//! end), the cost of `set_state` (which resets all of MuJoCo's data), and of a randomised
+//! episode's reset (`set_dynamics` with other masses, damping and friction, then
+//! `set_state`). The workloads are hyq-physics' `SubstepWorkloads`, which the DART backend's
+//! bench times too.
 //!
 //! Run: `cargo bench -p hyq-mujoco --bench step`.
 
@@ -19,6 +21,9 @@ fn step(c: &mut Criterion) {
     group.bench_function("standing", |bench| bench.iter(|| w.standing()));
     group.bench_function("random_targets", |bench| bench.iter(|| w.random_targets()));
     group.bench_function("set_state", |bench| bench.iter(|| w.set_state()));
+    group.bench_function("randomized_reset", |bench| {
+        bench.iter(|| w.randomized_reset())
+    });
     group.finish();
 }
 

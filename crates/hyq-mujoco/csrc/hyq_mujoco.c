@@ -32,6 +32,8 @@
   X(mj_resetData)           \
   X(mj_step1)               \
   X(mj_step2)               \
+  X(mj_setConst)            \
+  X(mju_eig3)               \
   X(mj_name2id)
 
 static struct {
@@ -154,6 +156,16 @@ struct hyq_mj {
   int* body_of;   /* body id of each layout body */
   int* actuator_of;
   int* tracked_of_geom; /* tracked index of each geom id, or -1 */
+  /* The compiled mass properties of each layout body and the frame flags that depend on them,
+   * restored when a body's dynamics are the model's own again; `modified` marks the bodies
+   * whose values differ from the compiled ones. */
+  double* mass0;
+  double* ipos0;
+  double* iquat0;
+  double* inertia0;
+  mjtByte* body_sameframe0;
+  mjtByte* geom_sameframe0;
+  uint8_t* modified;
 };
 
 static void free_world(hyq_mj* w) {
@@ -171,6 +183,13 @@ static void free_world(hyq_mj* w) {
   free(w->body_of);
   free(w->actuator_of);
   free(w->tracked_of_geom);
+  free(w->mass0);
+  free(w->ipos0);
+  free(w->iquat0);
+  free(w->inertia0);
+  free(w->body_sameframe0);
+  free(w->geom_sameframe0);
+  free(w->modified);
   free(w);
 }
 
@@ -182,6 +201,35 @@ static int lookup(const mjModel* m, int type, const char* kind, const char* name
     snprintf(err, (size_t)err_len, "the compiled model has no %s named \"%s\"", kind, name);
   }
   return id;
+}
+
+/* Copies the compiled mass properties of the layout's bodies and the frame flags (see
+ * struct hyq_mj). */
+static int save_compiled_masses(hyq_mj* w, char* err, int err_len) {
+  const mjModel* m = w->m;
+  size_t nb = (size_t)w->num_bodies;
+  w->mass0 = calloc(nb + 1, sizeof(double));
+  w->ipos0 = calloc(3 * nb + 1, sizeof(double));
+  w->iquat0 = calloc(4 * nb + 1, sizeof(double));
+  w->inertia0 = calloc(3 * nb + 1, sizeof(double));
+  w->body_sameframe0 = calloc(nb + 1, 1);
+  w->geom_sameframe0 = calloc((size_t)m->ngeom + 1, 1);
+  w->modified = calloc(nb + 1, 1);
+  if (!w->mass0 || !w->ipos0 || !w->iquat0 || !w->inertia0 || !w->body_sameframe0 ||
+      !w->geom_sameframe0 || !w->modified) {
+    copy_message(err, err_len, "out of memory");
+    return -1;
+  }
+  for (int b = 0; b < w->num_bodies; b++) {
+    int id = w->body_of[b];
+    w->mass0[b] = m->body_mass[id];
+    memcpy(w->ipos0 + 3 * b, m->body_ipos + 3 * id, 3 * sizeof(double));
+    memcpy(w->iquat0 + 4 * b, m->body_iquat + 4 * id, 4 * sizeof(double));
+    memcpy(w->inertia0 + 3 * b, m->body_inertia + 3 * id, 3 * sizeof(double));
+    w->body_sameframe0[b] = m->body_sameframe[id];
+  }
+  memcpy(w->geom_sameframe0, m->geom_sameframe, (size_t)m->ngeom);
+  return 0;
 }
 
 static int resolve_layout(hyq_mj* w, const hyq_mj_layout* layout, char* err, int err_len) {
@@ -245,6 +293,9 @@ static int resolve_layout(hyq_mj* w, const hyq_mj_layout* layout, char* err, int
   }
   for (int g = 0; g < (int)m->ngeom; g++) {
     w->tracked_of_geom[g] = -1;
+  }
+  if (save_compiled_masses(w, err, err_len) != 0) {
+    return -1;
   }
   for (int k = 0; k < layout->num_tracked_geoms; k++) {
     int id = lookup(m, mjOBJ_GEOM, "geom", layout->tracked_geom_names[k], err, err_len);
@@ -497,3 +548,140 @@ int hyq_mj_num_touching(const hyq_mj* w) {
 }
 
 double hyq_mj_time(const hyq_mj* w) { return w->d->time; }
+
+/* ---------------------------------------------------------------------------------------------
+ * Per-episode dynamics and pushes. */
+
+/* Body b's compiled mass properties back, with the frame flags that went with them. */
+static void restore_body(hyq_mj* w, int b) {
+  mjModel* m = w->m;
+  int id = w->body_of[b];
+  m->body_mass[id] = w->mass0[b];
+  memcpy(m->body_ipos + 3 * id, w->ipos0 + 3 * b, 3 * sizeof(double));
+  memcpy(m->body_iquat + 4 * id, w->iquat0 + 4 * b, 4 * sizeof(double));
+  memcpy(m->body_inertia + 3 * id, w->inertia0 + 3 * b, 3 * sizeof(double));
+  m->body_sameframe[id] = w->body_sameframe0[b];
+  for (int g = m->body_geomadr[id]; g < m->body_geomadr[id] + m->body_geomnum[id]; g++) {
+    m->geom_sameframe[g] = w->geom_sameframe0[g];
+  }
+}
+
+/* Body b's mass properties from mass, centre of mass and full tensor (ixx iyy izz ixy ixz iyz),
+ * principal axes by MuJoCo's own mju_eig3, as its compiler takes a fullinertia. The inertial
+ * frame no longer coincides with the body frame or any geom's, so those shortcuts are off. */
+static int write_body(hyq_mj* w, int b, const double v[10], char* err, int err_len) {
+  mjModel* m = w->m;
+  int id = w->body_of[b];
+  if (m->body_simple[id]) {
+    snprintf(err, (size_t)err_len,
+             "body %d is one MuJoCo treats as simple (diagonal mass matrix): its mass "
+             "properties cannot be changed in place", b);
+    return -1;
+  }
+  mjtNum full[9] = {v[4], v[7], v[8], v[7], v[5], v[9], v[8], v[9], v[6]};
+  mjtNum eigval[3], eigvec[9], quat[4];
+  api.mju_eig3(eigval, eigvec, quat, full);
+  if (!(eigval[2] > 0)) {
+    snprintf(err, (size_t)err_len, "body %d: inertia tensor is not positive definite", b);
+    return -1;
+  }
+  m->body_mass[id] = v[0];
+  memcpy(m->body_ipos + 3 * id, v + 1, 3 * sizeof(double));
+  memcpy(m->body_iquat + 4 * id, quat, 4 * sizeof(double));
+  memcpy(m->body_inertia + 3 * id, eigval, 3 * sizeof(double));
+  m->body_sameframe[id] = mjSAMEFRAME_NONE;
+  for (int g = m->body_geomadr[id]; g < m->body_geomadr[id] + m->body_geomnum[id]; g++) {
+    if (m->geom_sameframe[g] == mjSAMEFRAME_INERTIA ||
+        m->geom_sameframe[g] == mjSAMEFRAME_INERTIAROT) {
+      m->geom_sameframe[g] = mjSAMEFRAME_NONE;
+    }
+  }
+  return 0;
+}
+
+int hyq_mj_set_dynamics(hyq_mj* w, double friction, const uint8_t* nominal,
+                        const double* bodies, const double* damping, char* err, int err_len) {
+  mjModel* m = w->m;
+  for (int g = 0; g < (int)m->ngeom; g++) {
+    m->geom_friction[3 * g] = friction;
+  }
+  for (int j = 0; j < w->num_joints; j++) {
+    m->dof_damping[w->dof_of[j]] = damping[j];
+  }
+  int masses_changed = 0;
+  for (int b = 0; b < w->num_bodies; b++) {
+    if (nominal[b]) {
+      if (w->modified[b]) {
+        restore_body(w, b);
+        w->modified[b] = 0;
+        masses_changed = 1;
+      }
+    } else {
+      if (write_body(w, b, bodies + 10 * b, err, err_len) != 0) {
+        return -1;
+      }
+      w->modified[b] = 1;
+      masses_changed = 1;
+    }
+  }
+  if (!masses_changed) {
+    return 0;
+  }
+  volatile int status = 0;
+  /* The constants MuJoCo derives from masses (subtree masses, the inverse weights that scale
+   * constraint softness, the mean inertia that scales the solver's tolerance) as its compiler
+   * sets them. It computes them at qpos0 in the data, whose state the caller then replaces. */
+  GUARDED(api.mj_setConst(m, w->d), {
+    snprintf(err, (size_t)err_len, "MuJoCo error while setting the masses: %s", error_text);
+    status = -1;
+  });
+  return status;
+}
+
+void hyq_mj_body_inertial(const hyq_mj* w, int body, double out[10]) {
+  const mjModel* m = w->m;
+  int id = w->body_of[body];
+  const double* q = m->body_iquat + 4 * id;
+  const double* d = m->body_inertia + 3 * id;
+  /* R = rotation of the unit quaternion (w, x, y, z); I = R diag(d) R^T. */
+  double r[9] = {
+      1 - 2 * (q[2] * q[2] + q[3] * q[3]), 2 * (q[1] * q[2] - q[0] * q[3]),
+      2 * (q[1] * q[3] + q[0] * q[2]),     2 * (q[1] * q[2] + q[0] * q[3]),
+      1 - 2 * (q[1] * q[1] + q[3] * q[3]), 2 * (q[2] * q[3] - q[0] * q[1]),
+      2 * (q[1] * q[3] - q[0] * q[2]),     2 * (q[2] * q[3] + q[0] * q[1]),
+      1 - 2 * (q[1] * q[1] + q[2] * q[2])};
+  double full[9];
+  for (int i = 0; i < 3; i++) {
+    for (int k = 0; k < 3; k++) {
+      full[3 * i + k] = r[3 * i] * d[0] * r[3 * k] + r[3 * i + 1] * d[1] * r[3 * k + 1] +
+                        r[3 * i + 2] * d[2] * r[3 * k + 2];
+    }
+  }
+  out[0] = m->body_mass[id];
+  memcpy(out + 1, m->body_ipos + 3 * id, 3 * sizeof(double));
+  out[4] = full[0];
+  out[5] = full[4];
+  out[6] = full[8];
+  out[7] = full[1];
+  out[8] = full[2];
+  out[9] = full[5];
+}
+
+int hyq_mj_add_root_velocity(hyq_mj* w, const double dv[3], char* err, int err_len) {
+  volatile int status = 0;
+  GUARDED(
+      {
+        for (int k = 0; k < 3; k++) {
+          w->d->qvel[w->root_dof + k] += dv[k];
+        }
+        /* The velocity-dependent terms the next mj_step2 uses (bias and passive forces) were
+         * computed by the last mj_step1 from the old velocity: compute them again. Positions,
+         * contacts and the warm start are unchanged. */
+        api.mj_step1(w->m, w->d);
+      },
+      {
+        snprintf(err, (size_t)err_len, "MuJoCo error while pushing the trunk: %s", error_text);
+        status = -1;
+      });
+  return status;
+}

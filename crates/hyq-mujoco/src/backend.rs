@@ -5,12 +5,24 @@
 //! every other backend), without actuators: the shared PD actuator
 //! ([`hyq_physics::pd_substep`]) computes the joint torques, and the backend writes them into
 //! MuJoCo's applied generalized forces for one step.
+//!
+//! Per-episode dynamics ([`Backend::apply_dynamics`]) are written into `mjModel` in place:
+//! every geom's sliding friction (MuJoCo takes the larger of a contact's two, so the ground's
+//! is set too, whatever its shape), each joint's damping, and each body's mass, centre of
+//! mass and principal inertia (diagonalised by MuJoCo's own `mju_eig3`, as its compiler does);
+//! then `mj_setConst` recomputes what MuJoCo derives from masses. A body given the model's own
+//! values gets MuJoCo's compiled ones back bit for bit. A push adds to the free joint's
+//! velocity and recomputes the velocity-dependent terms (`mj_step1`), keeping the contacts and
+//! the warm start.
 
 use std::sync::Arc;
 
 use hyq_physics::mjcf::{Actuators, Mjcf, MjcfOptions, to_mjcf};
 use hyq_physics::na::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3};
-use hyq_physics::{Backend, PhysicsError, PhysicsParams, RobotModel, RobotState, TrunkState};
+use hyq_physics::{
+    Backend, Dynamics, MassProperties, PhysicsError, PhysicsParams, RobotModel, RobotState,
+    TrunkState,
+};
 
 use crate::error::MujocoError;
 use crate::options::MujocoOptions;
@@ -91,6 +103,9 @@ pub struct MujocoBackend {
     /// Set when the world cannot be stepped until the next state change (a failed state change
     /// or a failed step).
     blocked: Option<String>,
+    /// Set when MuJoCo refused dynamics (which were validated, so unexpectedly): the world
+    /// cannot be stepped until dynamics are given again.
+    refused_dynamics: Option<String>,
 }
 
 impl MujocoBackend {
@@ -124,6 +139,7 @@ impl Backend for MujocoBackend {
             contacts: vec![false; tracked],
             params: params.clone(),
             blocked: None,
+            refused_dynamics: None,
             model,
         };
         let spawn = backend.model.spawn_state();
@@ -165,6 +181,11 @@ impl Backend for MujocoBackend {
     }
 
     fn step(&mut self) -> Result<(), PhysicsError> {
+        if let Some(reason) = &self.refused_dynamics {
+            return Err(backend_error(format!(
+                "{reason}; call set_dynamics before stepping again"
+            )));
+        }
         if let Some(reason) = &self.blocked {
             return Err(backend_error(format!(
                 "{reason}; call set_state before stepping again"
@@ -228,6 +249,66 @@ impl Backend for MujocoBackend {
 
     fn total_mass(&self) -> f64 {
         self.world.total_mass()
+    }
+
+    fn apply_dynamics(&mut self, dynamics: &Dynamics) {
+        // A body whose values are the model's own gets MuJoCo's compiled values back bit for
+        // bit (MuJoCo diagonalised the tensor when it compiled the model).
+        let nominal: Vec<bool> = dynamics
+            .bodies
+            .iter()
+            .zip(self.model.links())
+            .map(|(b, l)| b.mass == l.mass && b.com == l.com && b.inertia == l.inertia)
+            .collect();
+        let bodies: Vec<[f64; 10]> = dynamics
+            .bodies
+            .iter()
+            .map(|b| {
+                let i = b.inertia;
+                [
+                    b.mass,
+                    b.com.x,
+                    b.com.y,
+                    b.com.z,
+                    i[(0, 0)],
+                    i[(1, 1)],
+                    i[(2, 2)],
+                    i[(0, 1)],
+                    i[(0, 2)],
+                    i[(1, 2)],
+                ]
+            })
+            .collect();
+        self.refused_dynamics = self
+            .world
+            .set_dynamics(
+                dynamics.ground_friction,
+                &nominal,
+                &bodies,
+                &dynamics.joint_damping,
+            )
+            .err()
+            // The dynamics were validated, so MuJoCo refusing them is unexpected; the trait
+            // gives this method no error channel, so the next step reports it.
+            .map(|e| format!("MuJoCo refused the dynamics: {e}"));
+    }
+
+    fn body_mass_properties(&self, link: usize) -> MassProperties {
+        let v = self.world.body_inertial(link);
+        MassProperties {
+            mass: v[0],
+            com: Vector3::new(v[1], v[2], v[3]),
+            inertia: hyq_physics::na::Matrix3::new(
+                v[4], v[7], v[8], v[7], v[5], v[9], v[8], v[9], v[6],
+            ),
+        }
+    }
+
+    fn apply_trunk_velocity_change(&mut self, dv: &Vector3<f64>) {
+        if let Err(e) = self.world.add_root_velocity(&[dv.x, dv.y, dv.z]) {
+            // The change was validated (finite); see `apply_state`.
+            self.blocked = Some(format!("the trunk push failed: {e}"));
+        }
     }
 }
 

@@ -79,6 +79,22 @@ unsafe extern "C" {
     fn hyq_mj_body_pose(w: *const RawWorld, body: c_int, out: *mut f64);
     fn hyq_mj_total_mass(w: *const RawWorld) -> f64;
     fn hyq_mj_num_touching(w: *const RawWorld) -> c_int;
+    fn hyq_mj_set_dynamics(
+        w: *mut RawWorld,
+        friction: f64,
+        nominal: *const u8,
+        bodies: *const f64,
+        damping: *const f64,
+        err: *mut c_char,
+        err_len: c_int,
+    ) -> c_int;
+    fn hyq_mj_body_inertial(w: *const RawWorld, body: c_int, out: *mut f64);
+    fn hyq_mj_add_root_velocity(
+        w: *mut RawWorld,
+        dv: *const f64,
+        err: *mut c_char,
+        err_len: c_int,
+    ) -> c_int;
     fn hyq_mj_time(w: *const RawWorld) -> f64;
 }
 
@@ -399,6 +415,67 @@ impl World {
     pub fn total_mass(&self) -> f64 {
         // SAFETY: reads the compiled model.
         unsafe { hyq_mj_total_mass(self.raw.as_ptr()) }
+    }
+
+    /// Sets the friction of every geom, each joint's damping and each layout body's mass
+    /// properties: `nominal[b]` true restores body `b`'s compiled ones, else `bodies[b]` holds
+    /// its mass, centre of mass (body frame) and tensor about it (ixx, iyy, izz, ixy, ixz,
+    /// iyz). [`World::set_state`] must follow before a step.
+    pub fn set_dynamics(
+        &mut self,
+        friction: f64,
+        nominal: &[bool],
+        bodies: &[[f64; 10]],
+        damping: &[f64],
+    ) -> Result<(), MujocoError> {
+        assert_eq!(nominal.len(), self.num_bodies, "one flag per body");
+        assert_eq!(bodies.len(), self.num_bodies, "one inertial per body");
+        assert_eq!(damping.len(), self.num_joints, "one damping per joint");
+        let flags: Vec<u8> = nominal.iter().map(|&n| u8::from(n)).collect();
+        let flat: Vec<f64> = bodies.iter().flatten().copied().collect();
+        let mut err = ErrBuf::new();
+        // SAFETY: `flags` holds `num_bodies` bytes, `flat` 10 values per body, `damping` one
+        // per joint, as the shim reads; `err` holds `ErrBuf::len()` bytes.
+        let status = unsafe {
+            hyq_mj_set_dynamics(
+                self.raw.as_ptr(),
+                friction,
+                flags.as_ptr(),
+                flat.as_ptr(),
+                damping.as_ptr(),
+                err.ptr(),
+                ErrBuf::len(),
+            )
+        };
+        if status == 0 {
+            Ok(())
+        } else {
+            Err(MujocoError::Engine(err.text()))
+        }
+    }
+
+    /// Layout body `body`'s mass, centre of mass and tensor (as [`World::set_dynamics`] takes
+    /// them) as the model holds them.
+    pub fn body_inertial(&self, body: usize) -> [f64; 10] {
+        assert!(body < self.num_bodies, "body {body} of {}", self.num_bodies);
+        let mut out = [0.0; 10];
+        // SAFETY: `body` is in range (checked, so it fits a c_int); `out` holds 10 values.
+        unsafe { hyq_mj_body_inertial(self.raw.as_ptr(), body as c_int, out.as_mut_ptr()) };
+        out
+    }
+
+    /// Adds `dv` (world frame) to the root's linear velocity now.
+    pub fn add_root_velocity(&mut self, dv: &[f64; 3]) -> Result<(), MujocoError> {
+        let mut err = ErrBuf::new();
+        // SAFETY: `dv` holds 3 values; `err` holds `ErrBuf::len()` bytes.
+        let status = unsafe {
+            hyq_mj_add_root_velocity(self.raw.as_ptr(), dv.as_ptr(), err.ptr(), ErrBuf::len())
+        };
+        if status == 0 {
+            Ok(())
+        } else {
+            Err(MujocoError::Engine(err.text()))
+        }
     }
 
     /// Contacts in MuJoCo's current list that touch or penetrate.

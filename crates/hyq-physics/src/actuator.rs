@@ -27,6 +27,7 @@
 use crate::backend::{Backend, check_finite_joint_values, check_joint_values};
 use crate::error::PhysicsError;
 use crate::model::RobotModel;
+use crate::randomize::ActuatorScales;
 
 /// The speed (rad/s) below which joint friction is proportional to speed (step 4 of the law):
 /// 0.01 rad/s is a thousandth of a walking joint's typical speed, so friction is at its full
@@ -94,6 +95,35 @@ impl Actuator {
         self.kp.len()
     }
 
+    /// Makes this actuator `base` with its gains, effort limits and joint friction multiplied
+    /// joint by joint by `scales` (a randomised episode's actuator); the velocity limits and
+    /// the velocity-limit switch stay this actuator's. Allocates nothing.
+    ///
+    /// Errors, leaving the actuator unchanged, if `base` has another number of joints or a
+    /// scale is invalid ([`ActuatorScales::validate`]: gains and efforts must stay positive).
+    pub fn scale_from(
+        &mut self,
+        base: &Actuator,
+        scales: &ActuatorScales,
+    ) -> Result<(), PhysicsError> {
+        let n = self.num_joints();
+        if base.num_joints() != n {
+            return Err(PhysicsError::WrongLength {
+                what: "base actuator joints",
+                expected: n,
+                got: base.num_joints(),
+            });
+        }
+        scales.validate(n)?;
+        for i in 0..n {
+            self.kp[i] = base.kp[i] * scales.kp[i];
+            self.kd[i] = base.kd[i] * scales.kd[i];
+            self.effort[i] = base.effort[i] * scales.effort[i];
+            self.friction[i] = base.friction[i] * scales.friction[i];
+        }
+        Ok(())
+    }
+
     /// Proportional gains (N·m/rad).
     pub fn kp(&self) -> &[f64] {
         &self.kp
@@ -102,6 +132,16 @@ impl Actuator {
     /// Derivative gains (N·m·s/rad).
     pub fn kd(&self) -> &[f64] {
         &self.kd
+    }
+
+    /// Effort limits (N·m).
+    pub fn effort(&self) -> &[f64] {
+        &self.effort
+    }
+
+    /// Coulomb joint friction (N·m).
+    pub fn friction(&self) -> &[f64] {
+        &self.friction
     }
 
     /// The torque (N·m) of joint `i` for a target, angle and speed.

@@ -18,7 +18,9 @@ use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 
 use crate::error::PhysicsError;
+use crate::inertia::MassProperties;
 use crate::model::RobotModel;
+use crate::randomize::Dynamics;
 
 /// Engine-independent physics settings (`[physics]` in an environment's TOML).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -263,6 +265,64 @@ pub trait Backend: Sized + Send + 'static {
 
     /// The total mass (kg) of the robot's bodies as the engine holds them.
     fn total_mass(&self) -> f64;
+
+    // ---------------------------------------------------------------------------------------
+    // Per-episode dynamics and pushes (domain randomisation, see `crate::randomize`). A world
+    // is built with the model's dynamics; these change them, and push the trunk.
+    // ---------------------------------------------------------------------------------------
+
+    /// Gives the world these (already validated) dynamics, as if it had been built with them:
+    /// the ground friction acts on whatever shape the ground has, and every body's mass
+    /// properties and joint damping are replaced. What the world does before the next
+    /// [`Backend::apply_state`] is unspecified (an engine may have to move internal frames);
+    /// that call must follow before a step.
+    ///
+    /// Callers use [`Backend::set_dynamics`], which validates first and re-applies the state.
+    fn apply_dynamics(&mut self, dynamics: &Dynamics);
+
+    /// The mass properties of body `link` (index as in [`RobotModel::links`]) as the engine
+    /// holds them, in the body's link frame: what [`Backend::apply_dynamics`] gave it, read
+    /// back (an engine in single precision rounds them).
+    ///
+    /// # Panics
+    /// If `link` is not a body index.
+    fn body_mass_properties(&self, link: usize) -> MassProperties;
+
+    /// Adds `dv` (m/s, world frame, already validated) to the trunk's linear velocity now,
+    /// leaving joint speeds, the angular velocity and everything the engine carries between
+    /// steps (warm starts, contacts) as they are: a push, not a reset. The whole robot moves
+    /// with the trunk, since joint speeds are relative.
+    ///
+    /// Callers use [`Backend::push_trunk`], which validates first.
+    fn apply_trunk_velocity_change(&mut self, dv: &Vector3<f64>);
+
+    /// Validates `dynamics` against the model ([`Dynamics::validate`]), gives them to the
+    /// world ([`Backend::apply_dynamics`]) and puts it back into the state it was in (the
+    /// spawn state if that is not a valid state, after a divergence): afterwards the world is
+    /// as if built with these dynamics and set to that state.
+    fn set_dynamics(&mut self, dynamics: &Dynamics) -> Result<(), PhysicsError> {
+        dynamics.validate(self.model())?;
+        let mut state = self.state();
+        if state.validate(self.model()).is_err() {
+            state = self.model().spawn_state();
+        }
+        self.apply_dynamics(dynamics);
+        self.apply_state(&state);
+        Ok(())
+    }
+
+    /// Adds `dv` (m/s, world frame, finite) to the trunk's linear velocity now (see
+    /// [`Backend::apply_trunk_velocity_change`]).
+    fn push_trunk(&mut self, dv: &Vector3<f64>) -> Result<(), PhysicsError> {
+        if let Some(v) = dv.iter().find(|v| !v.is_finite()) {
+            return Err(PhysicsError::NonFinite {
+                what: "trunk velocity change".into(),
+                value: *v,
+            });
+        }
+        self.apply_trunk_velocity_change(dv);
+        Ok(())
+    }
 
     /// Validates `state` against the model and puts the world into it (see
     /// [`Backend::apply_state`]).

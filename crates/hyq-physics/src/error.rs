@@ -202,3 +202,39 @@ pub enum PhysicsError {
     #[error(transparent)]
     Model(#[from] ModelError),
 }
+
+/// `message` on one line, as every front prints errors: a parser's source excerpt (the lines it
+/// draws with `|`, and the numbered source lines) left out, the other lines trimmed and joined
+/// by ": " (TOML's "TOML parse error at line 3, column 1" header, then its explanation).
+pub fn one_line(message: &str) -> String {
+    message
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty() && !is_source_excerpt(l))
+        .collect::<Vec<_>>()
+        .join(": ")
+}
+
+/// Whether a trimmed line is part of a parser's source excerpt: `|` rules, or a source line
+/// after its number (`3 | key = 1`).
+fn is_source_excerpt(line: &str) -> bool {
+    line.starts_with('|')
+        || line
+            .split_once(" |")
+            .is_some_and(|(n, _)| !n.is_empty() && n.chars().all(|c| c.is_ascii_digit()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::one_line;
+
+    #[test]
+    fn a_parser_message_keeps_its_header_and_explanation() {
+        let message = "TOML parse error at line 3, column 1\n  |\n3 | spawn = 1\n  | ^^^^^\nunknown field `spawn`, expected `trunk`\n";
+        assert_eq!(
+            one_line(message),
+            "TOML parse error at line 3, column 1: unknown field `spawn`, expected `trunk`"
+        );
+        assert_eq!(one_line("12 joints\n  expected"), "12 joints: expected");
+    }
+}

@@ -9,6 +9,10 @@
 //!   trunk state and real ground contacts.
 //! - [`actuator`]: the joint PD law with effort and velocity limits, evaluated every sub-step in
 //!   shared code ([`pd_substep`]), so every backend is driven identically.
+//! - [`randomize`]: per-episode variations of the physics as plain data (ground friction,
+//!   masses, damping, the actuator's gains, limits and delay) with the rules that keep every
+//!   drawn world physical; backends take them through [`Backend::set_dynamics`] and push the
+//!   trunk with [`Backend::push_trunk`].
 //! - [`mjcf`]: the robot as MuJoCo's XML model format, pure text generation (no MuJoCo
 //!   needed), for the MuJoCo backend and for MuJoCo-from-Python benchmarks alike.
 //! - [`urdf_export`]: the loaded robot written back as URDF (fixed links lumped, primitive
@@ -32,15 +36,18 @@ pub mod inertia;
 pub mod mjcf;
 pub mod model;
 pub mod profile;
+pub mod randomize;
 pub mod urdf_export;
 
 pub use actuator::{Actuator, PdScratch, apply_pd, apply_pd_to_valid_targets, pd_substep};
 pub use backend::{Backend, PhysicsParams, RobotState, TrunkState, check_joint_values};
 pub use bundled::resolve as resolve_robot;
-pub use error::{ModelError, PhysicsError};
+pub use error::{ModelError, PhysicsError, one_line};
+pub use inertia::MassProperties;
 pub use model::{Collision, Joint, Link, RobotModel, Shape, TrackedBody};
 pub use model::{Gait, GaitLeg};
 pub use profile::Profile;
+pub use randomize::{ActuatorScales, Dynamics, DynamicsDraw, TargetDelay};
 
 /// The linear-algebra crate of this API (`nalgebra`), re-exported so that callers use the
 /// same version.

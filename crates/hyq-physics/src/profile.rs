@@ -158,22 +158,7 @@ impl Profile {
     pub fn from_toml_str(text: &str, origin: &str) -> Result<Self, ModelError> {
         toml::from_str(text).map_err(|e| ModelError::Profile {
             origin: origin.to_owned(),
-            message: one_line(&e.to_string()),
+            message: crate::one_line(&e.to_string()),
         })
     }
-}
-
-/// A TOML parser message on one line (front ends print errors on one line): its "at line L,
-/// column C" header and its explanation, without the source excerpt drawn between them.
-fn one_line(message: &str) -> String {
-    message
-        .lines()
-        .map(str::trim)
-        .filter(|l| {
-            !l.is_empty()
-                && !l.starts_with('|')
-                && !l.chars().next().is_some_and(|c| c.is_ascii_digit())
-        })
-        .collect::<Vec<_>>()
-        .join(": ")
 }

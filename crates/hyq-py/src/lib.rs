@@ -66,6 +66,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(backends, m)?)?;
     m.add("ROBOTS", hyq_physics::bundled::NAMES.to_vec())?;
     m.add("DEFAULT_ROBOT", hyq_physics::bundled::DEFAULT)?;
+    // The configuration's tables, which keyword arguments may give as dicts.
+    m.add("CONFIG_TABLES", hyq_env::EnvConfig::TABLES.to_vec())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     // The ranges the Python side checks arguments against, from the crates that enforce them.
     m.add("MAX_ENVS", hyq_env::MAX_ENVS)?;

@@ -1,10 +1,11 @@
 //! Cost of one physics sub-step of the rapier backend (standing, and under random joint
-//! targets) and of a reset. `cargo bench -p hyq-rapier`; figures in the crate's README.md.
+//! targets) and of a reset, plain or randomised. `cargo bench -p hyq-rapier`; figures in the
+//! crate's README.md.
 
 use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use hyq_physics::conformance::fixtures::Rng;
+use hyq_physics::conformance::fixtures::{Rng, Robot, SubstepWorkloads};
 use hyq_physics::{Actuator, Backend, PdScratch, PhysicsParams, bundled, pd_substep};
 use hyq_rapier::{RapierBackend, RapierOptions};
 
@@ -87,6 +88,16 @@ fn substep(c: &mut Criterion) {
             b.set_state(black_box(&spawn)).expect("resets");
             pd_substep(&mut b, &act, &standing, &mut scratch)
         })
+    });
+    // A randomised episode's reset: other masses, centre of mass, damping and friction, then
+    // the spawn state (the fixtures' workload, which the DART and MuJoCo benches time too).
+    let mut w = SubstepWorkloads::<RapierBackend>::new(
+        &Robot::bundled("hyq"),
+        &RapierOptions::default(),
+        false,
+    );
+    group.bench_function("randomized_reset", |bench| {
+        bench.iter(|| w.randomized_reset())
     });
     group.finish();
 }

@@ -106,13 +106,14 @@ pub(crate) fn add_bodies(
     let mut colliders: Vec<Vec<ColliderHandle>> = Vec::with_capacity(links.len());
     for (i, link) in links.iter().enumerate() {
         let shift = body_shift(i, &trunk_com);
-        let com = if i == 0 { Vector3::zeros() } else { link.com };
-        let inertia = Matrix::from_cols(
-            to_vec(&link.inertia.column(0).into_owned()),
-            to_vec(&link.inertia.column(1).into_owned()),
-            to_vec(&link.inertia.column(2).into_owned()),
+        let mass = body_mass(
+            i,
+            &hyq_physics::MassProperties {
+                mass: link.mass,
+                com: link.com,
+                inertia: link.inertia,
+            },
         );
-        let mass = MassProperties::with_inertia_matrix(to_vec(&com), link.mass as Real, inertia);
         let handle = world.bodies.insert(
             RigidBodyBuilder::dynamic()
                 .pose(to_pose(&(link_poses[i] * shift)))
@@ -122,7 +123,8 @@ pub(crate) fn add_bodies(
         );
         let mut body_colliders = Vec::with_capacity(link.collisions.len());
         for c in &link.collisions {
-            let builder = collider(&c.shape, &(shift.inverse() * c.origin)).ok_or_else(|| {
+            let frame = collider_frame(i, &c.shape, &c.origin, &trunk_com);
+            let builder = collider(&c.shape, frame).ok_or_else(|| {
                 backend_error(format!(
                     "link {:?}: unsupported shape {:?}",
                     link.name, c.shape
@@ -149,36 +151,59 @@ pub(crate) fn add_bodies(
     Ok(Bodies { handles, colliders })
 }
 
-/// A collider for `shape` at `in_body` (its frame in the rigid body's), or `None` for a shape
-/// this backend does not know.
-fn collider(shape: &Shape, in_body: &Isometry3<f64>) -> Option<ColliderBuilder> {
-    Some(match *shape {
+/// rapier's mass properties of model body `i` with `props` (link frame): about the body frame's
+/// origin, which for the trunk is its centre of mass (see [`body_shift`]).
+pub(crate) fn body_mass(i: usize, props: &hyq_physics::MassProperties) -> MassProperties {
+    let com = if i == 0 { Vector3::zeros() } else { props.com };
+    let inertia = Matrix::from_cols(
+        to_vec(&props.inertia.column(0).into_owned()),
+        to_vec(&props.inertia.column(1).into_owned()),
+        to_vec(&props.inertia.column(2).into_owned()),
+    );
+    MassProperties::with_inertia_matrix(to_vec(&com), props.mass as Real, inertia)
+}
+
+/// The pose of a collider of body `i` whose shape frame is `origin` (in the link frame) in
+/// that body's rigid-body frame, for `shape`: rapier's cylinder lies along y, so a cylinder's
+/// frame is turned to bring y onto the model's z.
+pub(crate) fn collider_frame(
+    i: usize,
+    shape: &Shape,
+    origin: &Isometry3<f64>,
+    trunk_com: &Vector3<f64>,
+) -> Pose {
+    let in_body = body_shift(i, trunk_com).inverse() * origin;
+    match shape {
+        Shape::Cylinder { .. } => {
+            let y_to_z =
+                UnitQuaternion::from_axis_angle(&Vector3::x_axis(), std::f64::consts::FRAC_PI_2);
+            to_pose(&(in_body * y_to_z))
+        }
+        _ => to_pose(&in_body),
+    }
+}
+
+/// A collider for `shape` at `frame` (its pose in the rigid body's frame, from
+/// [`collider_frame`]), or `None` for a shape this backend does not know.
+fn collider(shape: &Shape, frame: Pose) -> Option<ColliderBuilder> {
+    let builder = match *shape {
         Shape::Box { half_extents } => ColliderBuilder::cuboid(
             half_extents.x as Real,
             half_extents.y as Real,
             half_extents.z as Real,
-        )
-        .position(to_pose(in_body)),
-        Shape::Sphere { radius } => {
-            ColliderBuilder::ball(radius as Real).position(to_pose(in_body))
-        }
+        ),
+        Shape::Sphere { radius } => ColliderBuilder::ball(radius as Real),
         Shape::Capsule {
             radius,
             half_length,
-        } => ColliderBuilder::capsule_z(half_length as Real, radius as Real)
-            .position(to_pose(in_body)),
+        } => ColliderBuilder::capsule_z(half_length as Real, radius as Real),
         Shape::Cylinder {
             radius,
             half_length,
-        } => {
-            // rapier's cylinder lies along y; turn y onto the model's z.
-            let y_to_z =
-                UnitQuaternion::from_axis_angle(&Vector3::x_axis(), std::f64::consts::FRAC_PI_2);
-            ColliderBuilder::cylinder(half_length as Real, radius as Real)
-                .position(to_pose(&(in_body * y_to_z)))
-        }
+        } => ColliderBuilder::cylinder(half_length as Real, radius as Real),
         _ => return None,
-    })
+    };
+    Some(builder.position(frame))
 }
 
 /// Joins the bodies into one multibody, parents before children, and returns each joint's axis
@@ -202,11 +227,10 @@ pub(crate) fn add_joints(
         };
         let joint = &joints[j];
         let a = x_onto(&joint.axis);
-        let frame1 = body_shift(joint.parent, &trunk_com).inverse() * joint.origin * a;
         let frame2 = body_shift(i, &trunk_com).inverse()
             * Isometry3::from_parts(Translation3::identity(), a);
         let data = GenericJointBuilder::new(JointAxesMask::LOCKED_REVOLUTE_AXES)
-            .local_frame1(to_pose(&frame1))
+            .local_frame1(joint_parent_frame(joint, &trunk_com))
             .local_frame2(to_pose(&frame2))
             .limits(JointAxis::AngX, [joint.lower as Real, joint.upper as Real])
             .contacts_enabled(false)
@@ -218,6 +242,12 @@ pub(crate) fn add_joints(
         joint_axes[j] = to_vec(&(joint.origin.rotation * joint.axis.into_inner()));
     }
     Ok(joint_axes)
+}
+
+/// A joint's frame in its parent's rigid-body frame (rapier's `local_frame1`): the joint
+/// origin with x turned onto the axis, in a parent frame shifted as [`body_shift`] says.
+pub(crate) fn joint_parent_frame(joint: &hyq_physics::Joint, trunk_com: &Vector3<f64>) -> Pose {
+    to_pose(&(body_shift(joint.parent, trunk_com).inverse() * joint.origin * x_onto(&joint.axis)))
 }
 
 /// Where each joint lives in the multibody.

@@ -35,6 +35,16 @@
 //! contact, warm start or solver state survives) and then places the robot, so a state and
 //! the inputs that follow determine the trajectory bitwise.
 //!
+//! # Per-episode dynamics and pushes
+//! [`Backend::apply_dynamics`] changes the world and its pristine copy in place
+//! (`dynamics.rs`): every collider's friction (rapier averages a contact's two, so the ground's
+//! and the robot's are set alike, whatever the ground's shape), each body's additional mass
+//! properties, the multibody's per-DoF damping, and, since the trunk's rigid body sits at its
+//! centre of mass, the frames of the trunk's colliders and child joints for a moved centre of
+//! mass, with the formulas the build uses: a world given dynamics runs bit for bit as one
+//! built with them. A push adds to the root's generalised linear velocity (its centre of
+//! mass's), so contacts and the solver's state are kept.
+//!
 //! # Settings
 //! See [`RapierOptions`]. The rapier settings that are not options: contact recycling off (a
 //! recycled contact's distance can be stale, and the contact flags read it), CCD off (the
@@ -52,11 +62,15 @@
 use std::sync::Arc;
 
 use hyq_physics::na::{Isometry3, Translation3, Vector3};
-use hyq_physics::{Backend, PhysicsError, PhysicsParams, RobotModel, RobotState, TrunkState};
+use hyq_physics::{
+    Backend, Dynamics, MassProperties, PhysicsError, PhysicsParams, RobotModel, RobotState,
+    TrunkState,
+};
 use rapier3d::prelude::*;
 
 mod build;
 mod convert;
+mod dynamics;
 #[cfg(test)]
 mod limit_gating;
 mod options;
@@ -93,6 +107,8 @@ pub struct RapierBackend {
     joint_axes: Vec<Vector>,
     /// Colliders of each tracked body.
     tracked_colliders: Vec<Vec<ColliderHandle>>,
+    /// The trunk's colliders (its collision order), which follow its centre of mass.
+    trunk_colliders: Vec<ColliderHandle>,
     ground: ColliderHandle,
     /// The trunk's centre of mass in the trunk frame: the trunk body's offset.
     trunk_com: Vector3<f64>,
@@ -123,6 +139,20 @@ impl RapierBackend {
     /// The rapier settings in use.
     pub fn options(&self) -> &RapierOptions {
         &self.options
+    }
+
+    /// Gives the world (and its pristine copy, which resets restore) the dynamics `d`.
+    fn give_dynamics(&mut self, d: &Dynamics) {
+        let handles = dynamics::Handles {
+            bodies: &self.bodies,
+            trunk_colliders: &self.trunk_colliders,
+            multibody: self.multibody,
+            joint_links: &self.joint_links,
+            joint_dofs: &self.joint_dofs,
+        };
+        dynamics::apply(&mut self.world, &self.model, &handles, d);
+        dynamics::apply(&mut self.pristine, &self.model, &handles, d);
+        self.trunk_com = d.bodies[0].com;
     }
 
     fn multibody(&self) -> &Multibody {
@@ -249,6 +279,7 @@ impl Backend for RapierBackend {
             joint_dofs: dofs.joint_dofs,
             joint_axes,
             tracked_colliders,
+            trunk_colliders: bodies.colliders[0].clone(),
             ground,
             trunk_com: model.links()[0].com,
             torques: vec![0.0; joints.len()],
@@ -410,5 +441,29 @@ impl Backend for RapierBackend {
             .iter()
             .map(|h| f64::from(self.world.bodies[*h].mass()))
             .sum()
+    }
+
+    fn apply_dynamics(&mut self, dynamics: &Dynamics) {
+        self.give_dynamics(dynamics);
+    }
+
+    fn body_mass_properties(&self, link: usize) -> MassProperties {
+        dynamics::read(&self.world.bodies[self.bodies[link]], link, &self.trunk_com)
+    }
+
+    fn apply_trunk_velocity_change(&mut self, dv: &Vector3<f64>) {
+        // Invariant: see `multibody()`.
+        #[allow(clippy::expect_used)]
+        let mb = self
+            .world
+            .multibody_joints
+            .get_multibody_mut(self.multibody)
+            .expect("the robot's multibody exists");
+        // The root's generalised linear velocity is its centre of mass's; with the angular
+        // velocity unchanged, every point of the trunk gains `dv`.
+        let mut v = mb.generalized_velocity_mut();
+        for k in 0..3 {
+            v[k] += dv[k] as Real;
+        }
     }
 }

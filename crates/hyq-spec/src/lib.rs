@@ -84,7 +84,7 @@ pub mod spec_page {}
 pub use nalgebra;
 
 pub use attitude::{RollPitchYaw, roll_pitch_yaw};
-pub use config::{ConfigError, HeightPenalty, TaskConfig};
+pub use config::{ConfigError, EXP_REW_SCALING_MAX, HeightPenalty, REWARD_SCALE_MAX, TaskConfig};
 pub use observation::{
     Clipping, Observation, ObservationError, ObservationLayout, ObservationRow, SPEC_TABLE,
 };

@@ -1,13 +1,18 @@
 //! Invariant: the configuration (spec §2) defaults to the §2 table, accepts exactly
 //! the documented values, and rejects every other value (negative, NaN, infinite, zero where it
 //! must be positive, out of range, unknown key, wrong type) with an error whose message names
-//! the field; a valid configuration survives a TOML round trip unchanged.
+//! the field, from the parser (keys and types) or from `TaskConfig::validate` (ranges); a valid
+//! configuration survives a TOML round trip unchanged.
 
-use hyq_spec::{ConfigError, HeightPenalty, TaskConfig};
+use hyq_spec::{ConfigError, EXP_REW_SCALING_MAX, HeightPenalty, REWARD_SCALE_MAX, TaskConfig};
 use proptest::prelude::*;
 
-fn parse(text: &str) -> Result<TaskConfig, toml::de::Error> {
-    toml::from_str(text)
+/// A configuration read from TOML and validated, as the environment reads one; the error is the
+/// parser's (keys, types) or the range check's, as text.
+fn parse(text: &str) -> Result<TaskConfig, String> {
+    let config: TaskConfig = toml::from_str(text).map_err(|e| e.to_string())?;
+    config.validate().map_err(|e| e.to_string())?;
+    Ok(config)
 }
 
 /// The §2 table, written out independently of `Default`.
@@ -85,8 +90,12 @@ fn json_null_also_unsets_a_scaling() {
             ..TaskConfig::default()
         })
     );
-    let e: Result<TaskConfig, _> = serde_json::from_str(r#"{"accepted_error": -1.0}"#);
-    let message = e.err().map(|e| e.to_string()).unwrap_or_default();
+    let c: Result<TaskConfig, _> = serde_json::from_str(r#"{"accepted_error": -1.0}"#);
+    let message = c
+        .map_err(|e| e.to_string())
+        .and_then(|c| c.validate().map_err(|e| e.to_string()))
+        .err()
+        .unwrap_or_default();
     assert!(message.contains("accepted_error = -1"), "{message}");
 }
 
@@ -151,17 +160,18 @@ fn unknown_keys_are_rejected_by_name() {
     }
 }
 
-/// Every real-valued field and what it accepts: "positive" (> 0), "non-negative" (≥ 0) or
-/// "angle" ([0, 180]).
+/// Every real-valued field and what it accepts: "scaling" (> 0, at most `REWARD_SCALE_MAX`),
+/// "k_exp" (> 0, at most `EXP_REW_SCALING_MAX`), "amount" (≥ 0, at most `REWARD_SCALE_MAX`),
+/// "positive" (> 0), "non-negative" (≥ 0) or "angle" ([0, 180]).
 const REAL_FIELDS: [(&str, &str); 10] = [
-    ("base_rew_scaling", "positive"),
-    ("exp_rew_scaling", "positive"),
-    ("norm_rew_scaling", "positive"),
-    ("reach_target_bonus_reward", "non-negative"),
+    ("base_rew_scaling", "scaling"),
+    ("exp_rew_scaling", "k_exp"),
+    ("norm_rew_scaling", "scaling"),
+    ("reach_target_bonus_reward", "amount"),
     ("accepted_error", "positive"),
     ("accepted_dist_to_bounds", "non-negative"),
-    ("reach_bounds_penalty", "non-negative"),
-    ("fall_penalty", "non-negative"),
+    ("reach_bounds_penalty", "amount"),
+    ("fall_penalty", "amount"),
     ("yaw_limit_deg", "angle"),
     ("pitch_limit_deg", "angle"),
 ];
@@ -187,6 +197,9 @@ fn with_field(name: &str, value: f64) -> TaskConfig {
 
 fn is_valid(kind: &str, value: f64) -> bool {
     match kind {
+        "scaling" => value.is_finite() && value > 0.0 && value <= REWARD_SCALE_MAX,
+        "k_exp" => value.is_finite() && value > 0.0 && value <= EXP_REW_SCALING_MAX,
+        "amount" => (0.0..=REWARD_SCALE_MAX).contains(&value),
         "positive" => value.is_finite() && value > 0.0,
         "non-negative" => value.is_finite() && value >= 0.0,
         _ => (0.0..=180.0).contains(&value),
@@ -220,6 +233,10 @@ fn edge_value() -> impl Strategy<Value = f64> {
         Just(-f64::MIN_POSITIVE),
         Just(180.0),
         Just(180.0f64.next_up()),
+        Just(EXP_REW_SCALING_MAX),
+        Just(EXP_REW_SCALING_MAX.next_up()),
+        Just(REWARD_SCALE_MAX),
+        Just(REWARD_SCALE_MAX.next_up()),
         -1e3f64..1e3,
         -1e-6f64..1e-6,
     ]
@@ -265,7 +282,7 @@ proptest! {
     fn valid_configurations_survive_a_toml_round_trip(
         scalings in (
             prop::option::of(1e-3f64..1e3),
-            prop::option::of(1e-3f64..1e3),
+            prop::option::of(1e-3f64..=EXP_REW_SCALING_MAX),
             prop::option::of(1e-3f64..1e3),
         ),
         amounts in (0.0f64..1e3, 1e-6f64..1.0, 0.0f64..0.5, 0.0f64..1e3, 0.0f64..1e3),

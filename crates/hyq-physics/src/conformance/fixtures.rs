@@ -17,6 +17,7 @@ use crate::bundled;
 use crate::error::PhysicsError;
 use crate::model::RobotModel;
 use crate::profile::Profile;
+use crate::randomize::{Dynamics, DynamicsDraw};
 
 /// The robot a conformance test runs on: its model, and the URDF text and profile it was
 /// built from (the tests that check the model against the URDF read them independently).
@@ -330,6 +331,10 @@ pub struct SubstepWorkloads<B: Backend> {
     spawn: RobotState,
     contacts: Vec<bool>,
     trunk: usize,
+    /// Two varied dynamics ([`varied_dynamics`]) a randomised reset alternates between, and
+    /// which one is next.
+    varied: [Dynamics; 2],
+    next_varied: usize,
 }
 
 impl<B: Backend> SubstepWorkloads<B> {
@@ -355,6 +360,11 @@ impl<B: Backend> SubstepWorkloads<B> {
             spawn: model.spawn_state(),
             contacts: vec![false; model.tracked().len()],
             trunk: model.trunk_tracked_index(),
+            varied: [
+                varied_dynamics(model, 1, 0.6),
+                varied_dynamics(model, 2, 0.9),
+            ],
+            next_varied: 0,
         }
     }
 
@@ -383,6 +393,36 @@ impl<B: Backend> SubstepWorkloads<B> {
     pub fn set_state(&mut self) {
         set(&mut self.reset_world, &self.spawn);
     }
+
+    /// A randomised episode's reset: `set_dynamics` with other varied dynamics than last time
+    /// (every body's mass, the trunk's centre of mass, damping, friction), then `set_state` to
+    /// the spawn state.
+    pub fn randomized_reset(&mut self) {
+        let d = &self.varied[self.next_varied];
+        self.next_varied = 1 - self.next_varied;
+        self.reset_world
+            .set_dynamics(d)
+            .unwrap_or_else(|e| panic!("{} refused varied dynamics: {e}", B::NAME));
+        set(&mut self.reset_world, &self.spawn);
+    }
+}
+
+/// Dynamics varied in every way a randomised episode varies them, from [`Rng`]`::new(seed)`:
+/// each body's mass (and tensor) scaled by U(0.8, 1.2), the trunk given U(−3, 5) kg at its
+/// centre of mass, which moves by U(±0.05) m in x and y and 0.01 m up, every joint's damping
+/// tripled, and the ground friction `friction`.
+pub fn varied_dynamics(model: &RobotModel, seed: u64, friction: f64) -> Dynamics {
+    let mut rng = Rng::new(seed);
+    let mut d = DynamicsDraw::nominal(model, &PhysicsParams::default());
+    d.ground_friction = friction;
+    for s in &mut d.link_mass_scale {
+        *s = rng.range(0.8, 1.2);
+    }
+    d.trunk_added_mass_kg = rng.range(-3.0, 5.0);
+    d.trunk_com_offset_m = [rng.range(-0.05, 0.05), rng.range(-0.05, 0.05), 0.01];
+    d.joint_damping_scale.fill(3.0);
+    d.dynamics(model)
+        .unwrap_or_else(|e| panic!("the varied dynamics are physical: {e}"))
 }
 
 /// Sub-steps `steps` (counted from 0) of a PD run towards random targets `margin` (rad) inside

@@ -29,7 +29,8 @@
 //! used, with the reason for their size.
 
 //! The suite is split like the concerns it checks: `kinematics.rs`, `contacts.rs`,
-//! `dynamics.rs` and `api_contract.rs` hold the tests; [`fixtures`] the shared helpers (also
+//! `dynamics.rs`, `randomization.rs` (randomised dynamics, pushes, the actuator's scales and
+//! delay) and `api_contract.rs` hold the tests; [`fixtures`] the shared helpers (also
 //! used by the backends' own tests and benches); `independent_fk.rs` a hand-written reading of
 //! the URDF for the forward-kinematics test.
 //!
@@ -46,6 +47,7 @@ mod dynamics;
 pub mod fixtures;
 mod independent_fk;
 mod kinematics;
+mod randomization;
 pub mod threads;
 
 pub use api_contract::{
@@ -66,6 +68,12 @@ pub use kinematics::{
     joint_velocities_match_finite_differences, set_state_round_trips,
     state_read_back_continues_the_trajectory, total_mass_matches_urdf,
     trunk_velocity_is_the_frame_origin_velocity,
+};
+pub use randomization::{
+    a_trunk_push_adds_to_its_velocity, actuator_delay_shifts_the_torque_trace_by_exactly_k,
+    actuator_scales_scale_the_pd_torque, added_trunk_mass_lowers_the_standing_height,
+    in_place_dynamics_match_a_world_built_with_them,
+    lower_ground_friction_lets_a_pushed_robot_slide_further, unphysical_dynamics_are_refused,
 };
 
 /// Instantiates every conformance test for a backend type, as `#[test]` functions in the
@@ -114,6 +122,13 @@ macro_rules! conformance_tests {
             wrong_length_inputs_are_errors,
             non_finite_inputs_are_rejected,
             divergence_is_reported_and_recoverable,
+            added_trunk_mass_lowers_the_standing_height,
+            in_place_dynamics_match_a_world_built_with_them,
+            lower_ground_friction_lets_a_pushed_robot_slide_further,
+            a_trunk_push_adds_to_its_velocity,
+            actuator_delay_shifts_the_torque_trace_by_exactly_k,
+            actuator_scales_scale_the_pd_torque,
+            unphysical_dynamics_are_refused,
         );
     };
     (@each $backend:ty, $options:expr, $robot:expr, $($name:ident),* $(,)?) => {

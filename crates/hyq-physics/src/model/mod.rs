@@ -470,6 +470,24 @@ impl RobotModel {
         copy
     }
 
+    /// A copy with the bodies' mass properties and the joints' damping of `dynamics` (one
+    /// per body and per joint): the conformance suite builds a world from it to check that a
+    /// world given these dynamics in place behaves as one built with them.
+    #[cfg(feature = "conformance")]
+    pub(crate) fn with_dynamics(&self, dynamics: &crate::randomize::Dynamics) -> Self {
+        let mut copy = self.clone();
+        for (link, body) in copy.links.iter_mut().zip(&dynamics.bodies) {
+            link.mass = body.mass;
+            link.com = body.com;
+            link.inertia = body.inertia;
+        }
+        for (joint, &damping) in copy.joints.iter_mut().zip(&dynamics.joint_damping) {
+            joint.damping = damping;
+        }
+        copy.total_mass = copy.links.iter().map(|l| l.mass).sum();
+        copy
+    }
+
     /// The whole robot's centre of mass (world) for body poses from [`RobotModel::link_poses`].
     ///
     /// # Panics

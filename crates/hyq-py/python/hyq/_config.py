@@ -5,8 +5,8 @@ The configuration mirrors the TOML file (``hyq run --config``) table for table:
 * the spec's user variables by their own names, e.g. ``fall_penalty=1.0``,
   ``exp_rew_scaling=None`` (off), ``max_time_steps=500`` (these are the ``[task]`` table; a
   ``task={...}`` dict works too);
-* the other tables as dicts: ``goal={"mode": "fixed", "position": [5, 1, 0.6]}``,
-  ``action={"mode": "absolute"}``, ``control={...}``, ``physics={...}``, ``reset={...}``;
+* the other tables (``TABLES``) as dicts: ``goal={"mode": "fixed", "position": [5, 1, 0.6]}``,
+  ``action={"mode": "absolute"}``, ``physics={...}``, ...;
 * ``config_file="hyq.toml"``: a TOML file read first, the keyword arguments applied on top.
 
 ``robot`` (a bundled robot's name, ``"hyq"`` or ``"anymal_c"``, or the path to a robot profile)
@@ -23,8 +23,11 @@ import re
 from collections.abc import Mapping
 from typing import Any
 
-#: The TOML tables other than ``[task]``, given as dicts.
-TABLES = ("task", "goal", "action", "control", "physics", "reset")
+from hyq import _core
+
+#: The TOML tables, each given as a dict (``task`` too, beside the spec's user variables by
+#: name), from the core's one list of them.
+TABLES = tuple(_core.CONFIG_TABLES)
 
 #: Keyword arguments that are not configuration keys.
 ENV_KEYS = (

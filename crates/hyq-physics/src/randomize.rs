@@ -1,0 +1,481 @@
+//! Per-episode variations of the physics (domain randomisation), as plain data: what a backend
+//! takes ([`Dynamics`]: ground friction, every body's mass properties, joint damping), the
+//! draw an environment makes of it from a model ([`DynamicsDraw`]), and the shared actuator's
+//! variations ([`ActuatorScales`], [`TargetDelay`]).
+//!
+//! No random numbers are drawn here: the environment owns the seeded streams and turns its
+//! draws into these values, so every backend receives the same numbers. The rules that keep
+//! every drawn world physical live here, once:
+//! - a body's mass scales by `s > 0` with its inertia tensor (`m' = s·m`, `I' = s·I`), so its
+//!   radii of gyration stay those of its shape;
+//! - the trunk's added mass `Δm` sits at its centre of mass, and its tensor follows the mass
+//!   (`I' = I·(m + Δm)/m`), as a denser trunk of the same shape would; the whole mass must
+//!   stay positive (`m + Δm > 0`);
+//! - the trunk's centre-of-mass offset moves the centre of mass in the trunk's link frame and
+//!   keeps the tensor about it.
+//!
+//! So a draw whose scales are positive and whose trunk mass stays positive gives positive
+//! masses and positive definite tensors that satisfy the triangle inequality, for every body;
+//! [`Dynamics::validate`] checks it anyway before a backend sees the values.
+
+use nalgebra::Vector3;
+
+use crate::backend::PhysicsParams;
+use crate::error::PhysicsError;
+use crate::inertia::{MassProperties, check_inertia};
+use crate::model::RobotModel;
+
+/// The physics a backend simulates beyond the model's geometry, for one episode: the ground's
+/// friction, each body's mass properties and each joint's damping. [`Dynamics::nominal`] is
+/// the model's own (what a freshly built world holds).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Dynamics {
+    /// Coulomb friction coefficient between every robot shape and the ground, whatever shape
+    /// the ground has (finite, ≥ 0).
+    pub ground_friction: f64,
+    /// The mass properties of every body (index as in [`RobotModel::links`]) in its body
+    /// (link) frame: mass (kg, > 0), centre of mass (m), inertia tensor about the centre of
+    /// mass (kg·m², positive definite).
+    pub bodies: Vec<MassProperties>,
+    /// Viscous damping of every joint (N·m·s/rad, finite, ≥ 0), profile order.
+    pub joint_damping: Vec<f64>,
+}
+
+impl Dynamics {
+    /// The model's own mass properties and damping, and the ground friction of `params`.
+    pub fn nominal(model: &RobotModel, params: &PhysicsParams) -> Self {
+        Self {
+            ground_friction: params.ground_friction,
+            bodies: model
+                .links()
+                .iter()
+                .map(|l| MassProperties {
+                    mass: l.mass,
+                    com: l.com,
+                    inertia: l.inertia,
+                })
+                .collect(),
+            joint_damping: model.joints().iter().map(|j| j.damping).collect(),
+        }
+    }
+
+    /// The robot's total mass (kg).
+    pub fn total_mass(&self) -> f64 {
+        self.bodies.iter().map(|b| b.mass).sum()
+    }
+
+    /// Checks that the values fit `model` (one body per link, one damping per joint) and are
+    /// physical: friction finite and ≥ 0, masses finite and > 0, centres of mass finite,
+    /// tensors valid and positive definite ([`check_inertia`]), damping finite and ≥ 0. The
+    /// error names the body or joint and the value.
+    pub fn validate(&self, model: &RobotModel) -> Result<(), PhysicsError> {
+        let invalid = |what: String, reason: String| PhysicsError::InvalidState { what, reason };
+        if !(self.ground_friction.is_finite() && self.ground_friction >= 0.0) {
+            return Err(invalid(
+                "ground friction".into(),
+                format!("{} must be finite and non-negative", self.ground_friction),
+            ));
+        }
+        if self.bodies.len() != model.num_links() {
+            return Err(invalid(
+                "body mass properties".into(),
+                format!(
+                    "expected one per body ({}), got {}",
+                    model.num_links(),
+                    self.bodies.len()
+                ),
+            ));
+        }
+        for (b, link) in self.bodies.iter().zip(model.links()) {
+            let what = || format!("mass properties of body {}", link.name);
+            if !(b.mass.is_finite() && b.mass > 0.0) {
+                return Err(invalid(
+                    what(),
+                    format!("mass {} kg must be finite and positive", b.mass),
+                ));
+            }
+            if !b.com.iter().all(|v| v.is_finite()) {
+                return Err(invalid(
+                    what(),
+                    format!("centre of mass {:?} m must be finite", b.com.as_slice()),
+                ));
+            }
+            check_inertia(&b.inertia, true).map_err(|reason| invalid(what(), reason))?;
+        }
+        if self.joint_damping.len() != model.num_joints() {
+            return Err(PhysicsError::WrongLength {
+                what: "joint damping",
+                expected: model.num_joints(),
+                got: self.joint_damping.len(),
+            });
+        }
+        if let Some((j, d)) = self
+            .joint_damping
+            .iter()
+            .enumerate()
+            .find(|(_, d)| !(d.is_finite() && **d >= 0.0))
+        {
+            return Err(invalid(
+                format!("damping of joint {}", model.joints()[j].name),
+                format!("{d} N·m·s/rad must be finite and non-negative"),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// One episode's drawn physical variations, as factors and offsets of the model's values;
+/// [`DynamicsDraw::dynamics`] turns them into the [`Dynamics`] a backend takes (see the module
+/// documentation for the rules). [`DynamicsDraw::nominal`] changes nothing.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DynamicsDraw {
+    /// The ground friction coefficient itself (not a factor).
+    pub ground_friction: f64,
+    /// Mass added to the trunk at its centre of mass (kg; negative removes mass).
+    pub trunk_added_mass_kg: f64,
+    /// Offset of the trunk's centre of mass in its link frame (m).
+    pub trunk_com_offset_m: [f64; 3],
+    /// Factor of every body's mass and inertia tensor (index as in [`RobotModel::links`]).
+    pub link_mass_scale: Vec<f64>,
+    /// Factor of every joint's viscous damping (profile order).
+    pub joint_damping_scale: Vec<f64>,
+}
+
+impl DynamicsDraw {
+    /// No variation: `dynamics` gives the model's own values and `params`' friction.
+    pub fn nominal(model: &RobotModel, params: &PhysicsParams) -> Self {
+        Self {
+            ground_friction: params.ground_friction,
+            trunk_added_mass_kg: 0.0,
+            trunk_com_offset_m: [0.0; 3],
+            link_mass_scale: vec![1.0; model.num_links()],
+            joint_damping_scale: vec![1.0; model.num_joints()],
+        }
+    }
+
+    /// The dynamics of this draw for `model`, validated ([`Dynamics::validate`]): an error
+    /// names what a draw outside the allowed ranges made unphysical.
+    ///
+    /// A factor of exactly 1, no added mass and no offset leave a value bit for bit the
+    /// model's, so a nominal draw gives [`Dynamics::nominal`] exactly.
+    pub fn dynamics(&self, model: &RobotModel) -> Result<Dynamics, PhysicsError> {
+        if self.link_mass_scale.len() != model.num_links() {
+            return Err(PhysicsError::InvalidState {
+                what: "link mass scales".into(),
+                reason: format!(
+                    "expected one per body ({}), got {}",
+                    model.num_links(),
+                    self.link_mass_scale.len()
+                ),
+            });
+        }
+        if self.joint_damping_scale.len() != model.num_joints() {
+            return Err(PhysicsError::WrongLength {
+                what: "joint damping scales",
+                expected: model.num_joints(),
+                got: self.joint_damping_scale.len(),
+            });
+        }
+        let mut bodies: Vec<MassProperties> = model
+            .links()
+            .iter()
+            .zip(&self.link_mass_scale)
+            .map(|(l, &s)| MassProperties {
+                mass: l.mass * s,
+                com: l.com,
+                inertia: l.inertia * s,
+            })
+            .collect();
+        let trunk = &mut bodies[0];
+        if self.trunk_added_mass_kg != 0.0 {
+            let mass = trunk.mass + self.trunk_added_mass_kg;
+            trunk.inertia *= mass / trunk.mass;
+            trunk.mass = mass;
+        }
+        trunk.com += Vector3::from(self.trunk_com_offset_m);
+        let dynamics = Dynamics {
+            ground_friction: self.ground_friction,
+            bodies,
+            joint_damping: model
+                .joints()
+                .iter()
+                .zip(&self.joint_damping_scale)
+                .map(|(j, &s)| j.damping * s)
+                .collect(),
+        };
+        dynamics.validate(model)?;
+        Ok(dynamics)
+    }
+}
+
+/// Factors of the shared actuator's per-joint values for one episode (profile order): the PD
+/// gains, the effort limit and the joint friction (see [`crate::Actuator::scale_from`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ActuatorScales {
+    /// Factor of each joint's proportional gain (> 0).
+    pub kp: Vec<f64>,
+    /// Factor of each joint's derivative gain (> 0).
+    pub kd: Vec<f64>,
+    /// Factor of each joint's effort limit (> 0).
+    pub effort: Vec<f64>,
+    /// Factor of each joint's Coulomb friction (≥ 0).
+    pub friction: Vec<f64>,
+}
+
+impl ActuatorScales {
+    /// Factors of 1 for `num_joints` joints: the actuator unchanged.
+    pub fn nominal(num_joints: usize) -> Self {
+        Self {
+            kp: vec![1.0; num_joints],
+            kd: vec![1.0; num_joints],
+            effort: vec![1.0; num_joints],
+            friction: vec![1.0; num_joints],
+        }
+    }
+
+    /// Checks one finite factor per joint for each field, positive for the gains and the
+    /// effort, non-negative for the friction. The error names the field, the joint and the
+    /// value.
+    pub fn validate(&self, num_joints: usize) -> Result<(), PhysicsError> {
+        for (what, scales, positive) in [
+            ("kp scales", &self.kp, true),
+            ("kd scales", &self.kd, true),
+            ("effort scales", &self.effort, true),
+            ("joint friction scales", &self.friction, false),
+        ] {
+            if scales.len() != num_joints {
+                return Err(PhysicsError::WrongLength {
+                    what,
+                    expected: num_joints,
+                    got: scales.len(),
+                });
+            }
+            let bad = |s: f64| !s.is_finite() || s < 0.0 || (positive && s == 0.0);
+            if let Some((j, s)) = scales.iter().enumerate().find(|(_, s)| bad(**s)) {
+                return Err(PhysicsError::InvalidState {
+                    what: format!("{what}[{j}]"),
+                    reason: format!(
+                        "{s} must be finite and {}",
+                        if positive { "positive" } else { "non-negative" }
+                    ),
+                });
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The actuator's delay: the PD law of sub-step `s` (0-based) of an env step sees the joint
+/// targets of `k` sub-steps earlier. With `k` at most the env step's sub-steps, that is the
+/// previous env step's targets for `s < k` and the current ones after; at the first step of
+/// an episode, the "previous" targets are those the reset set (the initial joint angles).
+/// `k = 0` is no delay: the current targets throughout.
+///
+/// Holds one env step of targets, so it allocates only when made.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TargetDelay {
+    substeps: u32,
+    previous: Vec<f64>,
+}
+
+impl TargetDelay {
+    /// No delay, for a robot with `num_joints` joints.
+    pub fn new(num_joints: usize) -> Self {
+        Self {
+            substeps: 0,
+            previous: vec![0.0; num_joints],
+        }
+    }
+
+    /// Sets the delay to `substeps` physics sub-steps; an error if it exceeds one env step of
+    /// `substeps_per_env_step` sub-steps (older targets are not kept).
+    pub fn set_substeps(
+        &mut self,
+        substeps: u32,
+        substeps_per_env_step: u32,
+    ) -> Result<(), PhysicsError> {
+        if substeps > substeps_per_env_step {
+            return Err(PhysicsError::InvalidState {
+                what: "actuator delay".into(),
+                reason: format!(
+                    "{substeps} sub-steps is longer than an env step ({substeps_per_env_step} \
+                     sub-steps)"
+                ),
+            });
+        }
+        self.substeps = substeps;
+        Ok(())
+    }
+
+    /// The delay (physics sub-steps).
+    pub fn substeps(&self) -> u32 {
+        self.substeps
+    }
+
+    /// Starts an episode whose first targets before any action are `targets`.
+    ///
+    /// # Panics
+    /// If `targets` is not one value per joint.
+    pub fn reset(&mut self, targets: &[f64]) {
+        self.previous.copy_from_slice(targets);
+    }
+
+    /// The targets the PD law sees at sub-step `substep` (0-based) of an env step whose own
+    /// targets are `current`.
+    pub fn seen<'a>(&'a self, substep: u32, current: &'a [f64]) -> &'a [f64] {
+        if substep < self.substeps {
+            &self.previous
+        } else {
+            current
+        }
+    }
+
+    /// Ends an env step whose targets were `current`: they are the next step's previous ones.
+    ///
+    /// # Panics
+    /// If `current` is not one value per joint.
+    pub fn end_step(&mut self, current: &[f64]) {
+        self.previous.copy_from_slice(current);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    //! The draw's rules (scaled tensors, added mass at the centre of mass, offsets), the
+    //! checks that refuse unphysical values, and the delay's bookkeeping.
+    #![allow(clippy::unwrap_used)]
+
+    use super::*;
+    use crate::bundled;
+
+    #[test]
+    fn a_nominal_draw_is_the_model_bit_for_bit() {
+        let model = bundled::hyq();
+        let params = PhysicsParams::default();
+        let d = DynamicsDraw::nominal(&model, &params)
+            .dynamics(&model)
+            .unwrap();
+        assert_eq!(d, Dynamics::nominal(&model, &params));
+        assert_eq!(d.total_mass(), model.total_mass());
+    }
+
+    #[test]
+    fn masses_scale_with_their_tensors_and_the_added_mass_sits_at_the_centre_of_mass() {
+        let model = bundled::hyq();
+        let mut draw = DynamicsDraw::nominal(&model, &PhysicsParams::default());
+        draw.link_mass_scale[0] = 0.5;
+        draw.link_mass_scale[3] = 1.2;
+        draw.trunk_added_mass_kg = 10.0;
+        draw.trunk_com_offset_m = [0.05, -0.02, 0.01];
+        draw.joint_damping_scale[2] = 3.0;
+        let d = draw.dynamics(&model).unwrap();
+        let trunk = &model.links()[0];
+        let m = 0.5 * trunk.mass + 10.0;
+        assert!((d.bodies[0].mass - m).abs() < 1e-12);
+        // The tensor grows with the mass: radii of gyration unchanged.
+        let ratio = d.bodies[0].inertia[(0, 0)] / trunk.inertia[(0, 0)];
+        assert!((ratio - m / trunk.mass).abs() < 1e-12, "{ratio}");
+        assert_eq!(d.bodies[0].com, trunk.com + Vector3::new(0.05, -0.02, 0.01));
+        let link = &model.links()[3];
+        assert!((d.bodies[3].mass - 1.2 * link.mass).abs() < 1e-12);
+        assert_eq!(d.bodies[3].inertia, link.inertia * 1.2);
+        assert_eq!(d.bodies[3].com, link.com);
+        assert_eq!(d.joint_damping[2], 3.0 * model.joints()[2].damping);
+        let expected = model.total_mass() - 0.5 * trunk.mass + 10.0 + 0.2 * link.mass;
+        assert!((d.total_mass() - expected).abs() < 1e-9);
+    }
+
+    #[test]
+    fn unphysical_draws_are_refused_by_name() {
+        let model = bundled::hyq();
+        let nominal = DynamicsDraw::nominal(&model, &PhysicsParams::default());
+        let trunk_mass = model.links()[0].mass;
+        let cases: Vec<(DynamicsDraw, &str)> = vec![
+            (
+                DynamicsDraw {
+                    trunk_added_mass_kg: -trunk_mass,
+                    ..nominal.clone()
+                },
+                "mass properties of body trunk",
+            ),
+            (
+                DynamicsDraw {
+                    ground_friction: -0.1,
+                    ..nominal.clone()
+                },
+                "ground friction",
+            ),
+            (
+                DynamicsDraw {
+                    trunk_com_offset_m: [f64::NAN, 0.0, 0.0],
+                    ..nominal.clone()
+                },
+                "centre of mass",
+            ),
+            (
+                DynamicsDraw {
+                    link_mass_scale: vec![0.0; model.num_links()],
+                    ..nominal.clone()
+                },
+                "mass 0 kg",
+            ),
+            (
+                DynamicsDraw {
+                    joint_damping_scale: vec![-1.0; model.num_joints()],
+                    ..nominal.clone()
+                },
+                "damping of joint",
+            ),
+            (
+                DynamicsDraw {
+                    link_mass_scale: vec![1.0; 2],
+                    ..nominal.clone()
+                },
+                "link mass scales",
+            ),
+        ];
+        for (draw, says) in cases {
+            let err = draw.dynamics(&model).unwrap_err().to_string();
+            assert!(err.contains(says), "{err:?} should name {says:?}");
+        }
+    }
+
+    #[test]
+    fn actuator_scales_must_keep_gains_and_efforts_positive() {
+        let n = 12;
+        ActuatorScales::nominal(n).validate(n).unwrap();
+        let mut s = ActuatorScales::nominal(n);
+        s.friction[0] = 0.0;
+        s.validate(n).unwrap();
+        for (field, value) in [("kp", 0.0), ("kd", -1.0), ("effort", f64::INFINITY)] {
+            let mut s = ActuatorScales::nominal(n);
+            match field {
+                "kp" => s.kp[4] = value,
+                "kd" => s.kd[4] = value,
+                _ => s.effort[4] = value,
+            }
+            let err = s.validate(n).unwrap_err().to_string();
+            assert!(err.contains(&format!("{field} scales[4]")), "{err}");
+        }
+        let err = ActuatorScales::nominal(3).validate(n).unwrap_err();
+        assert!(err.to_string().contains("expected 12"), "{err}");
+    }
+
+    #[test]
+    fn the_delay_serves_the_previous_targets_for_its_first_sub_steps() {
+        let mut delay = TargetDelay::new(2);
+        let err = delay.set_substeps(11, 10).unwrap_err().to_string();
+        assert!(err.contains("longer than an env step"), "{err}");
+        delay.set_substeps(3, 10).unwrap();
+        delay.reset(&[0.0, 0.0]);
+        let a = [1.0, 2.0];
+        let seen: Vec<f64> = (0..10).map(|s| delay.seen(s, &a)[0]).collect();
+        assert_eq!(seen, [0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0]);
+        delay.end_step(&a);
+        assert_eq!(delay.seen(0, &[5.0, 5.0]), a);
+        delay.set_substeps(10, 10).unwrap();
+        assert_eq!(delay.seen(9, &[5.0, 5.0]), a, "a whole env step late");
+        delay.set_substeps(0, 10).unwrap();
+        assert_eq!(delay.seen(0, &[5.0, 5.0]), [5.0, 5.0], "no delay");
+    }
+}
