@@ -9,6 +9,7 @@
 mod bench;
 mod cli;
 mod docs;
+mod fuzz;
 mod mujoco;
 mod rllib;
 mod soak;
@@ -53,6 +54,14 @@ commands:
                                         the anchors' venv is target/anchor-venv (or --venv DIR,
                                         $HYQ_ANCHOR_VENV); prints medians, min/max and ratios
                                         and writes target/bench-vs-anchors.md
+  fuzz [--seconds N] [--cases N] [--seed S] [config|profile|urdf|policy|records|ledger]...
+                                        fuzz every loader of a user's file (all targets, or
+                                        those named) for N seconds each (default 60) in a
+                                        release build: no panic, abort or hang, a one-line
+                                        error or a result whose every derived number is finite;
+                                        a failing input is saved to crates/hyq-fuzz/corpus/,
+                                        whose inputs `test` replays (it also runs each target
+                                        briefly)
   vendor-check [--no-tests]             vendor/rapier3d is the published rapier3d plus
                                         vendor/patches (and the notices), and rapier's
                                         multibody tests pass on it (also a stage of `test`)
@@ -68,6 +77,7 @@ fn main() -> ExitCode {
         Some("setup") => mujoco::setup(&args[1..]),
         Some("soak") => soak::soak(&args[1..]),
         Some("bench-vs-anchors") => bench::bench_vs_anchors(&args[1..]),
+        Some("fuzz") => fuzz::fuzz(&args[1..]),
         Some("vendor-check") => vendor::vendor_check(&args[1..]),
         Some("vendor-diff") => vendor::vendor_diff(&args[1..]),
         Some("help") | Some("--help") | Some("-h") | None => {

@@ -13,7 +13,7 @@
 //! be built, such as a MuJoCo library that cannot be loaded), reported before anything runs; 1
 //! for a failure while running.
 
-use std::io::Write as _;
+use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use clap::builder::TypedValueParser as _;
@@ -27,6 +27,7 @@ use hyq_compare::{
 use crate::Failure;
 use crate::backend::{BackendChoice, not_built, with_backend};
 use crate::options::{ConfigArgs, RobotArgs, TrainedPolicy, check_mlp, usage};
+use crate::output;
 use crate::run::PolicyChoice;
 
 /// Episodes per backend of a policy comparison unless `--episodes` says otherwise: enough to
@@ -249,7 +250,7 @@ pub fn execute(args: CompareArgs) -> Result<(), Failure> {
             status: 1,
             message: e.to_string(),
         })?;
-    print_summary(&report, &args);
+    print_summary(&report, &args)?;
     if args.strict && report.flagged > 0 {
         let names: Vec<&str> = report.flags().map(|c| c.metric.name()).collect();
         return Err(strict_failure(report.flagged, &names, &args));
@@ -309,7 +310,7 @@ fn execute_many(
             status: 1,
             message: e.to_string(),
         })?;
-    let mut out = std::io::stdout().lock();
+    let mut out = String::new();
     let end = |s: &hyq_compare::SideReport| {
         let r: Vec<&str> = s.end_reasons.iter().map(|r| r.as_str()).collect();
         format!("{} {} at step {}", s.label, r.join("+"), s.end_step)
@@ -337,6 +338,7 @@ fn execute_many(
         );
     }
     let _ = writeln!(out, "reports written to {}", args.out.display());
+    output::print(&out)?;
     if args.strict && report.flagged > 0 {
         let names: Vec<&str> = report
             .pairs
@@ -416,7 +418,7 @@ fn execute_policy(
             status: 1,
             message: e.to_string(),
         })?;
-    let mut out = std::io::stdout().lock();
+    let mut out = String::new();
     let _ = writeln!(
         out,
         "policy {} on {} ({} episode(s) per backend, seed {}), closed loop:",
@@ -464,13 +466,13 @@ fn execute_policy(
         "not judged against the ledger (closed loop); reports written to {}",
         args.out.display()
     );
-    Ok(())
+    output::print(&out)
 }
 
-/// Prints the summary on stdout. A closed stdout (e.g. piped into `head`) is not an error of
-/// the comparison: the reports are already written, so write failures are ignored.
-fn print_summary(report: &Report, args: &CompareArgs) {
-    let mut out = std::io::stdout().lock();
+/// Prints the summary on stdout (the reports are already written): a closed stdout (piped into
+/// `head`) ends the command quietly, another write failure (`> /dev/full`) is an error.
+fn print_summary(report: &Report, args: &CompareArgs) -> Result<(), Failure> {
+    let mut out = String::new();
     let [a, b] = &report.sides;
     let end = |s: &hyq_compare::SideReport| {
         let r: Vec<&str> = s.end_reasons.iter().map(|r| r.as_str()).collect();
@@ -515,4 +517,5 @@ fn print_summary(report: &Report, args: &CompareArgs) {
         }
     }
     let _ = writeln!(out, "reports written to {}", args.out.display());
+    output::print(&out)
 }

@@ -20,6 +20,7 @@
 //! The MuJoCo and DART-from-Python benchmarks (`bench/anchors/`) load these three files, which
 //! `cargo xtask bench-vs-anchors` writes afresh from this command at every run.
 
+use std::io::Write as _;
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
@@ -32,6 +33,7 @@ use serde::Serialize;
 
 use crate::Failure;
 use crate::options::{ConfigArgs, RobotArgs, usage};
+use crate::output::{self, OutputFile};
 
 /// The file format.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -392,11 +394,18 @@ pub fn execute(args: ModelArgs) -> Result<(), Failure> {
     let config = args.configuration.config()?;
     let text = render(&args, &model, &config)?;
     match &args.out {
-        None => print!("{text}"),
-        Some(path) => std::fs::write(path, text).map_err(|e| Failure {
-            status: 1,
-            message: format!("cannot write {}: {e}", path.display()),
-        })?,
+        // A closed stdout ends the command quietly; a full one is an error (status 1).
+        None => output::print(&text),
+        // Written beside the file and renamed onto it once whole, as every output file is: a
+        // failed write leaves the file as it was.
+        Some(path) => {
+            let cannot = |e: std::io::Error| Failure {
+                status: 1,
+                message: format!("cannot write {}: {e}", path.display()),
+            };
+            let mut file = OutputFile::create(path).map_err(cannot)?;
+            file.write_all(text.as_bytes()).map_err(cannot)?;
+            file.finish().map_err(cannot)
+        }
     }
-    Ok(())
 }

@@ -40,7 +40,7 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use hyq_physics::RobotModel;
+use hyq_physics::{RobotModel, input};
 use safetensors::{Dtype, SafeTensors};
 use thiserror::Error;
 
@@ -54,9 +54,10 @@ pub const FORMAT: &str = "hyq-mlp-policy";
 /// The `format_version` this reader understands.
 pub const FORMAT_VERSION: &str = "1";
 
-/// A policy file that cannot be used: which file, and what is wrong with it (one line).
+/// A policy file that cannot be used: which file, and what is wrong with it (one line; what it
+/// quotes of the file, such as a metadata string, with control characters escaped).
 #[derive(Clone, Debug, PartialEq, Eq, Error)]
-#[error("{file}: {reason}")]
+#[error("{file}: {}", hyq_physics::printable(.reason))]
 pub struct MlpError {
     /// The file (as given), or the source's name.
     pub file: String,
@@ -170,11 +171,12 @@ fn parse_mode(name: &str) -> Option<ActionMode> {
 }
 
 impl MlpPolicy {
-    /// Reads a policy file. Every check that needs only the file is done here: the format, the
-    /// metadata, the tensors' shapes and dtypes, and that every number is finite.
+    /// Reads a policy file of at most hyq-physics' [`input::POLICY`] cap (the capped reader
+    /// every user file goes through). Every check that needs only the file is done here: the
+    /// format, the metadata, the tensors' shapes and dtypes, and that every number is finite.
     pub fn from_file(path: &Path) -> Result<Self, MlpError> {
         let file = path.display().to_string();
-        let bytes = std::fs::read(path).map_err(|e| MlpError {
+        let bytes = input::read_bytes(path, &input::POLICY).map_err(|e| MlpError {
             file: file.clone(),
             reason: format!("cannot read the policy file: {e}"),
         })?;

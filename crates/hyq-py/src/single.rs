@@ -12,7 +12,9 @@ use crate::errors::env_error;
 use crate::frames::FrameSource;
 use crate::guard::{Retirable, call, call_mut};
 use crate::info::info_dict;
-use crate::spaces::{Bounds, clip_in_place, declared_bounds, table_bounds, to_f32};
+use crate::spaces::{
+    Bounds, clip_in_place, declared_bounds, high_inward, low_inward, table_bounds,
+};
 
 /// One environment (a robot on a backend). Built by `hyq.HyQEnv`, which adds the Gymnasium API.
 #[pyclass(module = "hyq._core")]
@@ -189,7 +191,7 @@ impl Core {
         py: Python<'py>,
     ) -> PyResult<Bound<'py, PyArray1<f32>>> {
         call(slf, "action_low", |this| {
-            Ok(to_f32(this.env.get().action_space().low()).into_pyarray(py))
+            Ok(low_inward(this.env.get().action_space().low()).into_pyarray(py))
         })
     }
 
@@ -199,7 +201,7 @@ impl Core {
         py: Python<'py>,
     ) -> PyResult<Bound<'py, PyArray1<f32>>> {
         call(slf, "action_high", |this| {
-            Ok(to_f32(this.env.get().action_space().high()).into_pyarray(py))
+            Ok(high_inward(this.env.get().action_space().high()).into_pyarray(py))
         })
     }
 

@@ -18,7 +18,9 @@ use crate::errors::vec_env_error;
 use crate::frames::FrameSource;
 use crate::guard::{Retirable, call, call_mut};
 use crate::info::{info_dict, vector_info_dict};
-use crate::spaces::{Bounds, clip_in_place, declared_bounds, table_bounds, to_f32, would_clip};
+use crate::spaces::{
+    Bounds, clip_in_place, declared_bounds, high_inward, low_inward, table_bounds, would_clip,
+};
 
 /// N environments (a robot on a backend) stepped in parallel.
 #[pyclass(module = "hyq._core")]
@@ -370,7 +372,7 @@ impl VecCore {
         py: Python<'py>,
     ) -> PyResult<Bound<'py, PyArray1<f32>>> {
         call(slf, "action_low", |this| {
-            Ok(to_f32(this.vec.get().env(0).action_space().low()).into_pyarray(py))
+            Ok(low_inward(this.vec.get().env(0).action_space().low()).into_pyarray(py))
         })
     }
 
@@ -380,7 +382,7 @@ impl VecCore {
         py: Python<'py>,
     ) -> PyResult<Bound<'py, PyArray1<f32>>> {
         call(slf, "action_high", |this| {
-            Ok(to_f32(this.vec.get().env(0).action_space().high()).into_pyarray(py))
+            Ok(high_inward(this.vec.get().env(0).action_space().high()).into_pyarray(py))
         })
     }
 

@@ -82,6 +82,7 @@
 //! - Text is DejaVu Sans cut to Latin, Greek and a few symbols (`assets/fonts/README.md`).
 
 mod camera;
+mod clip;
 #[cfg(feature = "env")]
 mod env_scene;
 mod error;

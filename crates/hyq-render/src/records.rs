@@ -25,6 +25,7 @@
 use std::io::BufRead;
 use std::path::Path;
 
+use hyq_physics::input::{self, Line};
 use hyq_spec::{NUM_REWARD_TERMS, REWARD_TERMS, TermValues, terms::term_index};
 use serde::{Deserialize, Serialize};
 
@@ -53,8 +54,9 @@ pub struct StepRecord {
 }
 
 /// The longest line of a JSONL record file read (bytes): 1 MiB, several hundred times a step
-/// record, so that a wrong file (`/dev/zero`, a binary) is refused at once.
-pub const MAX_RECORD_LINE_BYTES: usize = 1 << 20;
+/// record, so that a wrong file (`/dev/zero`, a binary) is refused at once (hyq-physics'
+/// [`input::RECORDS`], the cap of every user file's reader).
+pub const MAX_RECORD_LINE_BYTES: usize = input::RECORDS.max_line_bytes as usize;
 
 /// The records of a JSONL file, and the number of its last line if that line was left out
 /// because it is torn (see [`parse_jsonl`]).
@@ -74,29 +76,39 @@ pub struct JsonlRecords {
 /// bad line is an error naming it, and so is a line longer than [`MAX_RECORD_LINE_BYTES`]
 /// (which is not read further).
 pub fn parse_jsonl(mut reader: impl BufRead, origin: &str) -> Result<JsonlRecords, PlotError> {
-    use std::io::Read;
     let mut records = Vec::new();
     let mut line = Vec::new();
+    let mut total = 0;
     for number in 1.. {
-        line.clear();
-        let read = (&mut reader)
-            .take(MAX_RECORD_LINE_BYTES as u64 + 1)
-            .read_until(b'\n', &mut line)
-            .map_err(|source| PlotError::Read {
+        let read = input::read_line(&mut reader, &input::RECORDS, &mut line, &mut total).map_err(
+            |source| PlotError::Read {
                 path: origin.into(),
                 source,
-            })?;
-        if read == 0 {
-            break;
-        }
-        let ended = line.last() == Some(&b'\n');
-        if !ended && line.len() > MAX_RECORD_LINE_BYTES {
-            return Err(PlotError::LineTooLong {
-                origin: origin.to_owned(),
-                line: number,
-                limit: MAX_RECORD_LINE_BYTES,
-            });
-        }
+            },
+        )?;
+        let ended = match read {
+            Line::End => break,
+            Line::Read { ended } => ended,
+            Line::TooLong => {
+                return Err(PlotError::LineTooLong {
+                    origin: origin.to_owned(),
+                    line: number,
+                    limit: MAX_RECORD_LINE_BYTES,
+                });
+            }
+            Line::TooMuch => {
+                return Err(PlotError::Read {
+                    path: origin.into(),
+                    source: std::io::Error::new(
+                        std::io::ErrorKind::FileTooLarge,
+                        format!(
+                            "larger than {} at line {number}, more than any record plotted",
+                            input::size_text(input::RECORDS.max_bytes)
+                        ),
+                    ),
+                });
+            }
+        };
         let text = String::from_utf8_lossy(&line);
         if text.trim().is_empty() {
             continue;
