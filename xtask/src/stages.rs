@@ -298,10 +298,16 @@ pub fn test(args: &[String]) -> Result<(), String> {
         })
     })?);
 
-    // Optional stages, run only when asked for (`--with rllib`).
+    // Optional stages, run only when asked for (`--with rllib`, `--with train`).
     if with.iter().any(|w| w == "rllib") {
         stages.push(timed("rllib (--with rllib)", || {
             let tests = crate::rllib::stage(&root)?;
+            Ok(Outcome::Passed { tests })
+        })?);
+    }
+    if with.iter().any(|w| w == "train") {
+        stages.push(timed("train (--with train)", || {
+            let tests = crate::train::stage(&root)?;
             Ok(Outcome::Passed { tests })
         })?);
     }
@@ -500,7 +506,7 @@ fn python_stage(root: &Path, venv: &Path, engines: &[&Engine]) -> Result<u64, St
 /// The number of passed tests on pytest's closing summary line, or `None` if `line` is not one.
 /// The line is `49 passed in 3.70s` with `-q`, `==== 1 failed, 48 passed, 2 warnings in 3.70s
 /// ====` otherwise, and `no tests ran in 0.01s` when nothing ran (0 passed).
-fn pytest_passed_count(line: &str) -> Option<u64> {
+pub(crate) fn pytest_passed_count(line: &str) -> Option<u64> {
     let body = line.trim().trim_matches('=').trim();
     let (counts, time) = body.rsplit_once(" in ")?;
     if !time.starts_with(|c: char| c.is_ascii_digit()) || !time.contains('s') {

@@ -353,6 +353,23 @@ impl Stats {
     }
 }
 
+/// How many of the episodes reached the goal (`reached` among their end reasons), as
+/// "18 of 20 (90 %)".
+fn reach_rate(ended_by: &[EndCount]) -> String {
+    let total: u32 = ended_by.iter().map(|e| e.episodes).sum();
+    let reached: u32 = ended_by
+        .iter()
+        .filter(|e| e.reasons.split('+').any(|r| r == "reached"))
+        .map(|e| e.episodes)
+        .sum();
+    let percent = if total == 0 {
+        0.0
+    } else {
+        100.0 * f64::from(reached) / f64::from(total)
+    };
+    format!("{reached} of {total} ({percent:.0} %)")
+}
+
 /// How many episodes ended for a set of reasons.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct EndCount {
@@ -607,6 +624,7 @@ impl PolicyReport {
             format!("{:.3} ± {:.3}", s.ret.mean, s.ret.sd)
         });
         row("steps, mean", &|s| format!("{:.1}", s.steps.mean));
+        row("reached the goal (§6.1)", &|s| reach_rate(&s.ended_by));
         row("ended by", &|s| {
             s.ended_by
                 .iter()
@@ -740,7 +758,23 @@ fn reasons(r: &[Reason]) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::{Stats, travel};
+    use super::{EndCount, Stats, reach_rate, travel};
+
+    #[test]
+    fn the_reach_rate_counts_every_end_that_includes_reached() {
+        let end = |reasons: &str, episodes| EndCount {
+            reasons: reasons.into(),
+            episodes,
+        };
+        let ends = [
+            end("reached", 15),
+            end("reached+timeout", 3),
+            end("timeout", 2),
+        ];
+        assert_eq!(reach_rate(&ends), "18 of 20 (90 %)");
+        assert_eq!(reach_rate(&[end("timeout", 20)]), "0 of 20 (0 %)");
+        assert_eq!(reach_rate(&[]), "0 of 0 (0 %)");
+    }
 
     #[test]
     fn travel_is_the_displacement_along_the_start_to_goal_direction() {
