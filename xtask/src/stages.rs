@@ -260,7 +260,9 @@ pub fn test(args: &[String]) -> Result<(), String> {
     };
     results.push((Part::Mujoco.name(), mujoco));
 
-    // Stage 4: the Python package.
+    // Stage 4: the Python package. With MuJoCo set up, the package is built with it, so that
+    // its tests run `backend="mujoco"` too (and the training stage's recipes can train there).
+    let with_mujoco = has("hyq-mujoco") && mujoco::check(&mujoco::mujoco_dir(&root)).is_ok();
     let python = if !has("hyq-py") {
         Outcome::Skipped {
             why: "the hyq-py crate is not in the workspace yet".into(),
@@ -269,13 +271,7 @@ pub fn test(args: &[String]) -> Result<(), String> {
         match python_tools(&root) {
             Err(why) => Outcome::Skipped { why },
             Ok(venv) => Outcome::Passed {
-                // With MuJoCo set up, the package is built with it, so that its tests run
-                // `backend="mujoco"` too.
-                tests: python_stage(
-                    &root,
-                    &venv,
-                    has("hyq-mujoco") && mujoco::check(&mujoco::mujoco_dir(&root)).is_ok(),
-                )?,
+                tests: python_stage(&root, &venv, with_mujoco)?,
             },
         }
     };
@@ -287,7 +283,7 @@ pub fn test(args: &[String]) -> Result<(), String> {
         results.push(("rllib (--with rllib)", Outcome::Passed { tests }));
     }
     if with.iter().any(|w| w == "train") {
-        let tests = crate::train::stage(&root)?;
+        let tests = crate::train::stage(&root, with_mujoco)?;
         results.push(("train (--with train)", Outcome::Passed { tests }));
     }
 
