@@ -5,7 +5,7 @@
 //! field; it prints the steps, the episodes and why they ended, and the range seen on every
 //! observation row (the measured ranges of the rows the spec only estimates, 33–38).
 //!
-//! The test suite runs a short soak (2·10⁴ steps, `crates/hyq-cli/tests`); this is the long one.
+//! The test suite runs a short soak (5·10³ steps, `crates/hyq-cli/tests`); this is the long one.
 
 use crate::cli::{positive, value};
 use crate::stages::{engine_missing, run_cargo, workspace_root};

@@ -306,8 +306,9 @@ pub fn test(args: &[String]) -> Result<(), String> {
         })?);
     }
     if with.iter().any(|w| w == "train") {
+        let features = python_features(&engines_run);
         stages.push(timed("train (--with train)", || {
-            let tests = crate::train::stage(&root)?;
+            let tests = crate::train::stage(&root, &features)?;
             Ok(Outcome::Passed { tests })
         })?);
     }
@@ -435,6 +436,17 @@ pub(crate) fn venv_command(venv: &Path, dir: &Path, program: &Path) -> Command {
     command
 }
 
+/// The cargo features the Python package is built with, comma-separated: those of `engines`
+/// (the engines whose stage ran) that have `python_tests` (`""` for none).
+pub fn python_features(engines: &[&Engine]) -> String {
+    let features: Vec<&str> = engines
+        .iter()
+        .filter(|e| e.python_tests)
+        .filter_map(|e| e.feature)
+        .collect();
+    features.join(",")
+}
+
 /// Stage 3: installs the pinned requirements into the venv (and Stable-Baselines3 without its
 /// dependencies), builds the extension with the dev
 /// profile and installs the package (`maturin develop`: fast to build; users get release
@@ -466,12 +478,7 @@ fn python_stage(root: &Path, venv: &Path, engines: &[&Engine]) -> Result<u64, St
             "requirements-test-nodeps.txt",
         ],
     )?;
-    let features: Vec<&str> = engines
-        .iter()
-        .filter(|e| e.python_tests)
-        .filter_map(|e| e.feature)
-        .collect();
-    let features = features.join(",");
+    let features = python_features(engines);
     let mut develop = vec!["-m", "maturin", "develop", "--locked"];
     if !features.is_empty() {
         develop.extend(["--features", &features]);

@@ -33,8 +33,11 @@ fn run(command: &mut Command, what: &str) -> Result<(), String> {
 }
 
 /// The stage: builds the venv if needed, installs the package into it and runs pytest on
-/// `tests_train`; returns how many tests passed.
-pub fn stage(root: &Path) -> Result<u64, String> {
+/// `tests_train`; returns how many tests passed. The package is built as the training docs
+/// build it (release, with `features`: the engines the Python stage builds it with, MuJoCo when
+/// it is set up), since the venv is the one the recipes train in: a debug or rapier-only build
+/// would leave them slow or refusing their engine.
+pub fn stage(root: &Path, features: &str) -> Result<u64, String> {
     let venv = train_venv(root);
     let python = venv_python(&venv);
     if !python.is_file() {
@@ -52,9 +55,16 @@ pub fn stage(root: &Path) -> Result<u64, String> {
         "pip install -r examples/requirements-train.txt",
     )?;
     let crate_dir = root.join("crates").join("hyq-py");
+    let mut develop = vec!["-m", "maturin", "develop", "--locked", "--release"];
+    if !features.is_empty() {
+        develop.extend(["--features", features]);
+    }
     run(
-        venv_command(&venv, &crate_dir, &python).args(["-m", "maturin", "develop", "--locked"]),
-        "maturin develop (into the training venv)",
+        venv_command(&venv, &crate_dir, &python).args(&develop),
+        &format!(
+            "maturin {} (into the training venv)",
+            develop[2..].join(" ")
+        ),
     )?;
     println!("\n$ python -m pytest tests_train");
     let out = venv_command(&venv, &crate_dir, &python)
