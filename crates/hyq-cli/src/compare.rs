@@ -20,8 +20,8 @@ use clap::builder::TypedValueParser as _;
 use clap::{Args, ValueEnum as _};
 use hyq_compare::policy::MAX_EPISODES;
 use hyq_compare::{
-    ComparisonSpec, DEFAULT_ONE_STEP_STATES, Ledger, MARKDOWN_FILE, Plan, PolicyPlan, PolicySpec,
-    Report, Scenario, check_seconds, compare_all, parse_override, prepare_output_dir,
+    ComparisonSpec, DEFAULT_ONE_STEP_STATES, Ledger, MARKDOWN_FILE, Plan, PolicyPlan, PolicyReport,
+    PolicySpec, Report, Scenario, check_seconds, compare_all, parse_override, prepare_output_dir,
 };
 
 use crate::Failure;
@@ -135,7 +135,10 @@ fn parse_backends(s: &str) -> Result<Backends, String> {
     }
     let pick = |name: &str| {
         BackendChoice::from_str(name, false).map_err(|_| {
-            format!("unknown backend {name:?} (possible backends: rapier, dart, mujoco)")
+            format!(
+                "unknown backend {name:?} (possible backends: {})",
+                hyq_engines::NAMES.join(", ")
+            )
         })
     };
     let choices = names
@@ -375,43 +378,9 @@ fn execute_policy(
     choices: &[BackendChoice],
     model: std::sync::Arc<hyq_physics::RobotModel>,
 ) -> Result<(), Failure> {
-    let configuration = ConfigArgs {
-        config: args.config.clone(),
-        set: args.set.clone(),
-    };
-    let trained = TrainedPolicy::load(file, &configuration)?;
-    check_mlp(&trained.policy, file, &model, &trained.config)?;
-    let mut applied: Vec<String> = trained
-        .inherited
-        .iter()
-        .map(|(k, v)| format!("{k}={v} (the policy file)"))
-        .collect();
-    if let Some(path) = &args.config {
-        applied.push(format!("--config {}", path.display()));
-    }
-    applied.extend(args.set.iter().map(|s| format!("{} (--set)", s.trim())));
-    let spec = PolicySpec {
-        policy: format!("mlp:{}", file.display()),
-        seed: args.seed,
-        episodes: args.episodes.unwrap_or(DEFAULT_EPISODES),
-        configuration: applied,
-    };
-    let plan =
-        PolicyPlan::new(model, trained.config, trained.policy, spec).map_err(compare_failure)?;
+    let plan = policy_plan(args, file, model)?;
     prepare_output_dir(&args.out).map_err(|e| usage(format!("--out: {e}")))?;
-
-    // Self-comparisons get their second label apart, as in the scenario comparison.
-    let labels: Vec<String> = choices
-        .iter()
-        .enumerate()
-        .map(|(k, c)| {
-            if choices[..k].contains(c) {
-                format!("{} (B)", c.name())
-            } else {
-                c.name().to_owned()
-            }
-        })
-        .collect();
+    let labels = side_labels(choices);
     let mut sides = Vec::with_capacity(choices.len());
     for (&choice, label) in choices.iter().zip(&labels) {
         let side = with_backend!(choice, B => {
@@ -435,6 +404,59 @@ fn execute_policy(
             status: 1,
             message: e.to_string(),
         })?;
+    print_policy_summary(&report, args)
+}
+
+/// The policy comparison's plan: the trained policy of `file` and the environment it was
+/// trained in, with `--config` and `--set` applied on top, each named in the report.
+fn policy_plan(
+    args: &CompareArgs,
+    file: &std::path::Path,
+    model: std::sync::Arc<hyq_physics::RobotModel>,
+) -> Result<PolicyPlan<hyq_env::MlpPolicy>, Failure> {
+    let configuration = ConfigArgs {
+        config: args.config.clone(),
+        set: args.set.clone(),
+    };
+    let trained = TrainedPolicy::load(file, &configuration)?;
+    check_mlp(&trained.policy, file, &model, &trained.config)?;
+    let mut applied: Vec<String> = trained
+        .inherited
+        .iter()
+        .map(|(k, v)| format!("{k}={v} (the policy file)"))
+        .collect();
+    if let Some(path) = &args.config {
+        applied.push(format!("--config {}", path.display()));
+    }
+    applied.extend(args.set.iter().map(|s| format!("{} (--set)", s.trim())));
+    let spec = PolicySpec {
+        policy: format!("mlp:{}", file.display()),
+        seed: args.seed,
+        episodes: args.episodes.unwrap_or(DEFAULT_EPISODES),
+        configuration: applied,
+    };
+    PolicyPlan::new(model, trained.config, trained.policy, spec).map_err(compare_failure)
+}
+
+/// Each backend's label in a comparison: its name, and a self-comparison's second side's name
+/// with ` (B)` to tell them apart, as in the scenario comparison.
+fn side_labels(choices: &[BackendChoice]) -> Vec<String> {
+    choices
+        .iter()
+        .enumerate()
+        .map(|(k, c)| {
+            if choices[..k].contains(c) {
+                format!("{} (B)", c.name())
+            } else {
+                c.name().to_owned()
+            }
+        })
+        .collect()
+}
+
+/// Prints the policy comparison's summary on stdout (the reports are already written), as
+/// [`print_summary`] does.
+fn print_policy_summary(report: &PolicyReport, args: &CompareArgs) -> Result<(), Failure> {
     let mut out = String::new();
     let _ = writeln!(
         out,

@@ -88,15 +88,6 @@ impl Failure {
     }
 }
 
-impl From<anyhow::Error> for Failure {
-    fn from(e: anyhow::Error) -> Self {
-        Failure {
-            status: 1,
-            message: format!("{e:#}"),
-        }
-    }
-}
-
 /// Prints `message` as the one error line `hyq` ever prints, folding any line breaks.
 fn print_error(message: &str) {
     let line = hyq_physics::one_line(message);

@@ -20,7 +20,7 @@ use crate::run::PolicyChoice;
 #[derive(Debug, Clone, Args)]
 pub struct EnvArgs {
     /// The physics backend.
-    #[arg(long, value_enum, default_value_t = BackendChoice::Rapier)]
+    #[arg(long, value_enum, default_value_t = BackendChoice::DEFAULT)]
     pub backend: BackendChoice,
     /// The robot.
     #[command(flatten)]

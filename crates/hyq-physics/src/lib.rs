@@ -5,8 +5,8 @@
 //!   actuated joints in the profile's order, tracked bodies (feet, then the trunk), standing
 //!   pose, spawn height, default gains, and forward kinematics.
 //! - [`Backend`]: the trait a simulator implements (rapier in `hyq-rapier`, DART in
-//!   `hyq-dart`): build, set a state, apply joint torques, advance one sub-step, read joint and
-//!   trunk state and real ground contacts.
+//!   `hyq-dart`, MuJoCo in `hyq-mujoco`; hyq-engines names them): build, set a state, apply
+//!   joint torques, advance one sub-step, read joint and trunk state and real ground contacts.
 //! - [`actuator`]: the joint PD law with effort and velocity limits, evaluated every sub-step in
 //!   shared code ([`pd_substep`]), so every backend is driven identically.
 //! - [`randomize`]: per-episode variations of the physics as plain data (ground friction,

@@ -53,8 +53,7 @@ impl Core {
         let env = self.env.get();
         let mut obs = env.observation_f32().to_vec();
         let clipped = clip_in_place(&mut obs, self.clip.as_ref());
-        let info = info_dict(py, env.info(), env.model())?;
-        info.set_item("observation_clipped", clipped)?;
+        let info = info_dict(py, env.info(), env.model(), clipped)?;
         Ok((obs.into_pyarray(py), info))
     }
 }
@@ -65,7 +64,7 @@ impl Core {
     /// (`("task.fall_penalty", "1.5")`); errors name the key and value. `robot` is a bundled
     /// robot's name or a profile path (default HyQ), `backend` one this build has.
     #[new]
-    #[pyo3(signature = (pairs, config_file=None, clip_observations=crate::CLIP_OBSERVATIONS_DEFAULT, render_width=hyq_render::DEFAULT_WIDTH_PX, render_height=hyq_render::DEFAULT_HEIGHT_PX, robot=None, backend="rapier"))]
+    #[pyo3(signature = (pairs, config_file=None, clip_observations=crate::CLIP_OBSERVATIONS_DEFAULT, render_width=hyq_render::DEFAULT_WIDTH_PX, render_height=hyq_render::DEFAULT_HEIGHT_PX, robot=None, backend=hyq_engines::DEFAULT.name))]
     fn new(
         pairs: Vec<(String, String)>,
         config_file: Option<String>,

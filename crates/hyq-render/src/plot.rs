@@ -26,7 +26,7 @@ use plotters::style::FontStyle;
 
 use crate::error::PlotError;
 use crate::frame::Frame;
-use crate::records::{EpisodeSeries, StepRecord, cumulative, read_jsonl, split_episodes};
+use crate::records::{EpisodeSeries, PlotRecord, cumulative, read_jsonl, split_episodes};
 use crate::text::{SANS, SANS_BOLD};
 use crate::writer::write_png;
 
@@ -732,7 +732,7 @@ pub fn plot_jsonl(
 /// Writes both plots of every episode in `records` into `dir`, as [`plot_jsonl`] does for a
 /// file; `origin` names the records in errors.
 pub fn plot_records(
-    records: &[StepRecord],
+    records: &[PlotRecord],
     origin: &str,
     options: &PlotOptions,
     dir: impl AsRef<Path>,

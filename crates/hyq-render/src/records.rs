@@ -15,7 +15,7 @@
 //! from the previous record's, or, when neither has one, when its `t` is not after the previous
 //! record's (the environment was reset).
 //!
-//! [`StepRecord`] is a read view of `hyq_env::StepRecord`, not a copy of it: the environment's
+//! [`PlotRecord`] is a read view of `hyq_env::StepRecord`, not a copy of it: the environment's
 //! type refuses unknown keys and requires every key (`obs`, `action`, `episode`, …), which is
 //! right for its round-trip contract but would make the plots break whenever the log gains a
 //! key, and refuse logs written by other tools with only the plotted keys. Reading that type
@@ -31,9 +31,9 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::PlotError;
 
-/// One line of the environment's JSONL log.
+/// One line of the environment's JSONL log, as the plots read it (the keys they draw).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct StepRecord {
+pub struct PlotRecord {
     /// Env steps since reset, counting this one (1 for the first step).
     pub t: u64,
     /// The episode's number, if the log carries it.
@@ -63,7 +63,7 @@ pub const MAX_RECORD_LINE_BYTES: usize = input::RECORDS.max_line_bytes as usize;
 #[derive(Clone, Debug, PartialEq)]
 pub struct JsonlRecords {
     /// Every whole record, in order.
-    pub records: Vec<StepRecord>,
+    pub records: Vec<PlotRecord>,
     /// The 1-based number of a torn last line that was left out, if there was one.
     pub torn_last_line: Option<usize>,
 }
@@ -148,7 +148,7 @@ pub fn read_jsonl(path: impl AsRef<Path>) -> Result<JsonlRecords, PlotError> {
 }
 
 /// Splits records into episodes (see the module documentation for the rule).
-pub fn split_episodes(records: &[StepRecord]) -> Vec<&[StepRecord]> {
+pub fn split_episodes(records: &[PlotRecord]) -> Vec<&[PlotRecord]> {
     let mut episodes = Vec::new();
     let mut start = 0;
     for i in 1..records.len() {
@@ -191,7 +191,7 @@ impl EpisodeSeries {
     }
 
     /// The series of an episode's records.
-    pub fn from_records(records: &[StepRecord]) -> Self {
+    pub fn from_records(records: &[PlotRecord]) -> Self {
         let mut s = Self::new();
         for r in records {
             s.push(r);
@@ -200,7 +200,7 @@ impl EpisodeSeries {
     }
 
     /// Appends one step.
-    pub fn push(&mut self, r: &StepRecord) {
+    pub fn push(&mut self, r: &PlotRecord) {
         // Step counts are far below 2^53, so the conversion is exact.
         self.t.push(r.t as f64);
         self.reward.push(r.reward);

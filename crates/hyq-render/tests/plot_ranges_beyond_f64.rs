@@ -11,15 +11,15 @@ use std::sync::mpsc;
 use std::time::Duration;
 
 use common::scratch_dir;
-use hyq_render::{EpisodeSeries, PlotOptions, StepRecord, TermValues, plot_episode};
+use hyq_render::{EpisodeSeries, PlotOptions, PlotRecord, TermValues, plot_episode};
 use hyq_spec::RewardBreakdown;
 
 /// Longer than any plot takes (well under a second each); a hang becomes a failure instead of a
 /// test run that never ends.
 const PATIENCE: Duration = Duration::from_secs(120);
 
-fn record(t: u64, reward: f64, r_e: f64, d_n: f64) -> StepRecord {
-    StepRecord {
+fn record(t: u64, reward: f64, r_e: f64, d_n: f64) -> PlotRecord {
+    PlotRecord {
         t,
         episode: Some(1),
         reward,
@@ -59,7 +59,7 @@ fn values_spanning_more_than_f64_are_plotted_and_the_plot_finishes() {
 }
 
 /// Plots `records` as one episode in a thread, failing if it does not finish in [`PATIENCE`].
-fn plots_finish(records: Vec<StepRecord>, tag: &str) {
+fn plots_finish(records: Vec<PlotRecord>, tag: &str) {
     let dir = scratch_dir(tag);
     let (done, wait) = mpsc::channel();
     let out = dir.clone();

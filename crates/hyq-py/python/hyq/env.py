@@ -73,7 +73,7 @@ def core_options(env_options: Mapping[str, Any]) -> dict[str, Any]:
     height = env_options.get("render_height", _core.RENDER_HEIGHT_DEFAULT)
     return {
         "robot": check_choice("robot", env_options.get("robot"), _core.DEFAULT_ROBOT),
-        "backend": check_choice("backend", env_options.get("backend"), "rapier"),
+        "backend": check_choice("backend", env_options.get("backend"), _core.DEFAULT_BACKEND),
         "clip_observations": check_flag("clip_observations", clip),
         "render_width": check_count("render_width", width, *RENDER_SIDES),
         "render_height": check_count("render_height", height, *RENDER_SIDES),
@@ -126,9 +126,8 @@ class HyQEnv(gymnasium.Env):
     of ±``max_delta_rad`` from the current angle, ``action={"mode": "offset"}`` an offset of
     ±``max_offset_rad`` from the standing pose. A NaN or a wrong shape raises ``ValueError``.
 
-    **Reward and info**: the spec's reward; ``info`` holds every term (``r_b``, ``r_n``,
-    ``r_e``, ``r_reach``, ``m_yaw``, ``m_pitch``, ``m_height``, ``joint_penalty``,
-    ``fall_penalty``), every reason the episode ended (``reasons`` and one flag each), the
+    **Reward and info**: the spec's reward; ``info`` holds every term of
+    ``hyq.REWARD_TERMS``, every reason the episode ended (``reasons`` and one flag each), the
     distance to the goal, the attitude, the goal and the joint targets: every key of
     ``hyq.INFO_SCHEMA`` on every step, each with one type.
 
