@@ -47,6 +47,7 @@
 //! | [`divergence`] | [`Divergence`]: why a step diverged, the text of the info's `divergence` |
 //! | [`policy`] | [`Stand`], [`RandomPolicy`], [`Trot`] |
 //! | [`mlp`] | [`MlpPolicy`]: a trained policy read from a safetensors file, run in plain Rust |
+//! | [`randomize`] | `[randomize]`: varied dynamics, actuator and delay, observation noise, pushes |
 //! | [`vec_env`] | [`VecEnv`]: N envs on rayon into flat buffers, autoreset modes |
 //! | [`record`] | [`StepRecord`]: the per-step JSONL schema |
 //! | [`testing`] | [`testing::ScriptedBackend`]: a scripted backend for contract tests |
@@ -64,11 +65,13 @@ pub mod goal;
 pub mod info;
 pub mod mlp;
 pub mod policy;
+pub mod randomize;
 pub mod record;
 pub mod testing;
 pub mod vec_env;
 
 pub use action::{ActionError, ActionScalar, ActionSpace};
+pub use config::RandomizeConfig;
 pub use config::{
     ActionConfig, ActionMode, ConfigError, ControlConfig, EXP_REW_SCALING_MAX, EnvConfig, Gains,
     GoalConfig, GoalMode, JOINT_NOISE_MAX_RAD, LoadError, OutOfRange, PhysicsConfig,
@@ -82,6 +85,7 @@ pub use hyq_spec::TermSums;
 pub use info::{Reason, Reasons, StepInfo};
 pub use mlp::{MlpError, MlpMetadata, MlpPolicy};
 pub use policy::{Policy, PolicyInput, RandomPolicy, Stand, Trot, TrotParams};
+pub use randomize::{EpisodeDraw, Preset};
 pub use record::StepRecord;
 pub use vec_env::{AutoReset, MAX_ENVS, MAX_THREADS, VecEnv, VecEnvError, VecStepOut};
 

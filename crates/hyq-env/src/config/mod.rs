@@ -29,6 +29,9 @@
 //!
 //! [reset]         # spawn placement and reset noise (see ResetConfig)
 //! joint_noise_rad = 0.0
+//!
+//! [randomize]     # robustness options, all off by default (see RandomizeConfig)
+//! ground_friction = [0.5, 1.25]
 //! ```
 //!
 //! Every table and every key is optional: a missing one takes its default. Unknown keys are
@@ -49,6 +52,7 @@ mod goal;
 mod messages;
 mod parse;
 mod physics;
+mod randomize;
 mod reset;
 mod task;
 mod validate;
@@ -60,6 +64,10 @@ pub use hyq_spec::{EXP_REW_SCALING_MAX, REWARD_SCALE_MAX, TaskConfig};
 pub use messages::{ConfigError, LoadError};
 pub use parse::CONFIG_FILE_MAX_BYTES;
 pub use physics::{ENGINE_TABLES, PhysicsConfig};
+pub use randomize::{
+    COM_OFFSET_MAX_M, FRICTION_MAX, NOISE_MAX, NoiseDistribution, ObsNoiseConfig,
+    PUSH_SPEED_MAX_MPS, RandomizeConfig, Range, SCALE_MAX,
+};
 pub use reset::{JOINT_NOISE_MAX_RAD, ResetConfig};
 pub use validate::{Table, WORLD_HALF_EXTENT_M};
 pub(crate) use validate::{in_world, outside_world_reason};
@@ -118,6 +126,10 @@ env_config! {
         physics: PhysicsConfig,
         /// Spawn placement and reset noise. (default: at the origin, facing +x, no noise)
         reset: ResetConfig,
+        /// Robustness: dynamics, actuator and delay drawn per episode, observation noise,
+        /// pushes ([`crate::randomize`]). (default: all off, and the table is not written)
+        #[serde(skip_serializing_if = "RandomizeConfig::is_off")]
+        randomize: RandomizeConfig,
     }
 }
 
