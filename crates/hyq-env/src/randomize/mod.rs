@@ -19,7 +19,7 @@ mod draw;
 mod presets;
 
 pub use draw::{EpisodeDraw, FIRST_OPTION_STREAM, OBS_NOISE_STREAM, PUSH_STREAM, Randomizer};
-pub use presets::{PRESET_RANGES, Preset, PresetRange};
+pub use presets::{PRESET_RANGES, Preset, PresetRange, preset_table};
 
 use hyq_physics::RobotModel;
 

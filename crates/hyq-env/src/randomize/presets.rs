@@ -260,6 +260,23 @@ impl Preset {
     }
 }
 
+/// [`PRESET_RANGES`] as the Markdown table `docs/robustness.md` shows (a test keeps the two
+/// equal): one row per range, its preset, key, value and source.
+pub fn preset_table() -> String {
+    let mut out =
+        String::from("| preset | key (`randomize.`) | value | source |\n|---|---|---|---|\n");
+    for r in PRESET_RANGES {
+        out.push_str(&format!(
+            "| `{}` | `{}` | `{}` | {} |\n",
+            r.preset.as_str(),
+            r.key,
+            r.value,
+            r.source
+        ));
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     //! Every preset is a valid table whose ranges are the table's, and keys written beside a
