@@ -3,8 +3,9 @@
 
 #[test]
 fn the_page_holds_the_table_of_every_preset_range() {
-    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/robustness.md");
-    let page = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{path}: {e}"));
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/robustness.md");
+    let path = path.display();
+    let page = std::fs::read_to_string(path.to_string()).unwrap_or_else(|e| panic!("{path}: {e}"));
     let table = hyq_env::randomize::preset_table();
     assert!(
         page.contains(&table),
