@@ -493,8 +493,9 @@ impl<B: Backend> Env<B> {
         // Checked against the requested start before anything changes, so a refused goal leaves
         // the environment as it was.
         let requested_rules = episode_rules(&self.config.task, requested, goal)?;
-        self.begin_varied_episode(seed)?;
-        self.backend.set_state(state)?;
+        if !self.begin_varied_episode(seed, state)? {
+            self.backend.set_state(state)?;
+        }
 
         self.seeded |= seed.is_some();
         self.goal_rng = goal_rng;
@@ -774,11 +775,17 @@ impl<B: Backend> Env<B> {
     }
 
     /// Starts the varied episode `[randomize]` draws, if any option is on: `seed` restarts its
-    /// streams; the drawn dynamics go to the backend, the drawn scales to the actuator, the
-    /// drawn delay to the delay line. On error the draws and the world are as they were.
-    fn begin_varied_episode(&mut self, seed: Option<u64>) -> Result<(), EnvError> {
+    /// streams; the drawn dynamics go to the backend with the episode's first `state` (one
+    /// state change), the drawn scales to the actuator, the drawn delay to the delay line.
+    /// Returns whether the robot was placed (else the caller places it). On error the draws
+    /// are as they were.
+    fn begin_varied_episode(
+        &mut self,
+        seed: Option<u64>,
+        state: &RobotState,
+    ) -> Result<bool, EnvError> {
         let Some(r) = self.robustness.as_deref_mut() else {
-            return Ok(());
+            return Ok(false);
         };
         let before = r.randomizer.clone();
         if let Some(s) = seed {
@@ -788,21 +795,23 @@ impl<B: Backend> Env<B> {
         r.randomizer.begin_episode(&self.model, params);
         let draw = r.randomizer.draw();
         let outcome = (|| {
-            if r.randomizer.config().varies_dynamics() {
-                let dynamics = draw.dynamics_draw().dynamics(&self.model)?;
-                self.backend.set_dynamics(&dynamics)?;
-            }
             self.actuator
                 .scale_from(&r.base_actuator, &draw.actuator_scales())?;
             r.delay.set_substeps(
                 draw.actuator_delay_substeps,
                 self.config.control.sim_steps_per_env_step,
-            )
+            )?;
+            if !r.randomizer.config().varies_dynamics() {
+                return Ok(false);
+            }
+            let dynamics = draw.dynamics_draw().dynamics(&self.model)?;
+            self.backend.reset_with_dynamics(&dynamics, state)?;
+            Ok(true)
         })();
         if outcome.is_err() {
             r.randomizer = before;
         }
-        Ok(outcome?)
+        outcome
     }
 
     /// What a [`crate::policy::Policy`] needs to choose the next action.
