@@ -6,6 +6,7 @@
 // quick to compile.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <exception>
 #include <memory>
@@ -37,6 +38,7 @@ struct ShapeDesc;
 struct WorldDesc;
 struct BaseState;
 struct Inertial;
+struct Pose;
 
 // One simulated world: the robot skeleton, a static ground box, the
 // constraint solver and the collision detector. Not thread-safe; one thread
@@ -53,6 +55,15 @@ class Sim {
   // time, forces, contacts and the collision detector's caches are reset.
   void set_state(const BaseState& base, rust::Slice<const double> q,
                  rust::Slice<const double> qd);
+  // Replaces the ground's shape with one height field: `heights` holds
+  // `depth` rows of `width` values, `spacing` apart along the shape's x and
+  // y, the shape at `pose` in the world. The next set_state builds Bullet's
+  // field from it.
+  void set_ground_heights(rust::Slice<const float> heights, std::size_t width,
+                          std::size_t depth, std::array<double, 2> spacing,
+                          const Pose& pose);
+  // Puts back the flat ground box.
+  void set_ground_flat();
   // Stores the torques of the actuated joints for the next step only.
   void set_joint_torques(rust::Slice<const double> tau);
   // Advances the world by one time step. Returns false when the new state

@@ -16,8 +16,8 @@ use std::sync::Arc;
 
 use hyq_physics::na::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3};
 use hyq_physics::{
-    Backend, Dynamics, Link, MassProperties, PhysicsError, PhysicsParams, RobotModel, RobotState,
-    Shape, TrunkState,
+    Backend, Dynamics, HeightGrid, Link, MassProperties, PhysicsError, PhysicsParams, RobotModel,
+    RobotState, Shape, Terrain, TrunkState,
 };
 use serde::{Deserialize, Serialize};
 
@@ -71,6 +71,8 @@ pub struct DartBackend {
     /// Set when DART refused dynamics (which were validated, so unexpectedly): the world
     /// cannot be stepped until dynamics are given again.
     refused_dynamics: Option<String>,
+    /// The ground the world holds.
+    terrain: Terrain,
 }
 
 fn backend_error(message: String) -> PhysicsError {
@@ -245,6 +247,29 @@ fn isometry(p: &[f64]) -> Isometry3<f64> {
 }
 
 impl DartBackend {
+    /// Why the trunk is off the ground, if it is: beyond the flat ground box, or outside the
+    /// height field's rectangle (there is no ground beyond either).
+    fn off_ground(&self) -> Option<String> {
+        let (x, y) = (self.poses[0], self.poses[1]);
+        match &self.terrain {
+            Terrain::Flat if x.abs().max(y.abs()) > GROUND_HALF_EXTENT_M => Some(format!(
+                "the trunk left DART's ground at ({x:.1}, {y:.1}) m (the ground ends at \
+                 ±{GROUND_HALF_EXTENT_M} m in x and y)"
+            )),
+            Terrain::Field(grid) if !grid.contains(x, y) => {
+                let [x0, y0] = grid.origin();
+                let [sx, sy] = grid.size();
+                Some(format!(
+                    "the trunk left DART's ground at ({x:.1}, {y:.1}) m (the height field spans \
+                     x {x0:.1} .. {:.1} m, y {y0:.1} .. {:.1} m)",
+                    x0 + sx,
+                    y0 + sy
+                ))
+            }
+            _ => None,
+        }
+    }
+
     /// Touching or penetrating contact points in the last step (all robot shapes, tracked or
     /// not).
     pub fn num_contact_points(&self) -> usize {
@@ -313,7 +338,10 @@ impl DartBackend {
                 continue;
             }
             let body = isometry(&self.poses[7 * t.link..7 * t.link + 7]);
-            if t.shape.lowest_z(&(body * t.origin)) <= self.params.contact_distance {
+            if self
+                .terrain
+                .within(&t.shape, &(body * t.origin), self.params.contact_distance)
+            {
                 self.contacts[t.tracked] = true;
             }
         }
@@ -357,6 +385,7 @@ impl Backend for DartBackend {
             params: params.clone(),
             blocked: None,
             refused_dynamics: None,
+            terrain: Terrain::Flat,
             model,
         };
         let spawn = backend.model.spawn_state();
@@ -414,12 +443,7 @@ impl Backend for DartBackend {
             return Err(PhysicsError::Diverged { what });
         }
         self.refresh_poses();
-        let (x, y) = (self.poses[0], self.poses[1]);
-        if x.abs().max(y.abs()) > GROUND_HALF_EXTENT_M {
-            let reason = format!(
-                "the trunk left DART's ground at ({x:.1}, {y:.1}) m (the ground ends at \
-                 ±{GROUND_HALF_EXTENT_M} m in x and y)"
-            );
+        if let Some(reason) = self.off_ground() {
             self.blocked = Some(reason.clone());
             return Err(backend_error(reason));
         }
@@ -496,6 +520,53 @@ impl Backend for DartBackend {
             self.blocked = Some(format!("the trunk push failed: {e}"));
         }
     }
+
+    fn terrain(&self) -> &Terrain {
+        &self.terrain
+    }
+
+    fn apply_terrain(&mut self, terrain: &Terrain) -> Result<(), PhysicsError> {
+        let state = self.state();
+        match terrain {
+            Terrain::Flat => self.sim.set_ground_flat()?,
+            Terrain::Field(grid) => {
+                let (heights, width, depth, spacing, pose) = heightmap(grid);
+                self.sim
+                    .set_ground_heights(&heights, width, depth, spacing, &pose)?;
+            }
+        }
+        self.terrain = terrain.clone();
+        self.apply_state(&state);
+        match &self.blocked {
+            Some(reason) => Err(backend_error(reason.clone())),
+            None => Ok(()),
+        }
+    }
+}
+
+/// DART's height field of `grid`: its matrix (row after row), width, depth, spacing and pose.
+///
+/// DART hands Bullet the matrix with its rows reversed (Bullet's row `j` is DART's row
+/// `depth − 1 − j`), Bullet lays row `j` along its local y and a row's values along its local x,
+/// centred on the shape's frame, and splits each cell between its corners (x+1, j) and
+/// (x, j+1) (the split the bridge puts back, see `SplitAlikeBulletDetector` in `hyq_dart.cc`). Turned a quarter
+/// turn about +z, local x runs along world +y and local y along world −x: DART's row `r` is then
+/// the grid's column `r`, a row's `k`-th value the grid's row `k`, and Bullet's split the grid's
+/// (x₀, y₀)–(x₁, y₁) diagonal, the split every backend uses. So the matrix is the grid
+/// transposed.
+fn heightmap(grid: &HeightGrid) -> (Vec<f32>, usize, usize, [f64; 2], crate::sim::Pose) {
+    let (columns, rows) = (grid.columns(), grid.rows());
+    let mut heights = Vec::with_capacity(columns * rows);
+    for c in 0..columns {
+        for k in 0..rows {
+            heights.push(grid.height(c, k) as f32);
+        }
+    }
+    let [dx, dy] = grid.spacing();
+    let [cx, cy] = grid.center();
+    let turn = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), std::f64::consts::FRAC_PI_2);
+    let pose = pose(&Isometry3::from_parts(Translation3::new(cx, cy, 0.0), turn));
+    (heights, rows, columns, [dy, dx], pose)
 }
 
 #[cfg(test)]

@@ -158,6 +158,21 @@ pub(crate) mod ffi {
         /// Sets root state and actuated-joint positions/velocities (revolute joints in body order)
         /// and resets everything else to the freshly built state.
         fn set_state(self: Pin<&mut Sim>, base: &BaseState, q: &[f64], qd: &[f64]) -> Result<()>;
+        /// Replaces the ground with one height field (DART's `HeightmapShapef`): `heights` is
+        /// its matrix row after row, `depth` rows of `width` values, sample `spacing` (m) apart
+        /// along the shape's x (within a row) and y (across rows), placed at `pose`. Takes effect
+        /// from the next `set_state`.
+        fn set_ground_heights(
+            self: Pin<&mut Sim>,
+            heights: &[f32],
+            width: usize,
+            depth: usize,
+            spacing: [f64; 2],
+            pose: &Pose,
+        ) -> Result<()>;
+        /// Puts back the flat ground box of the description. Takes effect from the next
+        /// `set_state`.
+        fn set_ground_flat(self: Pin<&mut Sim>) -> Result<()>;
         /// Stores the actuated-joint torques applied during the next step only.
         fn set_joint_torques(self: Pin<&mut Sim>, tau: &[f64]) -> Result<()>;
         /// Advances the world by one time step; `Ok(false)` when the state diverged (non-finite

@@ -7,7 +7,10 @@
 #include "hyq-dart/include/hyq_dart.h"
 
 #include <cmath>
+#include <iostream>
 #include <limits>
+#include <mutex>
+#include <streambuf>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -18,12 +21,14 @@
 #include <dart/collision/CollisionObject.hpp>
 #include <dart/collision/CollisionResult.hpp>
 #include <dart/collision/bullet/BulletCollisionDetector.hpp>
+#include <dart/collision/bullet/BulletCollisionObject.hpp>
 #include <dart/constraint/ConstraintSolver.hpp>
 #include <dart/dynamics/BodyNode.hpp>
 #include <dart/dynamics/BoxShape.hpp>
 #include <dart/dynamics/CapsuleShape.hpp>
 #include <dart/dynamics/CylinderShape.hpp>
 #include <dart/dynamics/FreeJoint.hpp>
+#include <dart/dynamics/HeightmapShape.hpp>
 #include <dart/dynamics/Inertia.hpp>
 #include <dart/dynamics/RevoluteJoint.hpp>
 #include <dart/dynamics/ShapeNode.hpp>
@@ -31,6 +36,10 @@
 #include <dart/dynamics/SphereShape.hpp>
 #include <dart/dynamics/WeldJoint.hpp>
 #include <dart/simulation/World.hpp>
+
+#include <BulletCollision/CollisionDispatch/btCollisionObject.h>
+#include <BulletCollision/CollisionShapes/btCompoundShape.h>
+#include <BulletCollision/CollisionShapes/btHeightfieldTerrainShape.h>
 
 #include "hyq-dart/src/bridge.rs.h"
 
@@ -96,6 +105,91 @@ bool finite3(const std::array<double, 3>& v) {
   return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
 }
 
+// A stream buffer that drops everything written to it.
+class NullBuffer : public std::streambuf {
+ protected:
+  int overflow(int c) override { return traits_type::not_eof(c); }
+  std::streamsize xsputn(const char*, std::streamsize n) override { return n; }
+};
+
+// Drops what is written to std::cout while it lives. DART's Bullet detector
+// prints a debug line to std::cout every time it builds a height field (at
+// every reset), and the project's programs write their own output (tables,
+// JSON lines) to standard output. std::cout is one stream for the whole
+// process, so the swap happens under a lock shared by every world.
+class QuietStdout {
+ public:
+  QuietStdout() : guard_(lock()), previous_(std::cout.rdbuf(&null_)) {}
+  ~QuietStdout() { std::cout.rdbuf(previous_); }
+  QuietStdout(const QuietStdout&) = delete;
+  QuietStdout& operator=(const QuietStdout&) = delete;
+
+ private:
+  static std::mutex& lock() {
+    static std::mutex m;
+    return m;
+  }
+  std::lock_guard<std::mutex> guard_;
+  NullBuffer null_;
+  std::streambuf* previous_;
+};
+
+// DART's Bullet detector, except that it splits every cell of a height field
+// along the same diagonal. DART asks Bullet to split the cells along
+// alternating diagonals, row by row (zigzag); every other engine splits all
+// cells alike. This puts back Bullet's plain split (the cell corners (x+1, y)
+// to (x, y+1)) on each height field as Bullet's shape is built for it.
+class SplitAlikeBulletDetector : public dart::collision::BulletCollisionDetector {
+ public:
+  static std::shared_ptr<SplitAlikeBulletDetector> create() {
+    return std::shared_ptr<SplitAlikeBulletDetector>(new SplitAlikeBulletDetector());
+  }
+
+  // How many height fields this detector built and split.
+  int fields_split() const { return fields_split_; }
+
+ protected:
+  SplitAlikeBulletDetector() = default;
+
+  std::unique_ptr<dart::collision::CollisionObject> createCollisionObject(
+      const dart::dynamics::ShapeFrame* frame) override {
+    auto object = BulletCollisionDetector::createCollisionObject(frame);
+    split_alike(object.get());
+    return object;
+  }
+
+  void refreshCollisionObject(dart::collision::CollisionObject* object) override {
+    BulletCollisionDetector::refreshCollisionObject(object);
+    split_alike(object);
+  }
+
+ private:
+  void split_alike(dart::collision::CollisionObject* object) {
+    auto* bullet = dynamic_cast<dart::collision::BulletCollisionObject*>(object);
+    if (bullet == nullptr || bullet->getBulletCollisionObject() == nullptr) {
+      return;
+    }
+    btCollisionShape* shape = bullet->getBulletCollisionObject()->getCollisionShape();
+    if (shape != nullptr && shape->isCompound()) {
+      auto* compound = static_cast<btCompoundShape*>(shape);
+      for (int c = 0; c < compound->getNumChildShapes(); ++c) {
+        split_if_field(compound->getChildShape(c));
+      }
+    } else {
+      split_if_field(shape);
+    }
+  }
+
+  void split_if_field(btCollisionShape* shape) {
+    if (shape != nullptr && shape->getShapeType() == TERRAIN_SHAPE_PROXYTYPE) {
+      static_cast<btHeightfieldTerrainShape*>(shape)->setUseZigzagSubdivision(false);
+      ++fields_split_;
+    }
+  }
+
+  int fields_split_ = 0;
+};
+
 }  // namespace
 
 struct Sim::Impl {
@@ -131,15 +225,77 @@ struct Sim::Impl {
   Eigen::VectorXd positions;
   Eigen::VectorXd velocities;
 
-  // Gives the constraint solver a new Bullet detector. Bullet keeps contact
+  // The ground: a welded body whose one shape is the flat box (top face at
+  // the description's ground height) or a height field.
+  BodyNode* ground_body = nullptr;
+  dart::dynamics::WeldJoint* ground_joint = nullptr;
+  double friction = 0.0;
+  double restitution = 0.0;
+  double ground_height = 0.0;
+  double ground_half_extent = 0.0;
+  // The height field, if the ground is one, and its heights as given.
+  // DART's Bullet detector reverses the field's rows (its flipY) every time
+  // it builds Bullet's shape from it, in the shape itself; so before each
+  // new detector the rows are put back as given, and every detector builds
+  // the same field.
+  std::shared_ptr<dart::dynamics::HeightmapShapef> heightmap;
+  dart::dynamics::HeightmapShapef::HeightField heightmap_rows;
+
+  // Gives the constraint solver a new Bullet detector (one that splits height
+  // field cells alike). Bullet keeps contact
   // manifolds and broadphase pairs between steps; a new detector drops them,
   // which set_state needs to be bitwise equal to a freshly built world.
   void install_fresh_detector() {
-    auto detector = dart::collision::BulletCollisionDetector::create();
+    if (heightmap) {
+      heightmap->getHeightFieldModifiable() = heightmap_rows;
+    }
+    auto detector = SplitAlikeBulletDetector::create();
     if (!detector) {
       throw std::runtime_error("DART returned a null BulletCollisionDetector");
     }
-    world->getConstraintSolver()->setCollisionDetector(detector);
+    if (heightmap) {
+      QuietStdout quiet;
+      world->getConstraintSolver()->setCollisionDetector(detector);
+    } else {
+      world->getConstraintSolver()->setCollisionDetector(detector);
+    }
+    if (heightmap && detector->fields_split() != 1) {
+      throw std::runtime_error("DART's Bullet detector built " +
+                               std::to_string(detector->fields_split()) +
+                               " height fields, expected 1");
+    }
+  }
+
+  // Gives the ground body its one shape, with the ground's contact settings.
+  // The current collision group holds objects that point at the old shape's
+  // node; they are dropped first, while that node still exists (the group
+  // would otherwise read the freed node when it lets go of them). The next
+  // set_state builds a new group with the new shape.
+  dart::dynamics::ShapeNode* attach_ground_shape(
+      const std::shared_ptr<dart::dynamics::Shape>& shape) {
+    if (world) {
+      if (auto group = world->getConstraintSolver()->getCollisionGroup()) {
+        group->removeShapeFramesOf(ground.get());
+      }
+    }
+    ground_body->removeAllShapeNodes();
+    auto* node = ground_body->createShapeNodeWith<dart::dynamics::CollisionAspect,
+                                                   dart::dynamics::DynamicsAspect>(shape);
+    require_ptr(node, "ground ShapeNode");
+    node->getDynamicsAspect()->setFrictionCoeff(friction);
+    node->getDynamicsAspect()->setRestitutionCoeff(restitution);
+    return node;
+  }
+
+  // The flat ground: a box whose top face is the plane z = ground_height.
+  void attach_ground_box() {
+    const double half = ground_half_extent;
+    attach_ground_shape(std::make_shared<dart::dynamics::BoxShape>(
+        Eigen::Vector3d(2.0 * half, 2.0 * half, 1.0)));
+    Eigen::Isometry3d ground_tf = Eigen::Isometry3d::Identity();
+    ground_tf.translation().z() = ground_height - 0.5;  // top face at ground_height
+    ground_joint->setTransformFromParentBodyNode(ground_tf);
+    heightmap.reset();
   }
 };
 
@@ -351,17 +507,13 @@ std::unique_ptr<Sim> new_sim(rust::Slice<const BodyDesc> bodies,
   impl->ground = Skeleton::create("ground");
   require_ptr(impl->ground.get(), "ground Skeleton");
   auto ground_pair = impl->ground->createJointAndBodyNodePair<WeldJoint>();
-  require_ptr(ground_pair.second, "ground BodyNode");
-  const double half = desc.ground_half_extent;
-  ShapeNode* ground_shape =
-      ground_pair.second->createShapeNodeWith<CollisionAspect, DynamicsAspect>(
-          std::make_shared<BoxShape>(Eigen::Vector3d(2.0 * half, 2.0 * half, 1.0)));
-  require_ptr(ground_shape, "ground ShapeNode");
-  ground_shape->getDynamicsAspect()->setFrictionCoeff(desc.friction);
-  ground_shape->getDynamicsAspect()->setRestitutionCoeff(desc.restitution);
-  Eigen::Isometry3d ground_tf = Eigen::Isometry3d::Identity();
-  ground_tf.translation().z() = desc.ground_height - 0.5;  // top face at ground_height
-  ground_pair.first->setTransformFromParentBodyNode(ground_tf);
+  impl->ground_joint = require_ptr(ground_pair.first, "ground WeldJoint");
+  impl->ground_body = require_ptr(ground_pair.second, "ground BodyNode");
+  impl->friction = desc.friction;
+  impl->restitution = desc.restitution;
+  impl->ground_height = desc.ground_height;
+  impl->ground_half_extent = desc.ground_half_extent;
+  impl->attach_ground_box();
   impl->ground->setMobile(false);
 
   impl->world = dart::simulation::World::create("hyq");
@@ -443,6 +595,40 @@ void Sim::set_state(const BaseState& base, rust::Slice<const double> q,
   s.world->getConstraintSolver()->clearLastCollisionResult();
   s.install_fresh_detector();
 }
+
+void Sim::set_ground_heights(rust::Slice<const float> heights, std::size_t width,
+                             std::size_t depth, std::array<double, 2> spacing,
+                             const Pose& pose) {
+  Impl& s = *impl_;
+  require(width >= 2 && depth >= 2 && heights.size() == width * depth,
+          "ground heights: expected width x depth >= 2 x 2 values, got " +
+              std::to_string(heights.size()) + " for " + std::to_string(width) + " x " +
+              std::to_string(depth));
+  require(std::isfinite(spacing[0]) && spacing[0] > 0.0 && std::isfinite(spacing[1]) &&
+              spacing[1] > 0.0,
+          "ground heights: the spacing must be finite and > 0");
+  const Eigen::Isometry3d tf = to_isometry(pose, "ground heights pose");
+  dart::dynamics::HeightmapShapef::HeightField rows(static_cast<Eigen::Index>(depth),
+                                                    static_cast<Eigen::Index>(width));
+  for (std::size_t r = 0; r < depth; ++r) {
+    for (std::size_t c = 0; c < width; ++c) {
+      const float h = heights[r * width + c];
+      require(std::isfinite(h), "ground heights: a height is not finite");
+      rows(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = h;
+    }
+  }
+  auto field = std::make_shared<dart::dynamics::HeightmapShapef>();
+  field->setHeightField(rows);
+  field->setScale(Eigen::Vector3f(static_cast<float>(spacing[0]),
+                                  static_cast<float>(spacing[1]), 1.0f));
+  auto* node = s.attach_ground_shape(field);
+  node->setRelativeTransform(tf);
+  s.ground_joint->setTransformFromParentBodyNode(Eigen::Isometry3d::Identity());
+  s.heightmap = field;
+  s.heightmap_rows = rows;
+}
+
+void Sim::set_ground_flat() { impl_->attach_ground_box(); }
 
 void Sim::set_joint_torques(rust::Slice<const double> tau) {
   Impl& s = *impl_;
@@ -532,6 +718,8 @@ double Sim::total_mass() const { return impl_->robot->getMass(); }
 void Sim::set_friction(double friction) {
   require(friction >= 0.0 && std::isfinite(friction),
           "set_friction: friction must be finite and >= 0, got " + std::to_string(friction));
+  // A ground shape given later (set_ground_heights, set_ground_flat) gets it too.
+  impl_->friction = friction;
   // Every shape of every skeleton, the ground's whatever its shape: DART takes
   // the smaller coefficient of a contact's two shapes.
   for (const auto& skeleton : {impl_->robot, impl_->ground}) {

@@ -81,6 +81,28 @@ impl Sim {
         Ok(())
     }
 
+    /// Replaces the ground with a height field of `depth` rows of `width` heights (`heights`,
+    /// row after row), `spacing` apart along the field's x and y, at `pose`; effective from the
+    /// next [`Self::set_state`].
+    pub(crate) fn set_ground_heights(
+        &mut self,
+        heights: &[f32],
+        width: usize,
+        depth: usize,
+        spacing: [f64; 2],
+        pose: &Pose,
+    ) -> Result<(), DartError> {
+        self.pin()
+            .set_ground_heights(heights, width, depth, spacing, pose)?;
+        Ok(())
+    }
+
+    /// Puts back the flat ground box; effective from the next [`Self::set_state`].
+    pub(crate) fn set_ground_flat(&mut self) -> Result<(), DartError> {
+        self.pin().set_ground_flat()?;
+        Ok(())
+    }
+
     /// Stores the joint torques applied during the next step only.
     pub(crate) fn set_joint_torques(&mut self, tau: &[f64]) -> Result<(), DartError> {
         self.pin().set_joint_torques(tau)?;

@@ -4,6 +4,10 @@
 
 hyq_physics::conformance_tests!(hyq_dart::DartBackend);
 
+mod terrain {
+    hyq_physics::terrain_conformance_tests!(hyq_dart::DartBackend);
+}
+
 mod anymal_c {
     use hyq_physics::conformance::fixtures::Robot;
 

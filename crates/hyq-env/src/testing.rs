@@ -7,7 +7,7 @@
 //! The model: each joint is a unit inertia driven by its torque and damped by the joint damping
 //! (the model's, or the last dynamics given), integrated with semi-implicit Euler and stopped at its limits; the trunk moves with
 //! its velocity (no gravity, no ground: the ground friction and the masses it is given are only
-//! reported back), and a push adds to that velocity. After each sub-step every foot reads as touching the
+//! reported back; a terrain it is given is remembered and ignored), and a push adds to that velocity. After each sub-step every foot reads as touching the
 //! ground and the trunk as not touching ([`ScriptedOptions::feet_touch`]), then the script, if
 //! any, runs.
 //!
@@ -19,7 +19,7 @@ use std::sync::Arc;
 use hyq_physics::na::{Isometry3, UnitQuaternion, Vector3};
 use hyq_physics::{
     Backend, Dynamics, MassProperties, PhysicsError, PhysicsParams, RobotModel, RobotState,
-    TrunkState,
+    Terrain, TrunkState,
 };
 use serde::{Deserialize, Serialize};
 
@@ -78,6 +78,8 @@ pub struct ScriptedBackend {
     substep: u64,
     script: Option<Script>,
     dynamics: Dynamics,
+    /// The terrain last given; the toy model has no ground, so it changes nothing.
+    terrain: Terrain,
 }
 
 impl fmt::Debug for ScriptedBackend {
@@ -149,6 +151,7 @@ impl Backend for ScriptedBackend {
             substep: 0,
             script: None,
             dynamics: Dynamics::nominal(&model, params),
+            terrain: Terrain::Flat,
             model,
         })
     }
@@ -247,5 +250,17 @@ impl Backend for ScriptedBackend {
 
     fn apply_trunk_velocity_change(&mut self, dv: &Vector3<f64>) {
         self.trunk.linvel += dv;
+    }
+
+    fn terrain(&self) -> &Terrain {
+        &self.terrain
+    }
+
+    fn apply_terrain(&mut self, terrain: &Terrain) -> Result<(), PhysicsError> {
+        self.terrain = terrain.clone();
+        self.torques.fill(0.0);
+        self.contacts.fill(false);
+        self.substep = 0;
+        Ok(())
     }
 }

@@ -21,7 +21,7 @@ use hyq_env::{Env, EnvConfig, Policy, RandomPolicy, ResetOptions};
 use hyq_physics::na::{Isometry3, Vector3};
 use hyq_physics::{
     Backend, Dynamics, MassProperties, PhysicsError, PhysicsParams, RobotModel, RobotState,
-    TrunkState,
+    Terrain, TrunkState,
 };
 use hyq_rapier::RapierBackend;
 
@@ -102,6 +102,12 @@ impl Backend for Tallied {
     }
     fn apply_trunk_velocity_change(&mut self, dv: &Vector3<f64>) {
         self.inner.apply_trunk_velocity_change(dv);
+    }
+    fn terrain(&self) -> &Terrain {
+        self.inner.terrain()
+    }
+    fn apply_terrain(&mut self, terrain: &Terrain) -> Result<(), PhysicsError> {
+        self.inner.apply_terrain(terrain)
     }
 }
 

@@ -21,7 +21,7 @@ use hyq_physics::mjcf::{Actuators, Mjcf, MjcfOptions, to_mjcf};
 use hyq_physics::na::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3};
 use hyq_physics::{
     Backend, Dynamics, MassProperties, PhysicsError, PhysicsParams, RobotModel, RobotState,
-    TrunkState,
+    Terrain, TrunkState,
 };
 
 use crate::error::MujocoError;
@@ -41,13 +41,23 @@ impl From<MujocoError> for PhysicsError {
     }
 }
 
-/// The MJCF the backend compiles for `model` under `params` and `options` (no actuators: the
-/// backend applies the shared actuator's torques itself). Useful to inspect, or to load the
-/// same world in MuJoCo from elsewhere.
+/// The MJCF the backend compiles for `model` under `params` and `options` on flat ground (no
+/// actuators: the backend applies the shared actuator's torques itself). Useful to inspect, or
+/// to load the same world in MuJoCo from elsewhere.
 pub fn world_mjcf(
     model: &RobotModel,
     params: &PhysicsParams,
     options: &MujocoOptions,
+) -> Result<Mjcf, PhysicsError> {
+    world_mjcf_on(model, params, options, &Terrain::Flat)
+}
+
+/// [`world_mjcf`] on `terrain`: the MJCF the backend compiles once given that ground.
+pub fn world_mjcf_on(
+    model: &RobotModel,
+    params: &PhysicsParams,
+    options: &MujocoOptions,
+    terrain: &Terrain,
 ) -> Result<Mjcf, PhysicsError> {
     params.validate()?;
     options.validate()?;
@@ -55,6 +65,7 @@ pub fn world_mjcf(
         actuators: Actuators::None,
         solver: options.clone(),
         autoreset: false,
+        terrain: terrain.clone(),
         ..MjcfOptions::from_params(params)
     };
     to_mjcf(model, &mjcf_options).map_err(|e| backend_error(e.to_string()))
@@ -88,7 +99,7 @@ fn isometry(p: &[f64; 7]) -> Isometry3<f64> {
     )
 }
 
-/// One HyQ (or any [`RobotModel`]) on flat ground in its own MuJoCo world.
+/// One HyQ (or any [`RobotModel`]) on flat ground or a height field in its own MuJoCo world.
 ///
 /// `Send` (worlds can move between threads, and several worlds can step on several threads at
 /// once) but not `Sync`.
@@ -106,9 +117,59 @@ pub struct MujocoBackend {
     /// Set when MuJoCo refused dynamics (which were validated, so unexpectedly): the world
     /// cannot be stepped until dynamics are given again.
     refused_dynamics: Option<String>,
+    /// The dynamics last given ([`Backend::apply_dynamics`]), which a new ground keeps;
+    /// `None` while the world has the model's.
+    dynamics: Option<Dynamics>,
+    /// The solver settings the world was compiled with.
+    options: MujocoOptions,
+    /// The ground the world holds.
+    terrain: Terrain,
 }
 
 impl MujocoBackend {
+    /// Gives the compiled world the dynamics `dynamics` (see [`Backend::apply_dynamics`]).
+    fn give_dynamics(&mut self, dynamics: &Dynamics) {
+        // A body whose values are the model's own gets MuJoCo's compiled values back bit for
+        // bit (MuJoCo diagonalised the tensor when it compiled the model).
+        let nominal: Vec<bool> = dynamics
+            .bodies
+            .iter()
+            .zip(self.model.links())
+            .map(|(b, l)| b.mass == l.mass && b.com == l.com && b.inertia == l.inertia)
+            .collect();
+        let bodies: Vec<[f64; 10]> = dynamics
+            .bodies
+            .iter()
+            .map(|b| {
+                let i = b.inertia;
+                [
+                    b.mass,
+                    b.com.x,
+                    b.com.y,
+                    b.com.z,
+                    i[(0, 0)],
+                    i[(1, 1)],
+                    i[(2, 2)],
+                    i[(0, 1)],
+                    i[(0, 2)],
+                    i[(1, 2)],
+                ]
+            })
+            .collect();
+        self.refused_dynamics = self
+            .world
+            .set_dynamics(
+                dynamics.ground_friction,
+                &nominal,
+                &bodies,
+                &dynamics.joint_damping,
+            )
+            .err()
+            // The dynamics were validated, so MuJoCo refusing them is unexpected; the trait
+            // gives this method no error channel, so the next step reports it.
+            .map(|e| format!("MuJoCo refused the dynamics: {e}"));
+    }
+
     /// Contacts in MuJoCo's current list whose shapes touch or penetrate the ground (all robot
     /// shapes, tracked or not).
     pub fn num_touching(&self) -> usize {
@@ -140,6 +201,9 @@ impl Backend for MujocoBackend {
             params: params.clone(),
             blocked: None,
             refused_dynamics: None,
+            dynamics: None,
+            options: options.clone(),
+            terrain: Terrain::Flat,
             model,
         };
         let spawn = backend.model.spawn_state();
@@ -252,45 +316,8 @@ impl Backend for MujocoBackend {
     }
 
     fn apply_dynamics(&mut self, dynamics: &Dynamics) {
-        // A body whose values are the model's own gets MuJoCo's compiled values back bit for
-        // bit (MuJoCo diagonalised the tensor when it compiled the model).
-        let nominal: Vec<bool> = dynamics
-            .bodies
-            .iter()
-            .zip(self.model.links())
-            .map(|(b, l)| b.mass == l.mass && b.com == l.com && b.inertia == l.inertia)
-            .collect();
-        let bodies: Vec<[f64; 10]> = dynamics
-            .bodies
-            .iter()
-            .map(|b| {
-                let i = b.inertia;
-                [
-                    b.mass,
-                    b.com.x,
-                    b.com.y,
-                    b.com.z,
-                    i[(0, 0)],
-                    i[(1, 1)],
-                    i[(2, 2)],
-                    i[(0, 1)],
-                    i[(0, 2)],
-                    i[(1, 2)],
-                ]
-            })
-            .collect();
-        self.refused_dynamics = self
-            .world
-            .set_dynamics(
-                dynamics.ground_friction,
-                &nominal,
-                &bodies,
-                &dynamics.joint_damping,
-            )
-            .err()
-            // The dynamics were validated, so MuJoCo refusing them is unexpected; the trait
-            // gives this method no error channel, so the next step reports it.
-            .map(|e| format!("MuJoCo refused the dynamics: {e}"));
+        self.give_dynamics(dynamics);
+        self.dynamics = Some(dynamics.clone());
     }
 
     fn body_mass_properties(&self, link: usize) -> MassProperties {
@@ -308,6 +335,28 @@ impl Backend for MujocoBackend {
         if let Err(e) = self.world.add_root_velocity(&[dv.x, dv.y, dv.z]) {
             // The change was validated (finite); see `apply_state`.
             self.blocked = Some(format!("the trunk push failed: {e}"));
+        }
+    }
+
+    fn terrain(&self) -> &Terrain {
+        &self.terrain
+    }
+
+    fn apply_terrain(&mut self, terrain: &Terrain) -> Result<(), PhysicsError> {
+        // MuJoCo's height field is part of the compiled model: the world is compiled anew
+        // from the MJCF on the new ground, given the dynamics it had, and the robot put back
+        // where it was.
+        let state = self.state();
+        let mjcf = world_mjcf_on(&self.model, &self.params, &self.options, terrain)?;
+        self.world = World::new(&mjcf.xml, &layout(&self.model, &mjcf))?;
+        self.terrain = terrain.clone();
+        if let Some(d) = self.dynamics.clone() {
+            self.give_dynamics(&d);
+        }
+        self.apply_state(&state);
+        match self.blocked.as_ref().or(self.refused_dynamics.as_ref()) {
+            Some(reason) => Err(backend_error(reason.clone())),
+            None => Ok(()),
         }
     }
 }

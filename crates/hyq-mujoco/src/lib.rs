@@ -17,7 +17,7 @@ mod error;
 mod options;
 mod world;
 
-pub use backend::{MujocoBackend, world_mjcf};
+pub use backend::{MujocoBackend, world_mjcf, world_mjcf_on};
 pub use error::MujocoError;
 pub use options::MujocoOptions;
 pub use world::{MUJOCO_VERSION, library_path};

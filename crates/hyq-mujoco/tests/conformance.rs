@@ -3,6 +3,10 @@
 
 hyq_physics::conformance_tests!(hyq_mujoco::MujocoBackend);
 
+mod terrain {
+    hyq_physics::terrain_conformance_tests!(hyq_mujoco::MujocoBackend);
+}
+
 mod anymal_c {
     use hyq_physics::conformance::fixtures::Robot;
 

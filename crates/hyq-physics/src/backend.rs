@@ -1,8 +1,8 @@
 //! The physics seam: the [`Backend`] trait every simulator implements, and the plain data that
 //! crosses it ([`PhysicsParams`], [`RobotState`], [`TrunkState`]).
 //!
-//! A backend simulates one robot ([`RobotModel`]) on flat ground at z = 0 (world frame: x
-//! forward, y left, z up). It advances one physics sub-step at a time under joint torques the
+//! A backend simulates one robot ([`RobotModel`]) on the ground (world frame: x forward, y left,
+//! z up): flat at z = 0 as built, or a height field ([`Terrain`]) once given one. It advances one physics sub-step at a time under joint torques the
 //! caller computes (the shared actuator, [`crate::actuator`]), and reports joint state, trunk
 //! state and which tracked bodies (feet, trunk) touched the ground during the last sub-step.
 //!
@@ -21,6 +21,7 @@ use crate::error::PhysicsError;
 use crate::inertia::MassProperties;
 use crate::model::RobotModel;
 use crate::randomize::Dynamics;
+use crate::terrain::Terrain;
 
 /// Engine-independent physics settings (`[physics]` in an environment's TOML).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -178,7 +179,7 @@ impl RobotState {
     }
 }
 
-/// A physics engine simulating one robot on flat ground.
+/// A physics engine simulating one robot on the ground: flat as built, or a height field.
 ///
 /// Required: the small core below. Provided: validation ([`Backend::set_state`],
 /// [`Backend::set_joint_torques`]) and whole-state reads. A backend:
@@ -339,6 +340,34 @@ pub trait Backend: Sized + Send + 'static {
         }
         self.apply_trunk_velocity_change(dv);
         Ok(())
+    }
+
+    // -------------------------------------------------------------------------------------
+    // The ground under the robot: flat as built, or a height field.
+    // -------------------------------------------------------------------------------------
+
+    /// The ground this world simulates: [`Terrain::Flat`] (the plane z = 0) after
+    /// [`Backend::build`], else what [`Backend::set_terrain`] last gave.
+    fn terrain(&self) -> &Terrain;
+
+    /// Replaces the ground with `terrain` (different from the current one), keeping the
+    /// robot's state and the world's dynamics: afterwards the world is as
+    /// [`Backend::apply_state`] leaves it with the state it held (no contact, warm start or
+    /// pending torque survives), and the new ground has the ground friction the world had (the
+    /// last [`Backend::set_dynamics`]'s, else [`PhysicsParams::ground_friction`]), the bodies
+    /// the mass properties and damping they had. A height field is one field built from the
+    /// whole grid, triangulated as [`crate::HeightGrid`] documents.
+    ///
+    /// Callers use [`Backend::set_terrain`].
+    fn apply_terrain(&mut self, terrain: &Terrain) -> Result<(), PhysicsError>;
+
+    /// Replaces the ground with `terrain` (see [`Backend::apply_terrain`]); giving the ground
+    /// the world already has changes nothing, so a flat world stays exactly as built.
+    fn set_terrain(&mut self, terrain: &Terrain) -> Result<(), PhysicsError> {
+        if self.terrain().same_as(terrain) {
+            return Ok(());
+        }
+        self.apply_terrain(terrain)
     }
 
     /// Validates `state` against the model and puts the world into it (see

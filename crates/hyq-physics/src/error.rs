@@ -201,6 +201,9 @@ pub enum PhysicsError {
     /// The robot model could not be built.
     #[error(transparent)]
     Model(#[from] ModelError),
+    /// A terrain could not be made or used.
+    #[error(transparent)]
+    Terrain(#[from] crate::terrain::TerrainError),
 }
 
 /// `message` on one line, as every front prints errors: a parser's source excerpt (the lines it

@@ -15,6 +15,9 @@
 //!   trunk with [`Backend::push_trunk`].
 //! - [`mjcf`]: the robot as MuJoCo's XML model format, pure text generation (no MuJoCo
 //!   needed), for the MuJoCo backend and for MuJoCo-from-Python benchmarks alike.
+//! - [`terrain`]: the ground: flat, or a height field from one grid of heights (generated
+//!   rough ground, slopes and stairs, or a user's `.npy` or PNG file), the surface every backend
+//!   builds from it, and how far a shape is above it.
 //! - [`urdf_export`]: the loaded robot written back as URDF (fixed links lumped, primitive
 //!   shapes only), for engines and tools outside the project that read URDF.
 //! - [`bundled`]: the robots shipped in `assets/` (HyQ, the default, and ANYmal C), usable from
@@ -37,6 +40,7 @@ pub mod mjcf;
 pub mod model;
 pub mod profile;
 pub mod randomize;
+pub mod terrain;
 pub mod urdf_export;
 
 pub use actuator::{Actuator, PdScratch, apply_pd, apply_pd_to_valid_targets, pd_substep};
@@ -48,6 +52,8 @@ pub use model::{Collision, Joint, Link, RobotModel, Shape, TrackedBody};
 pub use model::{Gait, GaitLeg};
 pub use profile::Profile;
 pub use randomize::{ActuatorScales, Dynamics, DynamicsDraw, TargetDelay};
+
+pub use terrain::{HeightGrid, Terrain, TerrainError};
 
 /// The linear-algebra crate of this API (`nalgebra`), re-exported so that callers use the
 /// same version.

@@ -6,7 +6,8 @@
 //! every other backend simulates: the same bodies (fixed links already lumped), masses, centres
 //! of mass, full inertia tensors, joint frames, axes, position limits and damping, the same
 //! primitive collision shapes, one Coulomb friction coefficient, robot shapes that touch only
-//! the ground (no self-collision) and an infinite ground plane at z = 0.
+//! the ground (no self-collision) and the ground: an infinite plane at z = 0, or one height
+//! field ([`MjcfOptions::terrain`]).
 //!
 //! What the generator writes, element by element:
 //! - `<compiler>`: radians; inertias taken only from the `<inertial>` elements (never from the
@@ -19,7 +20,12 @@
 //!   distance, so MuJoCo lists a contact up to that distance apart but pushes only on touch
 //!   (MuJoCo 4.0's meaning of the two; MuJoCo 3 read them differently and would let shapes sink
 //!   by `gap` before pushing: the text is written for MuJoCo 4.0);
-//! - `<worldbody>`: the ground plane, then the trunk with a `<freejoint/>` at its spawn pose and
+//! - `<asset>`, over a height field only: the `<hfield>` `terrain`, the grid's heights written
+//!   inline (`elevation`, rows from the far edge, highest y, to the near one; each scaled to
+//!   [0, 1] between the grid's lowest and highest height, which MuJoCo requires), `size` its
+//!   half sides, its height range and a 1 m base below its lowest point;
+//! - `<worldbody>`: the ground (a plane, or a geom of type `hfield` at the grid's centre and
+//!   lowest height, so that MuJoCo's prisms span the grid's heights), then the trunk with a `<freejoint/>` at its spawn pose and
 //!   the rest of the tree below it, each body at its joint frame with one `hinge` joint (`axis`,
 //!   `range`, `damping`), an `<inertial>` (`pos`, `mass`, `fullinertia`) and its shapes (`box`,
 //!   `sphere`, `capsule`, `cylinder`: MuJoCo's sizes are half-lengths along the shape's z, as in
@@ -58,6 +64,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::backend::PhysicsParams;
 use crate::model::{RobotModel, Shape};
+use crate::terrain::{HeightGrid, Terrain};
 
 /// MuJoCo's numerical integrator (`<option integrator>`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -274,6 +281,8 @@ pub struct MjcfOptions {
     /// Let MuJoCo reset the state by itself when it becomes non-finite or huge (its
     /// `autoreset` flag). A simulator that must see and report divergence turns it off.
     pub autoreset: bool,
+    /// The ground: the plane z = 0, or a height field written as an `<hfield>`.
+    pub terrain: Terrain,
 }
 
 impl MjcfOptions {
@@ -289,6 +298,7 @@ impl MjcfOptions {
             actuators: Actuators::None,
             solver: MujocoOptions::mujoco_defaults(),
             autoreset: false,
+            terrain: Terrain::Flat,
         }
     }
 }
@@ -521,12 +531,29 @@ pub fn to_mjcf(model: &RobotModel, options: &MjcfOptions) -> Result<Mjcf, MjcfEr
     let mut out = names(model, options.actuators);
     let mut x = String::with_capacity(16 * 1024);
     write_header(&mut x, model, options);
+    if let Terrain::Field(grid) = &options.terrain {
+        write_hfield(&mut x, grid);
+    }
     x.push_str("  <worldbody>\n");
-    let _ = writeln!(
-        x,
-        "    <geom name=\"{}\" class=\"ground\" type=\"plane\" size=\"0 0 1\"/>",
-        attr(&out.ground)
-    );
+    match &options.terrain {
+        Terrain::Flat => {
+            let _ = writeln!(
+                x,
+                "    <geom name=\"{}\" class=\"ground\" type=\"plane\" size=\"0 0 1\"/>",
+                attr(&out.ground)
+            );
+        }
+        Terrain::Field(grid) => {
+            let [cx, cy] = grid.center();
+            let _ = writeln!(
+                x,
+                "    <geom name=\"{}\" class=\"ground\" type=\"hfield\" hfield=\"{HFIELD}\" \
+                 pos=\"{}\"/>",
+                attr(&out.ground),
+                nums(&[cx, cy, grid.min_height()])
+            );
+        }
+    }
 
     let children = children_of(model)?;
     write_bodies(&mut x, model, &out, &children)?;
@@ -538,6 +565,43 @@ pub fn to_mjcf(model: &RobotModel, options: &MjcfOptions) -> Result<Mjcf, MjcfEr
 }
 
 // Writing to a String cannot fail: every `write!` result below is ignored for that reason.
+
+/// The height field's name in the MJCF.
+pub const HFIELD: &str = "terrain";
+
+/// The depth (m) of MuJoCo's height field below the grid's lowest point (its `base`): its
+/// prisms reach that far down, so a shape that sinks less than this is pushed back up.
+const HFIELD_BASE_M: f64 = 1.0;
+
+/// The `<asset>` holding the height field of `grid` (see the module documentation).
+fn write_hfield(x: &mut String, grid: &HeightGrid) {
+    let (low, high) = (grid.min_height(), grid.max_height());
+    let range = high - low;
+    // MuJoCo needs a positive height range even for a level grid, whose values are all 0.
+    let elevation = if range > 0.0 { range } else { 1.0 };
+    let [sx, sy] = grid.size();
+    let _ = writeln!(
+        x,
+        "  <asset>\n    <hfield name=\"{HFIELD}\" nrow=\"{}\" ncol=\"{}\" size=\"{}\"",
+        grid.rows(),
+        grid.columns(),
+        nums(&[0.5 * sx, 0.5 * sy, elevation, HFIELD_BASE_M])
+    );
+    x.push_str("      elevation=\"");
+    // MuJoCo keeps heights in single precision: each is written as the f32 it will hold.
+    for k in (0..grid.rows()).rev() {
+        x.push_str("\n       ");
+        for c in 0..grid.columns() {
+            let scaled = if range > 0.0 {
+                (grid.height(c, k) - low) / range
+            } else {
+                0.0
+            };
+            let _ = write!(x, " {}", scaled as f32);
+        }
+    }
+    x.push_str("\"/>\n  </asset>\n");
+}
 
 /// The document's head: the compiler settings, the solver options and the defaults.
 fn write_header(x: &mut String, model: &RobotModel, options: &MjcfOptions) {
@@ -1048,6 +1112,7 @@ mod tests {
                 limit_solimp: [0.95, 0.99, 0.001, 0.5, 2.0],
             },
             autoreset: true,
+            terrain: Terrain::Flat,
         };
         let m = to_mjcf(&bundled::hyq(), &options).unwrap();
         let option = m
@@ -1174,5 +1239,45 @@ mod tests {
                 assert_eq!(Some(&m.geoms[t.link][s]), link.collisions[s].name.as_ref());
             }
         }
+    }
+
+    #[test]
+    fn a_height_field_is_written_inline_with_its_rows_from_the_far_edge() {
+        // 3 columns (x) by 2 rows (y), heights 0.1 .. 0.6 m over 2 × 1 m centred on (1, -1).
+        let heights = vec![0.1, 0.2, 0.3, 0.4, 0.5, 0.6];
+        let grid = HeightGrid::new([1.0, -1.0], [2.0, 1.0], 3, 2, heights).unwrap();
+        let options = MjcfOptions {
+            terrain: Terrain::field(grid),
+            ..MjcfOptions::default()
+        };
+        let m = to_mjcf(&bundled::hyq(), &options).unwrap();
+        let hfield = m.xml.lines().find(|l| l.contains("<hfield ")).unwrap();
+        assert_eq!(attr_of(hfield, "nrow"), Some("2"));
+        assert_eq!(attr_of(hfield, "ncol"), Some("3"));
+        // Half sides, height range (0.5 m), base.
+        let size = floats(attr_of(hfield, "size").unwrap());
+        assert_eq!(size.len(), 4);
+        assert_eq!((size[0], size[1], size[3]), (1.0, 0.5, 1.0));
+        assert!((size[2] - 0.5).abs() < 1e-15);
+        let start = m.xml.find("elevation=\"").unwrap() + "elevation=\"".len();
+        let end = start + m.xml[start..].find('"').unwrap();
+        let values = floats(&m.xml[start..end]);
+        // The far row (y = -0.5: 0.4, 0.5, 0.6) first, each scaled to [0, 1].
+        let expected = [0.6, 0.8, 1.0, 0.0, 0.2, 0.4];
+        assert_eq!(values.len(), 6);
+        for (v, e) in values.iter().zip(expected) {
+            assert!((v - e).abs() < 1e-7, "{values:?}");
+        }
+        let ground = m
+            .xml
+            .lines()
+            .find(|l| l.contains("name=\"ground\""))
+            .unwrap();
+        assert_eq!(attr_of(ground, "type"), Some("hfield"));
+        assert_eq!(attr_of(ground, "hfield"), Some(HFIELD));
+        assert_eq!(floats(attr_of(ground, "pos").unwrap()), [1.0, -1.0, 0.1]);
+        // Flat ground keeps the plane and writes no asset.
+        let flat = to_mjcf(&bundled::hyq(), &MjcfOptions::default()).unwrap();
+        assert!(!flat.xml.contains("<asset>") && flat.xml.contains("type=\"plane\""));
     }
 }

@@ -4,7 +4,8 @@
 //! fixes rapier's handles, so it is part of the backend's determinism.
 
 use hyq_physics::na::{Isometry3, Translation3, UnitQuaternion, Vector3};
-use hyq_physics::{Backend, PhysicsError, PhysicsParams, RobotModel, Shape};
+use hyq_physics::{Backend, HeightGrid, PhysicsError, PhysicsParams, RobotModel, Shape, Terrain};
+use rapier3d::parry::shape::HeightFieldFlags;
 use rapier3d::prelude::*;
 
 use crate::RapierOptions;
@@ -41,6 +42,37 @@ impl Sets {
     }
 }
 
+/// A world as built for a model on a terrain: the sets, and where the ground, the bodies and
+/// the joints are in them.
+pub(crate) struct Built {
+    pub(crate) sets: Sets,
+    pub(crate) ground: ColliderHandle,
+    pub(crate) bodies: Bodies,
+    pub(crate) joint_axes: Vec<Vector>,
+    pub(crate) dofs: Dofs,
+}
+
+/// Builds the world phase by phase (ground, bodies with colliders, multibody joints, DoF
+/// lookup), in the fixed order that fixes rapier's handles.
+pub(crate) fn build_world(
+    model: &RobotModel,
+    friction: Real,
+    terrain: &Terrain,
+) -> Result<Built, PhysicsError> {
+    let mut sets = Sets::new();
+    let ground = add_ground(&mut sets, friction, terrain);
+    let bodies = add_bodies(&mut sets, model, friction)?;
+    let joint_axes = add_joints(&mut sets, model, &bodies.handles)?;
+    let dofs = locate_dofs(&mut sets, model, &bodies.handles)?;
+    Ok(Built {
+        sets,
+        ground,
+        bodies,
+        joint_axes,
+        dofs,
+    })
+}
+
 /// Robot shapes are in group 1 and meet only group 2, the ground: no self-collision.
 fn robot_groups() -> InteractionGroups {
     InteractionGroups::new(Group::GROUP_1, Group::GROUP_2, InteractionTestMode::And)
@@ -59,17 +91,53 @@ pub(crate) fn backend_error(message: String) -> PhysicsError {
     }
 }
 
-/// The ground: a fixed half-space at z = 0 with Coulomb friction and no restitution.
-pub(crate) fn add_ground(world: &mut Sets, friction: Real) -> ColliderHandle {
+/// The ground: a fixed collider with Coulomb friction and no restitution, the half-space z ≤ 0
+/// for flat terrain, else one height field of the whole grid ([`height_field`]).
+pub(crate) fn add_ground(world: &mut Sets, friction: Real, terrain: &Terrain) -> ColliderHandle {
     let ground_body = world.bodies.insert(RigidBodyBuilder::fixed());
+    let builder = match terrain {
+        Terrain::Flat => ColliderBuilder::halfspace(rapier3d::na::Unit::new_unchecked(Vector::Z)),
+        Terrain::Field(grid) => height_field(grid),
+    };
     world.colliders.insert_with_parent(
-        ColliderBuilder::halfspace(rapier3d::na::Unit::new_unchecked(Vector::Z))
+        builder
             .friction(friction)
             .restitution(0.0)
             .collision_groups(ground_groups()),
         ground_body,
         &mut world.bodies,
     )
+}
+
+/// One rapier height field of the whole grid, with internal-edge fixing on.
+///
+/// rapier's field lies in its local x–z plane with heights along +y: row `i` of its array runs
+/// along local z, column `j` along local x, each from −½ to +½ of the scale. A quarter turn
+/// about +x takes local y (height) onto world z and local z onto world −y, so local row `i` is
+/// the grid's row `rows − 1 − i`; local column `j` is the grid's column `j`. rapier splits each
+/// cell between its local corners (x₀, z₁) and (x₁, z₀), which the turn takes onto the grid's
+/// (x₀, y₀)–(x₁, y₁) diagonal, the split every backend uses.
+pub(crate) fn height_field(grid: &HeightGrid) -> ColliderBuilder {
+    let (columns, rows) = (grid.columns(), grid.rows());
+    let mut heights = Vec::with_capacity(columns * rows);
+    // Column-major: all local rows of local column 0, then of column 1, ...
+    for c in 0..columns {
+        for i in 0..rows {
+            heights.push(grid.height(c, rows - 1 - i) as Real);
+        }
+    }
+    let [sx, sy] = grid.size();
+    let [cx, cy] = grid.center();
+    let pose = Isometry3::from_parts(
+        Translation3::new(cx, cy, 0.0),
+        UnitQuaternion::from_axis_angle(&Vector3::x_axis(), std::f64::consts::FRAC_PI_2),
+    );
+    ColliderBuilder::heightfield_with_flags(
+        Array2::new(rows, columns, heights),
+        Vector::new(sx as Real, 1.0, sy as Real),
+        HeightFieldFlags::FIX_INTERNAL_EDGES,
+    )
+    .position(to_pose(&pose))
 }
 
 /// The rigid body frame of model body `i` in its link frame: the trunk's is moved to its centre

@@ -21,8 +21,11 @@
 //!   read from the multibody's generalised velocities instead.
 //! - **Damping.** The model's joint damping is the multibody's per-DoF damping (implicit in
 //!   rapier); rapier's default 0.1 on the free root's rotation is set to 0.
-//! - **Ground** is a half-space at z = 0. Robot shapes collide with it only (no self-collision),
-//!   with Coulomb friction [`PhysicsParams::ground_friction`] and no restitution. Sleeping is off.
+//! - **Ground** is a half-space at z = 0, or, once given a height field
+//!   ([`Backend::set_terrain`]), one rapier `HeightField` of the whole grid with internal-edge
+//!   fixing on (rapier lets shapes sink at the seam between two fields, so there is never more
+//!   than one). Robot shapes collide with it only (no self-collision), with Coulomb friction
+//!   [`PhysicsParams::ground_friction`] and no restitution. Sleeping is off.
 //!
 //! # Contacts
 //! A tracked body is in contact when, in the last step, one of its shapes' contacts with the
@@ -64,7 +67,7 @@ use std::sync::Arc;
 use hyq_physics::na::{Isometry3, Translation3, Vector3};
 use hyq_physics::{
     Backend, Dynamics, MassProperties, PhysicsError, PhysicsParams, RobotModel, RobotState,
-    TrunkState,
+    Terrain, TrunkState,
 };
 use rapier3d::prelude::*;
 
@@ -110,6 +113,11 @@ pub struct RapierBackend {
     /// The trunk's colliders (its collision order), which follow its centre of mass.
     trunk_colliders: Vec<ColliderHandle>,
     ground: ColliderHandle,
+    /// The ground the world holds (its collider is `ground`).
+    terrain: Terrain,
+    /// The dynamics last given ([`Backend::apply_dynamics`]), which a new ground keeps;
+    /// `None` while the world has the model's.
+    dynamics: Option<Dynamics>,
     /// The trunk's centre of mass in the trunk frame: the trunk body's offset.
     trunk_com: Vector3<f64>,
     /// Torques for the next step (profile order).
@@ -240,22 +248,7 @@ impl Backend for RapierBackend {
     ) -> Result<Self, PhysicsError> {
         params.validate()?;
         options.validate()?;
-        let friction = params.ground_friction as Real;
-        let mut world = Sets::new();
-        let ground = build::add_ground(&mut world, friction);
-        let bodies = build::add_bodies(&mut world, &model, friction)?;
-        let joint_axes = build::add_joints(&mut world, &model, &bodies.handles)?;
-        let dofs = build::locate_dofs(&mut world, &model, &bodies.handles)?;
-        let tracked_colliders = model
-            .tracked()
-            .iter()
-            .map(|t| {
-                t.shapes
-                    .iter()
-                    .map(|&s| bodies.colliders[t.link][s])
-                    .collect()
-            })
-            .collect();
+        let built = build::build_world(&model, params.ground_friction as Real, &Terrain::Flat)?;
         let gravity = Vector::new(
             params.gravity[0] as Real,
             params.gravity[1] as Real,
@@ -264,23 +257,25 @@ impl Backend for RapierBackend {
         let joints = model.joints();
         let spawn = model.spawn_state();
         let mut backend = Self {
-            pristine: world.clone(),
-            world,
+            pristine: built.sets.clone(),
+            world: built.sets,
             model: Arc::clone(&model),
             params: params.clone(),
             options: options.clone(),
             integration: build::integration_parameters(params, options),
             gravity,
             pipeline: PhysicsPipeline::new(),
-            body_torques: vec![Vector::ZERO; bodies.handles.len()],
-            bodies: bodies.handles,
-            multibody: dofs.multibody,
-            joint_links: dofs.joint_links,
-            joint_dofs: dofs.joint_dofs,
-            joint_axes,
-            tracked_colliders,
-            trunk_colliders: bodies.colliders[0].clone(),
-            ground,
+            body_torques: vec![Vector::ZERO; built.bodies.handles.len()],
+            tracked_colliders: tracked_colliders(&model, &built.bodies),
+            trunk_colliders: built.bodies.colliders[0].clone(),
+            bodies: built.bodies.handles,
+            multibody: built.dofs.multibody,
+            joint_links: built.dofs.joint_links,
+            joint_dofs: built.dofs.joint_dofs,
+            joint_axes: built.joint_axes,
+            ground: built.ground,
+            terrain: Terrain::Flat,
+            dynamics: None,
             trunk_com: model.links()[0].com,
             torques: vec![0.0; joints.len()],
             contacts: vec![false; model.tracked().len()],
@@ -445,6 +440,7 @@ impl Backend for RapierBackend {
 
     fn apply_dynamics(&mut self, dynamics: &Dynamics) {
         self.give_dynamics(dynamics);
+        self.dynamics = Some(dynamics.clone());
     }
 
     fn body_mass_properties(&self, link: usize) -> MassProperties {
@@ -466,4 +462,46 @@ impl Backend for RapierBackend {
             v[k] += dv[k] as Real;
         }
     }
+
+    fn terrain(&self) -> &Terrain {
+        &self.terrain
+    }
+
+    fn apply_terrain(&mut self, terrain: &Terrain) -> Result<(), PhysicsError> {
+        let state = self.state();
+        // The whole world is rebuilt in the order `build` uses, so every handle but the
+        // ground's shape is as it was; they are all taken from the new build regardless.
+        let built = build::build_world(&self.model, self.params.ground_friction as Real, terrain)?;
+        self.tracked_colliders = tracked_colliders(&self.model, &built.bodies);
+        self.trunk_colliders = built.bodies.colliders[0].clone();
+        self.pristine = built.sets;
+        self.ground = built.ground;
+        self.bodies = built.bodies.handles;
+        self.multibody = built.dofs.multibody;
+        self.joint_links = built.dofs.joint_links;
+        self.joint_dofs = built.dofs.joint_dofs;
+        self.joint_axes = built.joint_axes;
+        self.terrain = terrain.clone();
+        // The new world is built with the model's dynamics; any given since are given again.
+        self.trunk_com = self.model.links()[0].com;
+        if let Some(d) = self.dynamics.clone() {
+            self.give_dynamics(&d);
+        }
+        self.apply_state(&state);
+        Ok(())
+    }
+}
+
+/// The colliders of each tracked body (tracked order).
+fn tracked_colliders(model: &RobotModel, bodies: &build::Bodies) -> Vec<Vec<ColliderHandle>> {
+    model
+        .tracked()
+        .iter()
+        .map(|t| {
+            t.shapes
+                .iter()
+                .map(|&s| bodies.colliders[t.link][s])
+                .collect()
+        })
+        .collect()
 }

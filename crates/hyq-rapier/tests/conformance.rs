@@ -5,6 +5,10 @@
 
 hyq_physics::conformance_tests!(hyq_rapier::RapierBackend);
 
+mod terrain {
+    hyq_physics::terrain_conformance_tests!(hyq_rapier::RapierBackend);
+}
+
 mod anymal_c {
     use hyq_physics::conformance::fixtures::Robot;
 

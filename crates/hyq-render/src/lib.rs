@@ -4,7 +4,8 @@
 //! - [`Renderer`] draws a [`Scene`] (the robot's pose, its contacts, the goal and a text
 //!   [`Overlay`]) into a [`Frame`]: 8-bit RGB, `height × width × 3`, row-major, the exact
 //!   buffer of Gymnasium's `render_mode="rgb_array"`. A perspective [`Camera`] follows the
-//!   trunk; the ground has a 1 m grid; the trunk box, leg capsules and foot spheres are the
+//!   trunk; the ground has a 1 m grid, and a height field ([`Scene::with_terrain`]) is drawn
+//!   shaded with the grid draped over it; the trunk box, leg capsules and foot spheres are the
 //!   model's collision shapes, feet in contact turn orange and a trunk touching the ground
 //!   turns red. Everything is drawn on the CPU with tiny-skia's anti-aliased 2-D rasteriser
 //!   (this crate only projects and orders the shapes), text with a bundled font.
@@ -90,6 +91,7 @@ mod plot;
 mod records;
 mod renderer;
 mod scene;
+mod terrain;
 mod text;
 mod writer;
 

@@ -2,7 +2,8 @@
 //! (painter's algorithm) with tiny-skia's anti-aliased 2-D filler.
 //!
 //! Per frame, back to front: a sky gradient; the ground (a large square clipped to the near
-//! plane) with a 1 m grid; distance fog towards the horizon; the robot's shadows (every shape
+//! plane) with a 1 m grid, or over a height field its shaded cells around the camera's target
+//! with the grid draped over them (`terrain.rs`); distance fog towards the horizon; the robot's shadows (every shape
 //! projected straight down onto the ground, filled as one path so that overlaps do not darken
 //! twice); ground discs under feet in contact; the goal's ring and a dashed line to it; then
 //! the robot's shapes and the goal's pole, sorted by depth: boxes as their visible faces,
@@ -18,7 +19,7 @@ use std::fmt::Write as _;
 use std::sync::Arc;
 
 use hyq_physics::na::{Isometry3, Point3, Vector3};
-use hyq_physics::{RobotModel, Shape};
+use hyq_physics::{HeightGrid, RobotModel, Shape};
 use tiny_skia::{
     Color, FillRule, GradientStop, LineCap, LineJoin, LinearGradient, Paint, Path, PathBuilder,
     Pixmap, Point, RadialGradient, Rect, Shader, SpreadMode, Stroke, StrokeDash, Transform,
@@ -29,6 +30,7 @@ use crate::error::RenderError;
 use crate::frame::Frame;
 use crate::geom::{clip_polygon_near, clip_segment_near, convex_hull, push_circle_points};
 use crate::scene::{Overlay, RobotPose, Scene};
+use crate::terrain::{LIFT_M, Quad, TERRAIN_HALF_M, draped, quads};
 use crate::text::{SANS, SANS_BOLD, TextPainter, bundled};
 
 /// Image size, camera placement and ground grid.
@@ -246,6 +248,12 @@ pub struct Renderer {
     clipped: Vec<Vector3<f64>>,
     pts: Vec<[f64; 2]>,
     hull: Vec<[f64; 2]>,
+    /// The frame's height field, if its ground is one.
+    ground: Option<Arc<HeightGrid>>,
+    /// The point the frame's camera looks at.
+    target: Point3<f64>,
+    quads: Vec<Quad>,
+    line_pts: Vec<Point3<f64>>,
     text: TextPainter,
     bold: TextPainter,
     line: String,
@@ -297,6 +305,10 @@ impl Renderer {
             clipped: Vec::with_capacity(16),
             pts: Vec::with_capacity(64),
             hull: Vec::with_capacity(64),
+            ground: None,
+            target: Point3::origin(),
+            quads: Vec::new(),
+            line_pts: Vec::new(),
             text: TextPainter::new(bundled(SANS)),
             bold: TextPainter::new(bundled(SANS_BOLD)),
             line: String::with_capacity(64),
@@ -349,6 +361,9 @@ impl Renderer {
             });
         }
         self.load_scene(scene)?;
+        self.target = scene
+            .camera_target
+            .unwrap_or_else(|| Point3::from(self.poses[0].translation.vector));
         let cam = self.camera(&self.poses[0], scene.camera_target);
 
         self.draw_sky_and_ground(&cam);
@@ -375,8 +390,12 @@ impl Renderer {
         Ok(())
     }
 
-    /// Checks the scene against the model and fills `self.poses`.
+    /// Checks the scene against the model and fills `self.poses` and `self.ground`.
     fn load_scene(&mut self, scene: &Scene<'_>) -> Result<(), RenderError> {
+        self.ground = match scene.terrain {
+            Some(hyq_physics::Terrain::Field(grid)) => Some(Arc::clone(grid)),
+            _ => None,
+        };
         let tracked = self.model.tracked().len();
         if scene.contacts.len() != tracked {
             return Err(RenderError::WrongLength {
@@ -467,8 +486,44 @@ impl Renderer {
             fill_solid(&mut self.pixmap, &path, GROUND.opaque());
         }
 
-        // The grid around the ground point at the image centre (the camera looks down, so
-        // its view ray meets the ground).
+        match self.ground.clone() {
+            Some(grid) => self.draw_terrain(cam, &grid),
+            None => self.draw_flat_grid(cam),
+        }
+
+        // Fog: the ground fades into the horizon's colour between FOG_CLEAR_M and the horizon.
+        let y_clear = cam
+            .project(&ground_point_ahead(cam, FOG_CLEAR_M))
+            .map_or(h, |p| p[1] as f32);
+        let y_thick = cam
+            .project(&ground_point_ahead(cam, FOG_THICK_M))
+            .map_or(horizon, |p| p[1] as f32);
+        if horizon < h && y_clear > horizon + 1.0 {
+            let thick_at = ((y_clear - y_thick) / (y_clear - horizon)).clamp(0.05, 0.95);
+            let fog = LinearGradient::new(
+                Point::from_xy(0.0, y_clear),
+                Point::from_xy(0.0, horizon),
+                vec![
+                    GradientStop::new(0.0, SKY_HORIZON.alpha(0.0)),
+                    GradientStop::new(thick_at, SKY_HORIZON.alpha(0.8)),
+                    GradientStop::new(1.0, SKY_HORIZON.alpha(1.0)),
+                ],
+                SpreadMode::Pad,
+                Transform::identity(),
+            );
+            let top = horizon.max(0.0) - 1.0;
+            if let (Some(rect), Some(shader)) =
+                (Rect::from_xywh(0.0, top, w, y_clear.min(h) - top), fog)
+            {
+                self.pixmap
+                    .fill_rect(rect, &paint(shader), Transform::identity(), None);
+            }
+        }
+    }
+
+    /// The 1 m grid on flat ground, around the ground point at the image centre.
+    fn draw_flat_grid(&mut self, cam: &Camera) {
+        // The camera looks down, so its view ray meets the ground.
         let s = self.config.grid_spacing_m;
         let t = -cam.eye().z / cam.forward().z.min(-1e-6);
         let (cx, cy) = (
@@ -510,33 +565,62 @@ impl Renderer {
                 stroke_solid(&mut self.pixmap, &path, colour.alpha(0.8), &stroke);
             }
         }
+    }
 
-        // Fog: the ground fades into the horizon's colour between FOG_CLEAR_M and the horizon.
-        let y_clear = cam
-            .project(&ground_point_ahead(cam, FOG_CLEAR_M))
-            .map_or(h, |p| p[1] as f32);
-        let y_thick = cam
-            .project(&ground_point_ahead(cam, FOG_THICK_M))
-            .map_or(horizon, |p| p[1] as f32);
-        if horizon < h && y_clear > horizon + 1.0 {
-            let thick_at = ((y_clear - y_thick) / (y_clear - horizon)).clamp(0.05, 0.95);
-            let fog = LinearGradient::new(
-                Point::from_xy(0.0, y_clear),
-                Point::from_xy(0.0, horizon),
-                vec![
-                    GradientStop::new(0.0, SKY_HORIZON.alpha(0.0)),
-                    GradientStop::new(thick_at, SKY_HORIZON.alpha(0.8)),
-                    GradientStop::new(1.0, SKY_HORIZON.alpha(1.0)),
-                ],
-                SpreadMode::Pad,
-                Transform::identity(),
-            );
-            let top = horizon.max(0.0) - 1.0;
-            if let (Some(rect), Some(shader)) =
-                (Rect::from_xywh(0.0, top, w, y_clear.min(h) - top), fog)
-            {
-                self.pixmap
-                    .fill_rect(rect, &paint(shader), Transform::identity(), None);
+    /// A height field around the camera's target: its shaded quads far first, then the 1 m
+    /// grid draped over it.
+    fn draw_terrain(&mut self, cam: &Camera, grid: &HeightGrid) {
+        let target = self.target;
+        let light = light_direction(cam);
+        let mut cells = std::mem::take(&mut self.quads);
+        quads(grid, cam, &target, &light, &mut cells);
+        for q in &cells {
+            if let Some(path) = self.world_polygon_path(cam, &q.corners) {
+                let colour = GROUND.scale(0.9 * q.shade).tint(q.tint).opaque();
+                self.pixmap.fill_path(
+                    &path,
+                    &Paint {
+                        shader: Shader::SolidColor(colour),
+                        anti_alias: false,
+                        ..Paint::default()
+                    },
+                    FillRule::Winding,
+                    Transform::identity(),
+                    None,
+                );
+            }
+        }
+        self.quads = cells;
+        let s = self.config.grid_spacing_m;
+        let half = TERRAIN_HALF_M.min(GRID_HALF_M);
+        let mut minor = PathBuilder::new();
+        let mut major = PathBuilder::new();
+        for (along_x, centre) in [(true, target.x), (false, target.y)] {
+            let k0 = ((centre - half) / s).floor() as i64;
+            let k1 = ((centre + half) / s).ceil() as i64;
+            for k in k0..=k1 {
+                let v = k as f64 * s;
+                let (a, b) = if along_x {
+                    ([v, target.y - half], [v, target.y + half])
+                } else {
+                    ([target.x - half, v], [target.x + half, v])
+                };
+                let mut points = std::mem::take(&mut self.line_pts);
+                draped(grid, a, b, 0.1, &mut points);
+                let pb = if k % 5 == 0 { &mut major } else { &mut minor };
+                for pair in points.windows(2) {
+                    push_world_segment(cam, pb, &pair[0], &pair[1]);
+                }
+                self.line_pts = points;
+            }
+        }
+        for (pb, colour, width) in [(minor, GRID_MINOR, 1.0), (major, GRID_MAJOR, 1.4)] {
+            if let Some(path) = pb.finish() {
+                let stroke = Stroke {
+                    width,
+                    ..Stroke::default()
+                };
+                stroke_solid(&mut self.pixmap, &path, colour.alpha(0.6), &stroke);
             }
         }
     }
@@ -612,12 +696,26 @@ impl Renderer {
     fn draw_goal_on_ground(&mut self, cam: &Camera, goal: &Point3<f64>) {
         let trunk = self.poses[0].translation.vector;
         let mut line = PathBuilder::new();
-        push_world_segment(
-            cam,
-            &mut line,
-            &Point3::new(trunk.x, trunk.y, 0.0),
-            &Point3::new(goal.x, goal.y, 0.0),
-        );
+        match self.ground.clone() {
+            None => push_world_segment(
+                cam,
+                &mut line,
+                &Point3::new(trunk.x, trunk.y, 0.0),
+                &Point3::new(goal.x, goal.y, 0.0),
+            ),
+            Some(grid) => {
+                let mut points = std::mem::take(&mut self.line_pts);
+                draped(
+                    &grid,
+                    [trunk.x, trunk.y],
+                    [goal.x, goal.y],
+                    0.1,
+                    &mut points,
+                );
+                push_world_polyline(cam, &mut line, &points);
+                self.line_pts = points;
+            }
+        }
         if let (Some(path), Some(dash)) = (line.finish(), StrokeDash::new(vec![9.0, 7.0], 0.0)) {
             let stroke = Stroke {
                 width: 2.0,
@@ -700,10 +798,14 @@ impl Renderer {
             self.prims.extend(prim);
         }
         if let Some(g) = goal {
-            if g.z > 0.0 {
+            let foot = self
+                .ground
+                .as_ref()
+                .map_or(0.0, |grid| grid.height_at(g.x, g.y));
+            if g.z > foot {
                 self.prims.extend(capsule_prim(
                     cam,
-                    &Point3::new(g.x, g.y, 0.0),
+                    &Point3::new(g.x, g.y, foot),
                     g,
                     GOAL_POLE_M,
                     POLE,
@@ -867,15 +969,16 @@ impl Renderer {
         }
     }
 
-    /// Appends the ground polygon in `self.hull` (world x, y at z = 0, counter-clockwise) to
-    /// `pb`, clipped to the near plane and projected.
+    /// Appends the ground polygon in `self.hull` (world x, y on the ground, counter-clockwise)
+    /// to `pb`, clipped to the near plane and projected. On a height field each corner sits
+    /// just above the surface.
     fn push_ground_polygon(&mut self, cam: &Camera, pb: &mut PathBuilder) {
         self.cam_pts.clear();
-        self.cam_pts.extend(
-            self.hull
-                .iter()
-                .map(|p| cam.to_camera(&Point3::new(p[0], p[1], 0.0))),
-        );
+        let ground = self.ground.as_deref();
+        self.cam_pts.extend(self.hull.iter().map(|p| {
+            let z = ground.map_or(0.0, |g| g.height_at(p[0], p[1]) + LIFT_M);
+            cam.to_camera(&Point3::new(p[0], p[1], z))
+        }));
         clip_polygon_near(&self.cam_pts, &mut self.clipped);
         push_projected(cam, &self.clipped, pb);
     }
@@ -1159,6 +1262,28 @@ fn push_projected(cam: &Camera, polygon: &[Vector3<f64>], pb: &mut PathBuilder) 
         }
     }
     pb.close();
+}
+
+/// Appends a world polyline, projected as one contour (so that a dash pattern runs along it)
+/// while its points are in front of the near plane, each of its segments clipped otherwise.
+fn push_world_polyline(cam: &Camera, pb: &mut PathBuilder, points: &[Point3<f64>]) {
+    let mut open = false;
+    for pair in points.windows(2) {
+        let (a, b) = (cam.to_camera(&pair[0]), cam.to_camera(&pair[1]));
+        match (cam.project_camera(&a), cam.project_camera(&b)) {
+            (Some(pa), Some(pbb)) if clip_segment_near(a, b) == Some((a, b)) => {
+                if !open {
+                    pb.move_to(pa[0] as f32, pa[1] as f32);
+                    open = true;
+                }
+                pb.line_to(pbb[0] as f32, pbb[1] as f32);
+            }
+            _ => {
+                open = false;
+                push_world_segment(cam, pb, &pair[0], &pair[1]);
+            }
+        }
+    }
 }
 
 /// Appends a world segment clipped to the near plane and projected.

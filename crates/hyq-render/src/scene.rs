@@ -1,6 +1,7 @@
 //! What one frame shows: the robot's pose, its contacts, the goal and the overlay numbers.
 //! Plain values only, so any environment, log or test can fill it.
 
+use hyq_physics::Terrain;
 use hyq_physics::na::{Isometry3, Point3};
 
 /// Where the robot's bodies are.
@@ -48,6 +49,10 @@ pub struct Scene<'a> {
     pub overlay: Option<Overlay>,
     /// The point the camera looks at; `None` (the usual) follows the trunk frame's origin.
     pub camera_target: Option<Point3<f64>>,
+    /// The ground: `None` or flat is the plane z = 0 with its grid; a height field is drawn
+    /// shaded around the camera's target, the grid draped over it, shadows, discs and the goal's
+    /// ring laid on it.
+    pub terrain: Option<&'a Terrain>,
 }
 
 impl<'a> Scene<'a> {
@@ -59,6 +64,7 @@ impl<'a> Scene<'a> {
             goal: None,
             overlay: None,
             camera_target: None,
+            terrain: None,
         }
     }
 
@@ -71,6 +77,12 @@ impl<'a> Scene<'a> {
     /// The same scene with the text overlay.
     pub fn with_overlay(mut self, overlay: Overlay) -> Self {
         self.overlay = Some(overlay);
+        self
+    }
+
+    /// The same scene on `terrain`.
+    pub fn with_terrain(mut self, terrain: &'a Terrain) -> Self {
+        self.terrain = Some(terrain);
         self
     }
 

@@ -46,6 +46,20 @@ impl Robot {
         }
     }
 
+    /// The robot of URDF and profile text (`origin` names them in errors); panics if it cannot
+    /// be loaded, with the loader's error.
+    pub fn from_text(urdf: &str, profile: &str, origin: &str) -> Self {
+        let profile =
+            Profile::from_toml_str(profile, origin).unwrap_or_else(|e| panic!("{origin}: {e}"));
+        let model = RobotModel::from_urdf_str(urdf, origin, &profile)
+            .unwrap_or_else(|e| panic!("{origin}: {e}"));
+        Self {
+            model: Arc::new(model),
+            urdf: urdf.to_owned(),
+            profile,
+        }
+    }
+
     /// The robot of a profile file (its URDF path is relative to the profile); panics if it
     /// cannot be loaded, with the loader's error.
     pub fn from_profile(path: impl AsRef<Path>) -> Self {

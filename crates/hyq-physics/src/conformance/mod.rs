@@ -34,6 +34,10 @@
 //! used by the backends' own tests and benches); `independent_fk.rs` a hand-written reading of
 //! the URDF for the forward-kinematics test.
 //!
+//! The terrain tests ([`terrain`]: a ball and a block on height fields, the robot on a slope
+//! and across a stair edge, changes of ground) have a macro of their own,
+//! `terrain_conformance_tests!`, which each backend instantiates once, beside the suite.
+//!
 //! Beside the suite, [`determinism`] and [`threads`] hold longer runs (thousands of sub-steps
 //! each, on several threads) that a backend crate calls from tests of its own
 //! (`tests/determinism.rs`, `tests/threads.rs`: one `#[test]` per body, the file saying why its
@@ -48,6 +52,7 @@ pub mod fixtures;
 mod independent_fk;
 mod kinematics;
 mod randomization;
+pub mod terrain;
 pub mod threads;
 
 pub use api_contract::{
@@ -75,6 +80,46 @@ pub use randomization::{
     in_place_dynamics_match_a_world_built_with_them,
     lower_ground_friction_lets_a_pushed_robot_slide_further, unphysical_dynamics_are_refused,
 };
+
+pub use terrain::{
+    a_new_ground_keeps_the_worlds_dynamics, ball_rests_on_rough_ground_at_the_grids_height,
+    contacts_follow_the_grids_triangles, limp_robot_lands_its_trunk_on_rough_ground,
+    robot_stands_across_a_stair_edge, robot_stands_on_a_10_degree_slope,
+    terrain_changes_keep_the_state_and_reset_bitwise, the_fields_friction_is_the_ground_friction,
+};
+
+/// Instantiates the terrain tests ([`terrain`]) for a backend type, as `#[test]` functions in
+/// the calling module, with the same three forms as [`conformance_tests!`] (backend; options;
+/// robot). Their loose-shape tests bring their own probe robots, so one instantiation per
+/// backend (on the bundled HyQ) covers them; the standing tests use the robot given.
+#[macro_export]
+macro_rules! terrain_conformance_tests {
+    ($backend:ty) => {
+        $crate::terrain_conformance_tests!(
+            $backend,
+            <$backend as $crate::Backend>::Options::default()
+        );
+    };
+    ($backend:ty, $options:expr) => {
+        $crate::terrain_conformance_tests!(
+            $backend,
+            $options,
+            $crate::conformance::fixtures::Robot::bundled($crate::bundled::DEFAULT)
+        );
+    };
+    ($backend:ty, $options:expr, $robot:expr) => {
+        $crate::conformance_tests!(@each $backend, $options, $robot,
+            ball_rests_on_rough_ground_at_the_grids_height,
+            contacts_follow_the_grids_triangles,
+            the_fields_friction_is_the_ground_friction,
+            robot_stands_on_a_10_degree_slope,
+            robot_stands_across_a_stair_edge,
+            limp_robot_lands_its_trunk_on_rough_ground,
+            terrain_changes_keep_the_state_and_reset_bitwise,
+            a_new_ground_keeps_the_worlds_dynamics,
+        );
+    };
+}
 
 /// Instantiates every conformance test for a backend type, as `#[test]` functions in the
 /// calling module:
