@@ -1,37 +1,42 @@
-"""Train a PPO walker on HyQ-v0 with Stable-Baselines3 (not run in CI: it needs PyTorch).
+"""Train a PPO policy on HyQ-v0 with Stable-Baselines3 (not run in CI: it needs PyTorch).
 
     python3 -m venv target/train-venv
-    target/train-venv/bin/pip install -r examples/requirements-train.txt   # PyTorch: 5.5 GB
+    target/train-venv/bin/pip install -r examples/requirements-train.txt   # PyTorch: 5.4 GB
+    cargo xtask setup mujoco
     (cd crates/hyq-py && VIRTUAL_ENV=$PWD/../../target/train-venv \\
-        ../../target/train-venv/bin/maturin develop --release --locked)
-    target/train-venv/bin/python examples/train_sb3_ppo.py --out runs/walk
+        ../../target/train-venv/bin/maturin develop --release --features mujoco)
+    target/train-venv/bin/python examples/train_sb3_ppo.py --recipe walk --out runs/walk
+    target/train-venv/bin/python examples/train_sb3_ppo.py --recipe reach --out runs/reach
 
-The recipe (docs/training.md says why each setting is there): the environment of RECIPE_ENV
-(the spec's rewards and penalties with user variables only, and the project's `offset` action
-mode), 16 envs stepped in Rust (hyq.sb3.HyQVecEnv, same-step resets with SB3's
+A recipe (examples/recipes.py; docs/training.md says why each setting is there) is the
+environment, the robot and the engine; its PPO settings and budget are RECIPE_PPO, RECIPE_NET
+and RECIPE_STEPS here. Every part can be changed from the command line (--robot, --backend,
+--env, --ppo, --net, --steps, --seed), so the same script trains on other robots, engines and
+environment settings. N envs stepped in Rust (hyq.sb3.HyQVecEnv, same-step resets with SB3's
 terminal_observation and TimeLimit.truncated, so PPO bootstraps timeouts), VecNormalize on
-observations and rewards, PPO with the settings of RECIPE_PPO, seed 0, a fixed budget of env
-steps. It writes into OUT:
+observations and rewards, a fixed budget of env steps. Same seed and --torch-threads: the same
+run, bit for bit. It writes into OUT:
 
     progress.csv, progress.png   the learning curve: mean return, distance walked toward the
                                  goal (K - D^T), fall, joint-limit and reach rates, episode
                                  length, over env steps (each row: the episodes that ended since
                                  the previous row, at least --curve-episodes of them)
+    evals.csv                    the deterministic policy on 20 seeded episodes at each checkpoint
     checkpoints/                 model_<steps>.zip and vecnormalize_<steps>.pkl
     model.zip, vecnormalize.pkl  the final agent
-    eval.json                    the final agent on 20 seeded episodes with reset noise
+    eval.json                    the final agent on 20 seeded episodes with reset noise, and the
+                                 run's timing: wall time, the part spent stepping the envs, the
+                                 load average at the start and the end
     config.json                  every setting of the run
 
-Export the result for the Rust replay (`hyq run --policy mlp:FILE`) with
+Export the result for the Rust replay (`hyq run --policy mlp:FILE`) and as ONNX with
 examples/export_policy.py.
 """
 
 from __future__ import annotations
 
 import argparse
-import csv
 import json
-import subprocess
 import sys
 import time
 from pathlib import Path
@@ -44,28 +49,11 @@ from stable_baselines3.common.callbacks import BaseCallback, CallbackList
 from stable_baselines3.common.utils import set_random_seed
 from stable_baselines3.common.vec_env import VecMonitor, VecNormalize
 
+import recipes
 from hyq.sb3 import HyQVecEnv
 
-#: The environment the policy trains in, as the package's keyword arguments. Only the spec's
-#: user variables and the project's own tables: docs/training.md has the experiments behind
-#: each value.
-RECIPE_ENV: dict[str, Any] = {
-    # Spec §4.2's normalised reward on top of the default exponential one (k_exp = 5): r_e
-    # pays almost nothing in the first metres (0.2 per metre at the start), r_n pays
-    # k_norm / K per metre from the first step.
-    "norm_rew_scaling": 10.0,
-    # Spec §5.4 and §5.3: a fall or a joint at its limit ends the episode; without a penalty
-    # that end costs only the progress not made, which a still-learning walker barely has.
-    "fall_penalty": 5.0,
-    "reach_bounds_penalty": 5.0,
-    # The project's offset mode (spec §7.1): a zero action holds the standing pose and a
-    # target stays within 0.5 rad of it.
-    "action": {"mode": "offset", "max_offset_rad": 0.5},
-    # The evaluation's reset noise, so the policy is trained on the starts it is judged on.
-    "reset": {"joint_noise_rad": 0.05, "yaw_noise_deg": 5.0},
-}
-
-#: PPO's settings (Stable-Baselines3 names).
+#: PPO's settings (Stable-Baselines3 names): SB3's defaults but for the rollout (256 steps per
+#: env), the batch (1024) and the epochs (5), to update often on 2 cores.
 RECIPE_PPO: dict[str, Any] = {
     "n_steps": 256,
     "batch_size": 1024,
@@ -82,275 +70,205 @@ RECIPE_PPO: dict[str, Any] = {
 #: (σ ≈ 0.37) the training episodes walked 3 m on the noise's shuffling while the deterministic
 #: policy, the one exported, walked 0.45 m at 160k steps and hit a joint limit in 65 % of its
 #: episodes at 320k; with -2 the deterministic policy walked 2.6 m at 150k (docs/training.md).
-RECIPE_NET: dict[str, Any] = {"pi": [128, 128], "vf": [128, 128], "log_std_init": -2.0}
+RECIPE_NET: dict[str, Any] = {"pi": [128, 128], "vf": [128, 128], "log_std_init": -2.0, "activation": "tanh"}
+#: Each recipe's budget of env steps and checkpoint interval (docs/training.md).
+RECIPE_STEPS: dict[str, tuple[int, int]] = {
+    "walk": (200_000, 100_000),
+    "reach": (600_000, 100_000),
+    "anymal_walk": (200_000, 100_000),
+}
+#: Each recipe's changes to RECIPE_PPO. The reach: a learning rate falling linearly to 0 over the
+#: budget ("lr_schedule"), since at a constant 3e-4 the deterministic policy reached the goal in
+#: 7 of 20 episodes at 400k steps and then lost it again (2 to 4 of 20 at 600k to 1M steps, with
+#: episodes walking backwards; docs/training.md).
+RECIPE_PPO_CHANGES: dict[str, dict[str, Any]] = {
+    "reach": {"lr_schedule": "linear"},
+}
+ACTIVATIONS = {"tanh": torch.nn.Tanh, "relu": torch.nn.ReLU, "elu": torch.nn.ELU}
 
-#: The evaluation of issue-style claims: 20 seeded episodes with this reset noise.
-EVAL_EPISODES = 20
-EVAL_SEED = 1000
 
+class TimedVecEnv(HyQVecEnv):
+    """HyQVecEnv that adds the time spent in each step to `clock.env_s`."""
 
-def distance_walked(info: dict[str, Any]) -> float:
-    """K - D^T: how much closer to the goal the trunk ended than it started (m)."""
-    goal = np.asarray(info["goal"], dtype=np.float64)
-    start = np.asarray(info["initial_position"], dtype=np.float64)
-    return float(np.linalg.norm(goal - start) - info["distance_to_goal"])
+    def __init__(self, clock: recipes.Clock, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self.clock = clock
+
+    def step_wait(self):  # noqa: ANN201 - SB3's signature
+        start = time.monotonic()
+        out = super().step_wait()
+        self.clock.env_s += time.monotonic() - start
+        return out
 
 
 class Curve(BaseCallback):
-    """Writes the learning curve (CSV rows over env steps) from the final info of every
-    episode, and draws it as a PNG at each checkpoint and at the end."""
+    """Writes the learning curve from the final info of every training episode, and every
+    `every` env steps saves a checkpoint and evaluates the deterministic policy (a row of
+    evals.csv). Training episodes run the stochastic policy, whose action noise alone can
+    shuffle the robot forward; the deterministic one is what gets exported, so the curve shows
+    both."""
 
-    FIELDS = [
-        "env_steps", "episodes", "mean_return", "mean_distance_m", "fall_rate",
-        "joint_limit_rate", "reach_rate", "mean_length", "env_steps_per_s",
-    ]
-
-    def __init__(self, out: Path, min_episodes: int) -> None:
+    def __init__(self, out: Path, min_episodes: int, every: int, run: dict[str, Any],
+                 clock: recipes.Clock) -> None:
         super().__init__()
+        self.clock = clock
         self.out = out
-        self.min_episodes = min_episodes
-        self.pending: list[dict[str, float]] = []
-        self.rows: list[dict[str, float]] = []
-        self.evals: list[dict[str, float]] = []
+        self.episodes = recipes.EpisodeLog(min_episodes)
+        self.progress = recipes.CurveFile(out / "progress.csv", recipes.PROGRESS_FIELDS)
+        self.evals = recipes.CurveFile(out / "evals.csv", recipes.EVAL_FIELDS)
+        self.every = every
+        self.next = every
+        self.run = run
         self.start = time.monotonic()
-        self.file = open(out / "progress.csv", "w", newline="")
-        self.writer = csv.DictWriter(self.file, fieldnames=self.FIELDS)
-        self.writer.writeheader()
+        #: ((reach rate, mean return), env steps) of the best evaluated checkpoint.
+        self.best: tuple[tuple[float, float], int] | None = None
+        (out / "checkpoints").mkdir(parents=True, exist_ok=True)
 
     def _on_step(self) -> bool:
         for done, info in zip(self.locals["dones"], self.locals["infos"]):
             if done:
-                self.pending.append({
-                    "return": float(info["episode"]["r"]),
-                    "length": float(info["episode"]["l"]),
-                    "distance": distance_walked(info),
-                    "fell": float(info["fell"]),
-                    "joint_limit": float(info["joint_limit"]),
-                    "reached": float(info["reached"]),
-                })
-        return True
-
-    def _on_rollout_end(self) -> None:
-        if len(self.pending) < self.min_episodes:
-            return
-        mean = lambda key: float(np.mean([e[key] for e in self.pending]))  # noqa: E731
-        row = {
-            "env_steps": self.num_timesteps,
-            "episodes": len(self.pending),
-            "mean_return": mean("return"),
-            "mean_distance_m": mean("distance"),
-            "fall_rate": mean("fell"),
-            "joint_limit_rate": mean("joint_limit"),
-            "reach_rate": mean("reached"),
-            "mean_length": mean("length"),
-            "env_steps_per_s": self.num_timesteps / (time.monotonic() - self.start),
-        }
-        self.writer.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in row.items()})
-        self.file.flush()
-        self.rows.append(row)
-        self.pending.clear()
-        self.logger.record("hyq/distance_m", row["mean_distance_m"])
-        self.logger.record("hyq/fall_rate", row["fall_rate"])
-        self.logger.record("hyq/joint_limit_rate", row["joint_limit_rate"])
-
-    def _on_training_end(self) -> None:
-        self.file.close()
-        plot_curve(self.rows, self.out / "progress.png", self.evals)
-
-
-class Checkpoints(BaseCallback):
-    """Every `every` env steps: saves the model and the normalisation statistics, and
-    evaluates the deterministic policy (`evaluate`, a row of evals.csv). Training episodes
-    run the stochastic policy, whose action noise alone can shuffle the robot forward; the
-    deterministic one is what gets exported, so the curve shows both."""
-
-    FIELDS = ["env_steps", "mean_return", "mean_distance_m", "fall_rate", "joint_limit_rate", "reach_rate"]
-
-    def __init__(self, out: Path, every: int, curve: Curve, env_kwargs: dict[str, Any]) -> None:
-        super().__init__()
-        self.dir = out / "checkpoints"
-        self.dir.mkdir(parents=True, exist_ok=True)
-        self.every = every
-        self.next = every
-        self.curve = curve
-        self.env_kwargs = env_kwargs
-        self.file = open(out / "evals.csv", "w", newline="")
-        self.writer = csv.DictWriter(self.file, fieldnames=self.FIELDS)
-        self.writer.writeheader()
-
-    def _on_step(self) -> bool:
+                self.episodes.add(float(info["episode"]["r"]), float(info["episode"]["l"]), info)
         if self.num_timesteps >= self.next:
             self.next += self.every
-            norm = self.model.get_vec_normalize_env()
-            self.model.save(self.dir / f"model_{self.num_timesteps}.zip")
-            norm.save(str(self.dir / f"vecnormalize_{self.num_timesteps}.pkl"))
-            result = evaluate(self.model, norm, self.env_kwargs)
-            row = {"env_steps": self.num_timesteps, **{k: result[k] for k in self.FIELDS[1:]}}
-            self.curve.evals.append(row)
-            self.writer.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in row.items()})
-            self.file.flush()
-            plot_curve(self.curve.rows, self.curve.out / "progress.png", self.curve.evals)
+            self.checkpoint()
         return True
 
+    def checkpoint(self) -> None:
+        norm = self.model.get_vec_normalize_env()
+        self.model.save(self.out / "checkpoints" / f"model_{self.num_timesteps}.zip")
+        norm.save(str(self.out / "checkpoints" / f"vecnormalize_{self.num_timesteps}.pkl"))
+        start = time.monotonic()
+        result = evaluate(self.model, norm, self.run)
+        self.clock.eval_s += time.monotonic() - start
+        self.evals.add({"env_steps": self.num_timesteps, **{k: result[k] for k in recipes.EVAL_FIELDS[1:]}})
+        score = (result["reach_rate"], result["mean_return"])
+        if self.best is None or score > self.best[0]:
+            self.best = (score, self.num_timesteps)
+        print(f"[{self.num_timesteps} env steps] deterministic eval: {recipes.eval_summary(result)}", flush=True)
+        self.plot()
+
+    def _on_rollout_end(self) -> None:
+        row = self.episodes.row(self.num_timesteps, time.monotonic() - self.start)
+        if row is not None:
+            self.progress.add(row)
+            self.logger.record("hyq/distance_m", row["mean_distance_m"])
+            self.logger.record("hyq/reach_rate", row["reach_rate"])
+
+    def plot(self) -> None:
+        title = (f"PPO (Stable-Baselines3) on {self.run['robot']}, {self.run['backend']}: "
+                 f"examples/train_sb3_ppo.py --recipe {self.run['recipe']}")
+        recipes.plot_curve(self.progress.rows, self.evals.rows, self.out / "progress.png", title)
+
     def _on_training_end(self) -> None:
-        self.file.close()
+        self.progress.close()
+        self.evals.close()
+        self.plot()
 
 
-def plot_curve(rows: list[dict[str, float]], path: Path, evals: list[dict[str, float]]) -> None:
-    """The learning curve as a 2x2 PNG (matplotlib, no display): the training episodes
-    (stochastic policy) as lines, the deterministic evaluations as points."""
-    if not rows:
-        return
-    import matplotlib
+def evaluate(model: PPO, obs_norm: VecNormalize, run: dict[str, Any]) -> dict[str, Any]:
+    """The deterministic policy on the evaluation episodes (recipes.evaluate)."""
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    x = np.array([r["env_steps"] for r in rows]) / 1e6
-    col = lambda key: np.array([r[key] for r in rows])  # noqa: E731
-    fig, axes = plt.subplots(2, 2, figsize=(10, 6.5), sharex=True)
-    ex = np.array([r["env_steps"] for r in evals]) / 1e6
-    ecol = lambda key: np.array([r[key] for r in evals])  # noqa: E731
-    axes[0, 0].plot(x, col("mean_return"), label="training episodes")
-    axes[0, 0].plot(ex, ecol("mean_return"), "o", label="deterministic, 20 eval episodes")
-    axes[0, 0].set_ylabel("mean episode return")
-    axes[0, 0].legend()
-    axes[0, 1].plot(x, col("mean_distance_m"))
-    axes[0, 1].plot(ex, ecol("mean_distance_m"), "o")
-    axes[0, 1].set_ylabel("distance walked toward the goal (m)")
-    axes[1, 0].plot(x, col("fall_rate"), label="fell")
-    axes[1, 0].plot(x, col("joint_limit_rate"), label="joint limit")
-    axes[1, 0].plot(x, col("reach_rate"), label="reached")
-    axes[1, 0].plot(ex, ecol("fall_rate"), "o", color="C0")
-    axes[1, 0].plot(ex, ecol("joint_limit_rate"), "o", color="C1")
-    axes[1, 0].set_ylabel("fraction of episodes")
-    axes[1, 0].set_ylim(-0.02, 1.02)
-    axes[1, 0].legend()
-    axes[1, 1].plot(x, col("mean_length") / 100.0)
-    axes[1, 1].set_ylabel("mean episode length (s)")
-    for ax in axes[1]:
-        ax.set_xlabel("env steps (millions)")
-    for ax in axes.flat:
-        ax.grid(alpha=0.3)
-    fig.suptitle("PPO on HyQ-v0 (rapier), examples/train_sb3_ppo.py")
-    fig.tight_layout()
-    fig.savefig(path, dpi=100)
-    plt.close(fig)
-
-
-def evaluate(model: PPO, obs_norm: VecNormalize, env_kwargs: dict[str, Any]) -> dict[str, Any]:
-    """The deterministic policy on EVAL_EPISODES episodes (env i seeded EVAL_SEED + i), with
-    the recipe's reset noise: the first episode of each env counts."""
-    venv = HyQVecEnv(num_envs=EVAL_EPISODES, seed=EVAL_SEED, **env_kwargs)
-    obs = venv.reset()
-    episodes: list[dict[str, Any] | None] = [None] * EVAL_EPISODES
-    returns = np.zeros(EVAL_EPISODES)
-    while any(e is None for e in episodes):
+    def act(obs: np.ndarray) -> np.ndarray:
         action, _ = model.predict(obs_norm.normalize_obs(obs), deterministic=True)
-        obs, rewards, dones, infos = venv.step(action)
-        for i in range(EVAL_EPISODES):
-            if episodes[i] is None:
-                returns[i] += rewards[i]
-                if dones[i]:
-                    episodes[i] = {
-                        "return": float(returns[i]),
-                        "distance_m": distance_walked(infos[i]),
-                        "steps": int(infos[i]["t"]),
-                        "reasons": infos[i]["reasons"],
-                    }
-    venv.close()
-    done = [e for e in episodes if e is not None]
-    return {
-        "episodes": done,
-        "mean_return": float(np.mean([e["return"] for e in done])),
-        "mean_distance_m": float(np.mean([e["distance_m"] for e in done])),
-        "fall_rate": float(np.mean(["fell" in e["reasons"] for e in done])),
-        "joint_limit_rate": float(np.mean(["joint_limit" in e["reasons"] for e in done])),
-        "reach_rate": float(np.mean(["reached" in e["reasons"] for e in done])),
-    }
+        return action
+
+    return recipes.evaluate(act, run["env"], run["robot"], run["backend"])
 
 
-def git_commit() -> str:
-    """The commit of the checkout the script runs from ("unknown" outside git)."""
-    try:
-        return subprocess.run(
-            ["git", "rev-parse", "HEAD"], capture_output=True, text=True, check=True,
-            cwd=Path(__file__).resolve().parent,
-        ).stdout.strip()
-    except (OSError, subprocess.CalledProcessError):
-        return "unknown"
-
-
-def main() -> None:
+def parse_args() -> argparse.Namespace:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", type=Path, required=True, help="output directory")
-    parser.add_argument("--steps", type=int, default=600_000, help="total env steps (default: 600k)")
+    parser.add_argument("--recipe", choices=sorted(recipes.RECIPES), default="walk",
+                        help="the environment, robot and engine (examples/recipes.py; default: walk)")
+    parser.add_argument("--robot", help="the robot (default: the recipe's)")
+    parser.add_argument("--backend", help="the engine (default: the recipe's)")
+    parser.add_argument("--steps", type=int, help="total env steps (default: the recipe's)")
     parser.add_argument("--envs", type=int, default=16, help="parallel envs (default: 16)")
     parser.add_argument("--seed", type=int, default=0)
-    parser.add_argument("--checkpoint-every", type=int, default=150_000,
-                        help="env steps between checkpoints (default: 150k)")
+    parser.add_argument("--torch-threads", type=int, default=1,
+                        help="PyTorch's CPU threads (default: 1; part of what makes a run repeat)")
+    parser.add_argument("--checkpoint-every", type=int,
+                        help="env steps between checkpoints and evaluations (default: the recipe's)")
     parser.add_argument("--curve-episodes", type=int, default=32, help="least episodes per curve row")
     parser.add_argument("--env", type=json.loads, default={},
                         help='JSON object of environment keys to change, e.g. \'{"fall_penalty": 0}\'')
     parser.add_argument("--ppo", type=json.loads, default={}, help="JSON object of PPO settings to change")
-    parser.add_argument("--net", type=json.loads, default={}, help="JSON object of network settings to change")
-    args = parser.parse_args()
-    args.out.mkdir(parents=True, exist_ok=True)
+    parser.add_argument("--net", type=json.loads, default={},
+                        help='JSON object of network settings to change: pi, vf, log_std_init, activation')
+    return parser.parse_args()
 
-    env_kwargs = {**RECIPE_ENV, **args.env}
-    ppo_kwargs = {**RECIPE_PPO, **args.ppo}
-    net = {**RECIPE_NET, **args.net}
-    config = {
-        "env": env_kwargs, "ppo": ppo_kwargs, "net": net, "steps": args.steps, "envs": args.envs,
-        "seed": args.seed, "commit": git_commit(), "torch_threads": 1,
-        "command": " ".join(sys.argv),
+
+def main() -> None:
+    args = parse_args()
+    recipe = recipes.RECIPES[args.recipe]
+    steps, every = RECIPE_STEPS[args.recipe]
+    run = {
+        "recipe": args.recipe,
+        "robot": args.robot or recipe["robot"],
+        "backend": args.backend or recipe["backend"],
+        "env": recipes.merge(recipe["env"], args.env),
     }
-    (args.out / "config.json").write_text(json.dumps(config, indent=2) + "\n")
+    recipes.check_backend(run["backend"])
+    ppo_kwargs = {**RECIPE_PPO, **RECIPE_PPO_CHANGES.get(args.recipe, {}), **args.ppo}
+    net = {**RECIPE_NET, **args.net}
+    if net["activation"] not in ACTIVATIONS:
+        raise SystemExit(f"error: --net activation {net['activation']!r}: expected one of {sorted(ACTIVATIONS)}")
+    args.out.mkdir(parents=True, exist_ok=True)
+    config = {
+        **run, "trainer": "sb3", "ppo": ppo_kwargs, "net": net, "steps": args.steps or steps,
+        "envs": args.envs, "seed": args.seed, "torch_threads": args.torch_threads,
+        "commit": recipes.git_commit(), "command": " ".join(sys.argv),
+    }
+    recipes.write_json(args.out / "config.json", config)
 
-    # One torch thread: the envs' rayon threads use the cores, and a fixed thread count keeps
-    # torch's CPU arithmetic the same from run to run.
-    torch.set_num_threads(1)
+    # A fixed thread count keeps torch's CPU arithmetic the same from run to run; one thread
+    # leaves the other core to the envs' rayon threads.
+    torch.set_num_threads(args.torch_threads)
     set_random_seed(args.seed)
-    venv = HyQVecEnv(num_envs=args.envs, seed=args.seed, **env_kwargs)
-    venv = VecMonitor(venv)
-    venv = VecNormalize(venv, norm_obs=True, norm_reward=True, clip_obs=10.0, gamma=ppo_kwargs["gamma"])
+    clock = recipes.Clock()
+    venv = TimedVecEnv(clock, num_envs=args.envs, seed=args.seed, robot=run["robot"],
+                       backend=run["backend"], **run["env"])
+    venv = VecNormalize(VecMonitor(venv), norm_obs=True, norm_reward=True, clip_obs=10.0,
+                        gamma=ppo_kwargs["gamma"])
+    # Saved with the statistics, so an export can tell them from another robot's.
+    venv.hyq_robot = run["robot"]
+    sb3_kwargs = {k: v for k, v in ppo_kwargs.items() if k != "lr_schedule"}
+    schedule = ppo_kwargs.get("lr_schedule", "constant")
+    if schedule == "linear":
+        # SB3 calls it with the fraction of the budget still to go (1 at the start, 0 at the end).
+        start_lr = sb3_kwargs["learning_rate"]
+        sb3_kwargs["learning_rate"] = lambda remaining: start_lr * remaining
+    elif schedule != "constant":
+        raise SystemExit(f"error: --ppo lr_schedule {schedule!r}: expected constant or linear")
     model = PPO(
         "MlpPolicy",
         venv,
         policy_kwargs={
             "net_arch": {"pi": net["pi"], "vf": net["vf"]},
-            "activation_fn": torch.nn.Tanh,
+            "activation_fn": ACTIVATIONS[net["activation"]],
             "log_std_init": net["log_std_init"],
         },
         seed=args.seed,
         device="cpu",
         verbose=0,
-        **ppo_kwargs,
+        **sb3_kwargs,
     )
-    curve = Curve(args.out, args.curve_episodes)
-    started = time.monotonic()
-    model.learn(
-        total_timesteps=args.steps,
-        callback=CallbackList([curve, Checkpoints(args.out, args.checkpoint_every, curve, env_kwargs)]),
-        progress_bar=True,
-    )
-    elapsed = time.monotonic() - started
+    curve = Curve(args.out, args.curve_episodes, args.checkpoint_every or every, run, clock)
+    model.learn(total_timesteps=config["steps"], callback=CallbackList([curve]), progress_bar=True)
+    timing = clock.summary(model.num_timesteps)
     model.save(args.out / "model.zip")
     venv.save(str(args.out / "vecnormalize.pkl"))
     venv.close()
 
-    result = evaluate(model, venv, env_kwargs)
-    result["train_wall_s"] = elapsed
-    result["train_env_steps"] = model.num_timesteps
-    result["train_env_steps_per_s"] = model.num_timesteps / elapsed
-    (args.out / "eval.json").write_text(json.dumps(result, indent=2) + "\n")
-    print(
-        f"{model.num_timesteps} env steps in {elapsed / 60:.1f} min "
-        f"({model.num_timesteps / elapsed:.0f}/s); eval over {EVAL_EPISODES} episodes: "
-        f"return {result['mean_return']:.2f}, distance {result['mean_distance_m']:.2f} m, "
-        f"fell {result['fall_rate']:.0%}, joint limit {result['joint_limit_rate']:.0%}, "
-        f"reached {result['reach_rate']:.0%}"
-    )
+    result = evaluate(model, venv, run)
+    result["timing"] = timing
+    if curve.best is not None:
+        # The checkpoint that reached the goal most often (then: the highest mean return) on the
+        # evaluation episodes; export it with --checkpoint best.
+        result["best_checkpoint_env_steps"] = curve.best[1]
+    recipes.write_json(args.out / "eval.json", result)
+    print(recipes.timing_line(timing))
+    print(f"eval over {recipes.EVAL_EPISODES} episodes: {recipes.eval_summary(result)}")
 
 
 if __name__ == "__main__":

@@ -36,60 +36,11 @@ use hyq_physics::na::{Point3, Quaternion, UnitQuaternion};
 use hyq_physics::{Backend, RobotModel};
 use hyq_spec::ObservationLayout;
 
-/// The backends this build tests.
-pub mod backends {
-    /// rapier3d (always built).
-    pub use hyq_rapier::RapierBackend as Rapier;
-
-    /// DART (built with the `dart` feature).
-    #[cfg(feature = "dart")]
-    pub use hyq_dart::DartBackend as Dart;
-
-    /// MuJoCo (built with the `mujoco` feature).
-    #[cfg(feature = "mujoco")]
-    pub use hyq_mujoco::MujocoBackend as Mujoco;
-}
-
-/// Instantiates the test bodies it is given once per backend that is built: in a module
-/// `rapier`, in a module `dart` when the calling crate has the `dart` feature, and in a module
-/// `mujoco` with the `mujoco` feature. In each, the type alias `Engine` is that backend and the
-/// enclosing module's items are in scope.
-#[macro_export]
-macro_rules! for_each_backend {
-    ($($body:tt)*) => {
-        /// These tests on the rapier backend.
-        mod rapier {
-            #[allow(unused_imports)]
-            use super::*;
-            /// The backend these tests run on.
-            #[allow(dead_code)]
-            type Engine = $crate::backends::Rapier;
-            $($body)*
-        }
-
-        /// These tests on the DART backend.
-        #[cfg(feature = "dart")]
-        mod dart {
-            #[allow(unused_imports)]
-            use super::*;
-            /// The backend these tests run on.
-            #[allow(dead_code)]
-            type Engine = $crate::backends::Dart;
-            $($body)*
-        }
-
-        /// These tests on the MuJoCo backend.
-        #[cfg(feature = "mujoco")]
-        mod mujoco {
-            #[allow(unused_imports)]
-            use super::*;
-            /// The backend these tests run on.
-            #[allow(dead_code)]
-            type Engine = $crate::backends::Mujoco;
-            $($body)*
-        }
-    };
-}
+/// Instantiates the test bodies it is given once per engine that is built (hyq-engines'
+/// `for_each_engine!`): in a module `rapier`, in a module `dart` when this crate has the `dart`
+/// feature, and in a module `mujoco` with the `mujoco` feature. In each, the type alias `Engine`
+/// is that backend and the enclosing module's items are in scope.
+pub use hyq_engines::for_each_engine as for_each_backend;
 
 /// The bundled HyQ.
 pub fn robot() -> Arc<RobotModel> {

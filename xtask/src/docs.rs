@@ -2,7 +2,9 @@
 //! heading in ARCHITECTURE.md's code map, CI runs the test command the README gives, the
 //! observation tables of the README and of docs/spec.md are hyq-spec's `SPEC_TABLE` row for row,
 //! and docs/spec.md has a heading for every section of the original spec, marks its three
-//! deviations, and names only tests that exist.
+//! deviations, and names only tests that exist; that every crate root's module table names every
+//! public module; that no front lists the engines itself, and that every install line is the
+//! engine registry's.
 
 #[cfg(test)]
 mod tests {
@@ -281,5 +283,251 @@ mod tests {
         );
         let changed = readme_observation_rows(&row.replace("| 12.0 |", "| 13.0 |"));
         assert_ne!(parsed, changed);
+    }
+
+    /// The directories of the fronts, which reach the engines through hyq-engines alone.
+    const FRONTS: [&str; 7] = [
+        "crates/hyq-cli/src",
+        "crates/hyq-py/src",
+        "crates/hyq-py/python/hyq",
+        "spec-tests/src",
+        "crates/hyq-env/src",
+        "crates/hyq-compare/src",
+        "xtask/src",
+    ];
+
+    /// The files (or, ending in `/`, directories) of a front that name one engine by design, and
+    /// why.
+    const NAMES_AN_ENGINE: [(&str, &str); 3] = [
+        (
+            "crates/hyq-cli/src/model.rs",
+            "the MJCF `hyq model` writes is MuJoCo's format, with the [physics.mujoco] options",
+        ),
+        (
+            "xtask/src/mujoco.rs",
+            "`cargo xtask setup mujoco` fetches that engine's library",
+        ),
+        (
+            "xtask/src/bench/",
+            "bench-vs-anchors measures chosen engines against the MuJoCo and DART anchors",
+        ),
+    ];
+
+    /// The places in `text` (a Rust or Python source) where code names an engine: an engine's
+    /// name as a string literal, or its backend crate. Comments, docstrings and the test module
+    /// at the end of a Rust file (from its `#[cfg(test)]`) are left out.
+    fn engine_mentions(text: &str, python: bool) -> Vec<String> {
+        let mut tokens = Vec::new();
+        for engine in &hyq_engines::ENGINES {
+            tokens.push(format!("\"{}\"", engine.name));
+            tokens.push(format!("'{}'", engine.name));
+            tokens.push(engine.crate_name.replace('-', "_"));
+        }
+        let mut found = Vec::new();
+        let mut in_docstring = false;
+        for (i, line) in text.lines().enumerate() {
+            let code = line.trim_start();
+            if !python && code.starts_with("#[cfg(test)]") {
+                break;
+            }
+            let quotes = code.matches("\"\"\"").count();
+            let doc = in_docstring || quotes > 0;
+            if quotes % 2 == 1 {
+                in_docstring = !in_docstring;
+            }
+            let comment = if python {
+                code.starts_with('#')
+            } else {
+                code.starts_with("//")
+            };
+            if doc || comment {
+                continue;
+            }
+            for token in &tokens {
+                if code.contains(token.as_str()) {
+                    found.push(format!("line {}: {token}", i + 1));
+                }
+            }
+        }
+        found
+    }
+
+    /// Every `.rs` and `.py` file under `dir`.
+    fn sources(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
+        let entries =
+            std::fs::read_dir(dir).unwrap_or_else(|e| panic!("cannot list {}: {e}", dir.display()));
+        for entry in entries.flatten() {
+            let path = entry.path();
+            if path.is_dir() {
+                sources(&path, out);
+            } else if path.extension().is_some_and(|x| x == "rs" || x == "py") {
+                out.push(path);
+            }
+        }
+    }
+
+    /// The fronts (the command, the Python package, spec-tests, the env's configuration, the
+    /// comparison, xtask's stages) name no engine: they take the engines from hyq-engines' table
+    /// and dispatch through its macros, so adding an engine edits none of them.
+    #[test]
+    fn no_front_lists_the_engines_itself() {
+        let root = workspace_root();
+        let mut offenders = Vec::new();
+        let mut checked = 0;
+        for front in FRONTS {
+            let mut files = Vec::new();
+            sources(&root.join(front), &mut files);
+            for path in files {
+                let relative = path.strip_prefix(&root).unwrap_or(&path);
+                let name = relative.to_string_lossy();
+                if NAMES_AN_ENGINE
+                    .iter()
+                    .any(|(file, _)| name.starts_with(file))
+                {
+                    continue;
+                }
+                let text = std::fs::read_to_string(&path).unwrap_or_default();
+                let python = name.ends_with(".py");
+                checked += 1;
+                for mention in engine_mentions(&text, python) {
+                    offenders.push(format!("{name} {mention}"));
+                }
+            }
+        }
+        assert!(
+            checked > 50,
+            "only {checked} source files found under the fronts"
+        );
+        assert!(
+            offenders.is_empty(),
+            "fronts that name an engine themselves (take it from hyq-engines instead): {offenders:#?}"
+        );
+    }
+
+    #[test]
+    fn an_engine_named_in_code_is_noticed() {
+        let rust = "// \"dart\" in a comment\nmatch name {\n    \"dart\" => 1,\n}\n#[cfg(test)]\n\"mujoco\"";
+        assert_eq!(engine_mentions(rust, false), ["line 3: \"dart\""]);
+        let python =
+            "\"\"\"Docs: backend=\"mujoco\".\n\"\"\"\n# 'dart'\nx = 'dart'\nimport hyq_mujoco\n";
+        assert_eq!(
+            engine_mentions(python, true),
+            ["line 4: 'dart'", "line 5: hyq_mujoco"]
+        );
+    }
+
+    /// The public modules a crate root declares (`pub mod name;`, `pub mod name {}`), in order.
+    fn declared_modules(root: &str) -> Vec<&str> {
+        root.lines()
+            .filter_map(|line| line.strip_prefix("pub mod "))
+            .filter_map(|rest| rest.split([';', ' ', '{']).next())
+            .collect()
+    }
+
+    /// The modules a crate root's module table names: its rows `//! | [`name`] | ...` (a link
+    /// target after the span, as in ``[`env`](mod@env)``, is left out).
+    fn tabled_modules(root: &str) -> Vec<&str> {
+        root.lines()
+            .filter_map(|line| line.strip_prefix("//! | [`"))
+            .filter_map(|rest| rest.split_once("`]").map(|(name, _)| name))
+            .collect()
+    }
+
+    /// What a crate root's module table gets wrong: a public module it omits, a row naming no
+    /// module. Empty for a root without a table.
+    fn module_table_mismatches(root: &str) -> Vec<String> {
+        let declared = declared_modules(root);
+        let tabled = tabled_modules(root);
+        if tabled.is_empty() {
+            return Vec::new();
+        }
+        let omitted = declared.iter().filter(|m| !tabled.contains(m));
+        let unknown = tabled.iter().filter(|m| !declared.contains(m));
+        omitted
+            .map(|m| format!("module `{m}` is not in the table"))
+            .chain(unknown.map(|m| format!("the table names `{m}`, which is no module")))
+            .collect()
+    }
+
+    /// A crate whose root documents its modules in a table (hyq-spec's sections, hyq-env's
+    /// parts) lists every public module there, so that a new module is not left out of the map.
+    #[test]
+    fn every_module_table_names_every_module() {
+        let root = workspace_root();
+        let mut tables = 0;
+        let mut problems = Vec::new();
+        for dir in ["crates", "."] {
+            let entries =
+                std::fs::read_dir(root.join(dir)).unwrap_or_else(|e| panic!("{dir}: {e}"));
+            for entry in entries.flatten() {
+                let lib = entry.path().join("src").join("lib.rs");
+                let Ok(text) = std::fs::read_to_string(&lib) else {
+                    continue;
+                };
+                if !tabled_modules(&text).is_empty() {
+                    tables += 1;
+                }
+                for problem in module_table_mismatches(&text) {
+                    problems.push(format!("{}: {problem}", lib.display()));
+                }
+            }
+        }
+        assert!(tables >= 2, "only {tables} module tables found");
+        assert!(problems.is_empty(), "{problems:#?}");
+    }
+
+    #[test]
+    fn a_module_table_that_omits_a_module_is_noticed() {
+        let root = "//! | [`env`](mod@env) | the env |\n//! | [`goal`] | goals |\n\
+                    pub mod env;\npub mod goal;\npub mod info;\nmod private;\npub mod page {}\n";
+        assert_eq!(
+            module_table_mismatches(root),
+            [
+                "module `info` is not in the table",
+                "module `page` is not in the table"
+            ]
+        );
+        let extra = "//! | [`gone`] | gone |\npub mod here;\n//! | [`here`] | here |\n";
+        assert_eq!(
+            module_table_mismatches(extra),
+            ["the table names `gone`, which is no module"]
+        );
+        assert!(module_table_mismatches("pub mod untabled;\n").is_empty());
+    }
+
+    /// Every file that tells users how to install an engine's library gives the line hyq-engines'
+    /// table gives (hyq-dart's build script cannot read the table, which depends on it, and the
+    /// documents are prose): the same packages wherever `apt-get install` names one of them.
+    #[test]
+    fn every_install_line_is_the_registrys() {
+        let files = [
+            "README.md",
+            ".ci/run",
+            "crates/hyq-cli/README.md",
+            "crates/hyq-py/README.md",
+            "crates/hyq-dart/README.md",
+            "crates/hyq-dart/build.rs",
+        ];
+        let mut checked = 0;
+        for engine in &hyq_engines::ENGINES {
+            let Some(needs) = engine.needs else { continue };
+            let Some((_, packages)) = needs.install.split_once("apt-get install -y ") else {
+                continue;
+            };
+            let first = packages.split(' ').next().unwrap_or(packages);
+            for file in files {
+                for line in read(file).lines() {
+                    if line.contains("apt-get install") && line.contains(first) {
+                        checked += 1;
+                        assert!(
+                            line.contains(packages),
+                            "{file}: `{line}` does not install `{packages}` ({})",
+                            engine.name
+                        );
+                    }
+                }
+            }
+        }
+        assert!(checked >= files.len(), "only {checked} install lines found");
     }
 }

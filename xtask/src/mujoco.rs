@@ -127,6 +127,20 @@ fn setup_mujoco() -> Result<(), String> {
              {VERSION}'s release archive and set MUJOCO_DIR to its directory"
         ));
     }
+    let python = pip_python()?;
+    let (work, wheel) = download_wheel(&python, &dir)?;
+    unpack_wheel(&python, &wheel, &dir)?;
+    let _ = std::fs::remove_dir_all(&work);
+    check(&dir).map_err(|e| format!("after unpacking: {e}"))?;
+    println!(
+        "MuJoCo {VERSION} is set up in {} (library, headers, licences)",
+        dir.display()
+    );
+    Ok(())
+}
+
+/// The Python whose pip downloads the wheel (`$HYQ_PYTHON`, else `python3`), once its pip runs.
+fn pip_python() -> Result<String, String> {
     let python = std::env::var("HYQ_PYTHON").unwrap_or_else(|_| "python3".to_string());
     let pip_ok = Command::new(&python)
         .args(["-m", "pip", "--version"])
@@ -139,8 +153,13 @@ fn setup_mujoco() -> Result<(), String> {
              {PIP_INSTALL}"
         ));
     }
+    Ok(python)
+}
 
-    std::fs::create_dir_all(&dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+/// Downloads the pinned wheel with `python`'s pip into `dir/.download`, checked against its
+/// sha256; returns that directory and the wheel's path.
+fn download_wheel(python: &str, dir: &Path) -> Result<(PathBuf, PathBuf), String> {
+    std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
     let work = dir.join(".download");
     // A previous, interrupted run may have left files here.
     let _ = std::fs::remove_dir_all(&work);
@@ -152,7 +171,7 @@ fn setup_mujoco() -> Result<(), String> {
     )
     .map_err(|e| format!("cannot write {}: {e}", requirements.display()))?;
 
-    let mut pip = Command::new(&python);
+    let mut pip = Command::new(python);
     pip.args(["-m", "pip", "download", "--no-deps", "--only-binary=:all:"])
         .args(PIP_TAGS)
         .arg("--dest")
@@ -178,7 +197,11 @@ fn setup_mujoco() -> Result<(), String> {
                 work.display()
             )
         })?;
+    Ok((work, wheel))
+}
 
+/// Unpacks MuJoCo's library, headers and licences from `wheel` into `dir` with `python`.
+fn unpack_wheel(python: &str, wheel: &Path, dir: &Path) -> Result<(), String> {
     // Unpack with Python's own zip reader (pip's Python is there by now): the library, the
     // headers and the licences, nothing else.
     let unpack = r#"
@@ -201,21 +224,15 @@ with zipfile.ZipFile(wheel) as z:
             shutil.copyfileobj(src, dst)
 print(f"unpacked {len(wanted)} files")
 "#;
-    let status = Command::new(&python)
+    let status = Command::new(python)
         .args(["-c", unpack])
-        .arg(&wheel)
-        .arg(&dir)
+        .arg(wheel)
+        .arg(dir)
         .status()
         .map_err(|e| format!("cannot run {python}: {e}"))?;
     if !status.success() {
         return Err(format!("unpacking {} failed ({status})", wheel.display()));
     }
-    let _ = std::fs::remove_dir_all(&work);
-    check(&dir).map_err(|e| format!("after unpacking: {e}"))?;
-    println!(
-        "MuJoCo {VERSION} is set up in {} (library, headers, licences)",
-        dir.display()
-    );
     Ok(())
 }
 

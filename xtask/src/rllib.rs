@@ -12,7 +12,7 @@ use std::process::Command;
 use crate::stages::{venv_command, venv_python};
 
 /// The optional stages `--with` names.
-const OPTIONAL: [&str; 1] = ["rllib"];
+const OPTIONAL: [&str; 2] = ["rllib", "train"];
 
 /// Splits `--with NAME` pairs off `args`: (the optional stages asked for, the other arguments).
 pub fn split_with(args: &[String]) -> Result<(Vec<String>, Vec<String>), String> {
@@ -22,11 +22,11 @@ pub fn split_with(args: &[String]) -> Result<(Vec<String>, Vec<String>), String>
         if arg == "--with" {
             let name = it
                 .next()
-                .ok_or("`--with` needs a value: rllib")?
+                .ok_or("`--with` needs a value: rllib or train")?
                 .to_string();
             if !OPTIONAL.contains(&name.as_str()) {
                 return Err(format!(
-                    "`--with {name}`: unknown optional stage (expected rllib)"
+                    "`--with {name}`: unknown optional stage (expected rllib or train)"
                 ));
             }
             with.push(name);

@@ -5,13 +5,10 @@
 //! field; it prints the steps, the episodes and why they ended, and the range seen on every
 //! observation row (the measured ranges of the rows the spec only estimates, 33–38).
 //!
-//! The test suite runs a short soak (2·10⁴ steps, `crates/hyq-cli/tests`); this is the long one.
-
-use std::path::Path;
+//! The test suite runs a short soak (5·10³ steps, `crates/hyq-cli/tests`); this is the long one.
 
 use crate::cli::{positive, value};
-use crate::mujoco;
-use crate::stages::{DART_BULLET_HEADER, DART_INSTALL, run_cargo, workspace_root};
+use crate::stages::{engine_missing, run_cargo, workspace_root};
 
 /// The soak's settings.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -28,7 +25,7 @@ pub struct SoakArgs {
 pub fn parse(args: &[String]) -> Result<SoakArgs, String> {
     let mut out = SoakArgs {
         steps: 1_000_000,
-        backend: "rapier".into(),
+        backend: hyq_engines::DEFAULT.name.into(),
         seed: 0,
     };
     let mut it = args.iter();
@@ -43,8 +40,11 @@ pub fn parse(args: &[String]) -> Result<SoakArgs, String> {
             }
             "--backend" => {
                 let v = value(&mut it, "soak", arg)?;
-                if !["rapier", "dart", "mujoco"].contains(&v.as_str()) {
-                    return Err(format!("`--backend {v}`: expected rapier, dart or mujoco"));
+                if hyq_engines::find(v).is_none() {
+                    return Err(format!(
+                        "`--backend {v}`: expected {}",
+                        hyq_engines::all_names().replace(" and ", " or ")
+                    ));
                 }
                 out.backend = v.clone();
             }
@@ -59,8 +59,8 @@ pub fn cargo_args(args: &SoakArgs) -> Vec<String> {
     let mut cargo: Vec<String> = ["run", "--release", "--locked", "-p", "hyq-cli"]
         .map(String::from)
         .to_vec();
-    if args.backend != "rapier" {
-        cargo.extend(["--features".into(), args.backend.clone()]);
+    if let Some(feature) = hyq_engines::find(&args.backend).and_then(|e| e.feature) {
+        cargo.extend(["--features".into(), feature.to_owned()]);
     }
     cargo.extend(
         [
@@ -81,20 +81,11 @@ pub fn cargo_args(args: &SoakArgs) -> Vec<String> {
 /// `cargo xtask soak`.
 pub fn soak(args: &[String]) -> Result<(), String> {
     let args = parse(args)?;
-    // The same check as the test stages' (DART's headers, with the Bullet detector).
-    if args.backend == "dart" && !Path::new(DART_BULLET_HEADER).exists() {
-        return Err(format!(
-            "the DART backend needs DART installed: {DART_INSTALL}"
-        ));
-    }
-    if args.backend == "mujoco" {
-        mujoco::check(&mujoco::mujoco_dir(&workspace_root())).map_err(|why| {
-            format!(
-                "the MuJoCo backend needs MuJoCo {} ({why}): {}",
-                mujoco::VERSION,
-                mujoco::SETUP_COMMAND
-            )
-        })?;
+    // The same check as the test stages'.
+    if let Some(engine) = hyq_engines::find(&args.backend)
+        && let Some(why) = engine_missing(engine, &workspace_root())
+    {
+        return Err(format!("the {} backend needs it: {why}", engine.title));
     }
     let status = run_cargo(&workspace_root(), &cargo_args(&args))?;
     if status.success() {

@@ -5,16 +5,18 @@
 use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
 use std::process::{Command, ExitStatus, Stdio};
+use std::time::{Duration, Instant};
+
+use hyq_engines::{ENGINES, Engine, Needs, Probe};
 
 use crate::mujoco;
 
 /// A part of the test run that needs something a fresh machine may lack.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 pub enum Part {
-    /// The DART backend: needs Debian's libdart.
-    Dart,
-    /// The MuJoCo backend: needs MuJoCo's library (`cargo xtask setup mujoco`).
-    Mujoco,
+    /// An optional engine of hyq-engines' table: its backend crate's tests and every crate's
+    /// tests with the feature of its name. Needs the engine's library.
+    Engine(&'static Engine),
     /// The Python package: needs maturin, gymnasium and pytest.
     Python,
 }
@@ -22,15 +24,54 @@ pub enum Part {
 impl Part {
     fn name(self) -> &'static str {
         match self {
-            Part::Dart => "dart",
-            Part::Mujoco => "mujoco",
+            Part::Engine(engine) => engine.name,
             Part::Python => "python",
         }
     }
+
+    /// Every part, in the order the stages run: the optional engines, then Python.
+    fn all() -> Vec<Part> {
+        optional_engines()
+            .map(Part::Engine)
+            .chain([Part::Python])
+            .collect()
+    }
 }
 
-/// The install line printed when DART is missing (the README gives the same line).
-pub const DART_INSTALL: &str = "sudo apt-get install -y libdart-dev libdart-collision-bullet-dev";
+/// The engines a build may leave out (those with a cargo feature), in the table's order.
+fn optional_engines() -> impl Iterator<Item = &'static Engine> {
+    ENGINES.iter().filter(|e| e.feature.is_some())
+}
+
+/// The line that installs `engine`'s library, as xtask prints it (with `sudo` where it installs
+/// system packages).
+pub fn install_line(engine: &Engine) -> String {
+    match engine.needs {
+        Some(Needs {
+            install,
+            probe: Probe::File(_),
+            ..
+        }) => format!("sudo {install}"),
+        Some(needs) => needs.install.to_owned(),
+        None => String::new(),
+    }
+}
+
+/// Why `engine`'s library is not usable on this machine (`None`: it is, or it needs none), in
+/// one line; `root` is the workspace root.
+pub fn engine_missing(engine: &Engine, root: &Path) -> Option<String> {
+    let needs = engine.needs?;
+    let why = match needs.probe {
+        Probe::File(path) if !Path::new(path).exists() => format!("{path} is missing"),
+        Probe::File(_) => return None,
+        Probe::XtaskSetup => mujoco::check(&mujoco::mujoco_dir(root)).err()?,
+    };
+    Some(format!(
+        "{} is not installed ({why}); to install it: {}",
+        needs.what,
+        install_line(engine)
+    ))
+}
 
 /// The install line printed when Python 3 (with venv and pip) is missing.
 pub const PYTHON_INSTALL: &str = "sudo apt-get install -y python3 python3-venv python3-pip";
@@ -44,8 +85,10 @@ enum Outcome {
     Skipped { why: String },
 }
 
-/// Parses `--require dart|mujoco|python|all` flags.
+/// Parses `--require <part>|all` flags (a part: an optional engine's name, or `python`).
 fn parse_required(args: &[String]) -> Result<Vec<Part>, String> {
+    let names: Vec<&str> = Part::all().iter().map(|p| p.name()).collect();
+    let expected = format!("{} or all", names.join(", "));
     let mut required = Vec::new();
     let mut it = args.iter();
     while let Some(arg) = it.next() {
@@ -53,18 +96,15 @@ fn parse_required(args: &[String]) -> Result<Vec<Part>, String> {
             "--require" => {
                 let value = it
                     .next()
-                    .ok_or("`--require` needs a value: dart, mujoco, python or all")?;
-                match value.as_str() {
-                    "dart" => required.push(Part::Dart),
-                    "mujoco" => required.push(Part::Mujoco),
-                    "python" => required.push(Part::Python),
-                    "all" => required.extend([Part::Dart, Part::Mujoco, Part::Python]),
-                    other => {
-                        return Err(format!(
-                            "`--require {other}`: unknown part (expected dart, mujoco, python \
-                             or all)"
-                        ));
-                    }
+                    .ok_or_else(|| format!("`--require` needs a value: {expected}"))?;
+                if value == "all" {
+                    required.extend(Part::all());
+                } else if let Some(part) = Part::all().into_iter().find(|p| p.name() == value) {
+                    required.push(part);
+                } else {
+                    return Err(format!(
+                        "`--require {value}`: unknown part (expected {expected})"
+                    ));
                 }
             }
             other => return Err(format!("`cargo xtask test`: unknown argument `{other}`")),
@@ -110,17 +150,6 @@ pub fn workspace_members(root: &Path) -> Result<Vec<String>, String> {
         names.push(name.to_string());
     }
     Ok(names)
-}
-
-/// The header of DART's Bullet collision detector, which the DART backend needs: every command
-/// that builds the backend checks for it.
-pub const DART_BULLET_HEADER: &str =
-    "/usr/include/dart/collision/bullet/BulletCollisionDetector.hpp";
-
-/// True when Debian's DART development files are installed, with the Bullet collision detector
-/// the backend uses.
-fn dart_installed() -> bool {
-    Path::new("/usr/include/dart/config.hpp").exists() && Path::new(DART_BULLET_HEADER).exists()
 }
 
 /// A `cargo` command (the one running xtask, `$CARGO`, else `cargo` from `PATH`) to be run in
@@ -193,101 +222,122 @@ pub fn passed_count(line: &str) -> u64 {
         .sum()
 }
 
+/// One stage of `cargo xtask test`: its name, what happened to it and how long it took.
+struct Stage {
+    name: &'static str,
+    outcome: Outcome,
+    /// Wall-clock time, from the stage's start to its end (what a CI log's reader budgets).
+    wall: Duration,
+}
+
+/// Runs one stage and times it; an error (a test that failed, a tool that could not start) ends
+/// the whole run.
+fn timed(
+    name: &'static str,
+    run: impl FnOnce() -> Result<Outcome, String>,
+) -> Result<Stage, String> {
+    let start = Instant::now();
+    let outcome = run()?;
+    Ok(Stage {
+        name,
+        outcome,
+        wall: start.elapsed(),
+    })
+}
+
 /// `cargo xtask test`.
 pub fn test(args: &[String]) -> Result<(), String> {
+    let start = Instant::now();
     let (with, args) = crate::rllib::split_with(args)?;
     let required = parse_required(&args)?;
     let root = workspace_root();
     let members = workspace_members(&root)?;
     let has = |name: &str| members.iter().any(|m| m == name);
-    let mut results: Vec<(&str, Outcome)> = Vec::new();
+    let mut stages = Vec::new();
 
     // Stage 1: every Rust crate that needs nothing but a Rust toolchain (rapier is the backend).
-    let mut args: Vec<&str> = vec!["test", "--workspace", "--locked"];
-    for optional in ["hyq-dart", "hyq-mujoco", "hyq-py"] {
-        if has(optional) {
+    stages.push(timed("rust workspace (rapier backend)", || {
+        let mut args: Vec<&str> = vec!["test", "--workspace", "--locked"];
+        let optional = optional_engines().map(|e| e.crate_name).chain(["hyq-py"]);
+        for optional in optional.filter(|name| has(name)) {
             args.extend(["--exclude", optional]);
         }
-    }
-    let tests = cargo_test(&root, &args)?;
-    results.push(("rust workspace (rapier backend)", Outcome::Passed { tests }));
+        let tests = cargo_test(&root, &args)?;
+        Ok(Outcome::Passed { tests })
+    })?);
 
     // The patched rapier3d: its tree is the published crate plus vendor/patches, and its
     // multibody tests pass.
-    let tests = crate::vendor::stage(&root)?;
-    results.push(("vendor/rapier3d (check, tests)", Outcome::Passed { tests }));
+    stages.push(timed("vendor/rapier3d (check, tests)", || {
+        let tests = crate::vendor::stage(&root)?;
+        Ok(Outcome::Passed { tests })
+    })?);
 
-    // Stage 2: the DART backend and everything that runs on it.
-    let dart = if !has("hyq-dart") {
-        Outcome::Skipped {
-            why: "the hyq-dart crate is not in the workspace yet".into(),
+    // Then one stage per optional engine: its backend and everything that runs on it.
+    let mut engines_run = Vec::new();
+    for engine in optional_engines() {
+        let stage = timed(engine.name, || engine_stage(engine, &members, &root))?;
+        if matches!(stage.outcome, Outcome::Passed { .. }) {
+            engines_run.push(engine);
         }
-    } else if !dart_installed() {
-        Outcome::Skipped {
-            why: format!("DART is not installed; to run these tests: {DART_INSTALL}"),
-        }
-    } else {
-        let tests = cargo_test(
-            &root,
-            &dart_stage_args(&members)
-                .iter()
-                .map(String::as_str)
-                .collect::<Vec<_>>(),
-        )?;
-        Outcome::Passed { tests }
-    };
-    results.push((Part::Dart.name(), dart));
-
-    // Stage 3: the MuJoCo backend and everything that runs on it.
-    let mujoco = if !has("hyq-mujoco") {
-        Outcome::Skipped {
-            why: "the hyq-mujoco crate is not in the workspace yet".into(),
-        }
-    } else if let Err(why) = mujoco::check(&mujoco::mujoco_dir(&root)) {
-        Outcome::Skipped {
-            why: format!(
-                "MuJoCo {} is not set up ({why}); to run these tests: {}",
-                mujoco::VERSION,
-                mujoco::SETUP_COMMAND
-            ),
-        }
-    } else {
-        let mut tests = 0;
-        for args in mujoco_stage_args(&members) {
-            tests += cargo_test(&root, &args.iter().map(String::as_str).collect::<Vec<_>>())?;
-        }
-        Outcome::Passed { tests }
-    };
-    results.push((Part::Mujoco.name(), mujoco));
-
-    // Stage 4: the Python package.
-    let python = if !has("hyq-py") {
-        Outcome::Skipped {
-            why: "the hyq-py crate is not in the workspace yet".into(),
-        }
-    } else {
-        match python_tools(&root) {
-            Err(why) => Outcome::Skipped { why },
-            Ok(venv) => Outcome::Passed {
-                // With MuJoCo set up, the package is built with it, so that its tests run
-                // `backend="mujoco"` too.
-                tests: python_stage(
-                    &root,
-                    &venv,
-                    has("hyq-mujoco") && mujoco::check(&mujoco::mujoco_dir(&root)).is_ok(),
-                )?,
-            },
-        }
-    };
-    results.push((Part::Python.name(), python));
-
-    // Optional stages, run only when asked for (`--with rllib`).
-    if with.iter().any(|w| w == "rllib") {
-        let tests = crate::rllib::stage(&root)?;
-        results.push(("rllib (--with rllib)", Outcome::Passed { tests }));
+        stages.push(stage);
     }
 
-    summarize(&results, &required)
+    // The Python package.
+    stages.push(timed(Part::Python.name(), || {
+        if !has("hyq-py") {
+            return Ok(Outcome::Skipped {
+                why: "the hyq-py crate is not in the workspace yet".into(),
+            });
+        }
+        Ok(match python_tools(&root) {
+            Err(why) => Outcome::Skipped { why },
+            Ok(venv) => Outcome::Passed {
+                tests: python_stage(&root, &venv, &engines_run)?,
+            },
+        })
+    })?);
+
+    // Optional stages, run only when asked for (`--with rllib`, `--with train`).
+    if with.iter().any(|w| w == "rllib") {
+        stages.push(timed("rllib (--with rllib)", || {
+            let tests = crate::rllib::stage(&root)?;
+            Ok(Outcome::Passed { tests })
+        })?);
+    }
+    if with.iter().any(|w| w == "train") {
+        let features = python_features(&engines_run);
+        stages.push(timed("train (--with train)", || {
+            let tests = crate::train::stage(&root, &features)?;
+            Ok(Outcome::Passed { tests })
+        })?);
+    }
+
+    summarize(&stages, &required, start.elapsed())
+}
+
+/// An optional engine's stage: its backend and everything that runs on it, or why it cannot run
+/// here (its crate is not a member, or its library is not installed, with the line that installs
+/// it).
+fn engine_stage(engine: &Engine, members: &[String], root: &Path) -> Result<Outcome, String> {
+    if !members.iter().any(|m| m == engine.crate_name) {
+        return Ok(Outcome::Skipped {
+            why: format!(
+                "the {} crate is not in the workspace yet",
+                engine.crate_name
+            ),
+        });
+    }
+    if let Some(why) = engine_missing(engine, root) {
+        return Ok(Outcome::Skipped {
+            why: format!("{why}; then these tests run"),
+        });
+    }
+    let mut tests = 0;
+    for args in engine_stage_args(engine, members, root) {
+        tests += cargo_test(root, &args.iter().map(String::as_str).collect::<Vec<_>>())?;
+    }
+    Ok(Outcome::Passed { tests })
 }
 
 /// The venv the Python stage builds the package into and runs pytest from: `$HYQ_VENV`, else
@@ -386,13 +436,25 @@ pub(crate) fn venv_command(venv: &Path, dir: &Path, program: &Path) -> Command {
     command
 }
 
+/// The cargo features the Python package is built with, comma-separated: those of `engines`
+/// (the engines whose stage ran) that have `python_tests` (`""` for none).
+pub fn python_features(engines: &[&Engine]) -> String {
+    let features: Vec<&str> = engines
+        .iter()
+        .filter(|e| e.python_tests)
+        .filter_map(|e| e.feature)
+        .collect();
+    features.join(",")
+}
+
 /// Stage 3: installs the pinned requirements into the venv (and Stable-Baselines3 without its
 /// dependencies), builds the extension with the dev
 /// profile and installs the package (`maturin develop`: fast to build; users get release
 /// builds from `maturin build --release` or `pip install`), builds the `hyq` command the CLI
-/// parity test runs, then runs pytest and returns how many tests passed. `with_mujoco` builds
-/// the package with its `mujoco` feature.
-fn python_stage(root: &Path, venv: &Path, with_mujoco: bool) -> Result<u64, String> {
+/// parity test runs, then runs pytest and returns how many tests passed. The package is built
+/// with the feature of each of `engines` (those whose stage ran) that has `python_tests`, so its
+/// tests run on them too.
+fn python_stage(root: &Path, venv: &Path, engines: &[&Engine]) -> Result<u64, String> {
     let crate_dir = root.join("crates").join("hyq-py");
     let python = venv_python(venv);
     run_in_venv(
@@ -416,9 +478,10 @@ fn python_stage(root: &Path, venv: &Path, with_mujoco: bool) -> Result<u64, Stri
             "requirements-test-nodeps.txt",
         ],
     )?;
+    let features = python_features(engines);
     let mut develop = vec!["-m", "maturin", "develop", "--locked"];
-    if with_mujoco {
-        develop.extend(["--features", "mujoco"]);
+    if !features.is_empty() {
+        develop.extend(["--features", &features]);
     }
     run_in_venv(venv, &crate_dir, &python, &develop)?;
     cargo_test(root, &["build", "--locked", "-p", "hyq-cli"])?;
@@ -450,7 +513,7 @@ fn python_stage(root: &Path, venv: &Path, with_mujoco: bool) -> Result<u64, Stri
 /// The number of passed tests on pytest's closing summary line, or `None` if `line` is not one.
 /// The line is `49 passed in 3.70s` with `-q`, `==== 1 failed, 48 passed, 2 warnings in 3.70s
 /// ====` otherwise, and `no tests ran in 0.01s` when nothing ran (0 passed).
-fn pytest_passed_count(line: &str) -> Option<u64> {
+pub(crate) fn pytest_passed_count(line: &str) -> Option<u64> {
     let body = line.trim().trim_matches('=').trim();
     let (counts, time) = body.rsplit_once(" in ")?;
     if !time.starts_with(|c: char| c.is_ascii_digit()) || !time.contains('s') {
@@ -473,26 +536,35 @@ fn pytest_passed_count(line: &str) -> Option<u64> {
     Some(passed)
 }
 
-/// The crates whose `dart` feature runs their tests on the DART backend too (the spec section by
-/// section, the env, the command line, the comparison runs).
-const DART_FEATURE_CRATES: [&str; 4] = ["spec-tests", "hyq-env", "hyq-cli", "hyq-compare"];
+/// The crates whose feature of an engine's name runs their tests on that engine too (the spec
+/// section by section, the env, the command line, the comparison runs).
+const ENGINE_FEATURE_CRATES: [&str; 4] = ["spec-tests", "hyq-env", "hyq-cli", "hyq-compare"];
 
-/// The crates whose `mujoco` feature runs their tests on the MuJoCo backend too (the command
-/// line's MuJoCo tests run on their own, see [`mujoco_stage_args`]).
-const MUJOCO_FEATURE_CRATES: [&str; 3] = ["spec-tests", "hyq-env", "hyq-compare"];
-
-/// The MuJoCo stage's `cargo test` commands: the backend's own tests and every crate of
-/// [`MUJOCO_FEATURE_CRATES`] with its `mujoco` feature; then, to keep the stage short, only the
-/// command line's MuJoCo test file (`hyq-cli/tests/mujoco_backend.rs`) rather than all of its
-/// tests again, which the first stage ran on rapier.
-fn mujoco_stage_args(members: &[String]) -> Vec<Vec<String>> {
+/// An engine stage's `cargo test` commands: the backend's own tests and every crate of
+/// [`ENGINE_FEATURE_CRATES`] that is a workspace member, with the feature of the engine's name.
+/// When the command line has a test file of the engine's own (`hyq-cli/tests/<name>_backend.rs`),
+/// only that file of its tests runs, in a second command, to keep the stage short: the first
+/// stage ran all of them on rapier.
+fn engine_stage_args(engine: &Engine, members: &[String], root: &Path) -> Vec<Vec<String>> {
+    let feature = engine.feature.unwrap_or(engine.name);
+    let own_cli_test = format!("{}_backend", engine.name);
+    let cli_alone = members.iter().any(|m| m == "hyq-cli")
+        && root
+            .join("crates/hyq-cli/tests")
+            .join(format!("{own_cli_test}.rs"))
+            .exists();
+    let crates: Vec<&str> = ENGINE_FEATURE_CRATES
+        .into_iter()
+        .filter(|c| !(cli_alone && *c == "hyq-cli"))
+        .collect();
     let mut commands = vec![feature_stage_args(
-        "hyq-mujoco",
-        "mujoco",
-        &MUJOCO_FEATURE_CRATES,
+        engine.crate_name,
+        feature,
+        &crates,
         members,
     )];
-    if members.iter().any(|m| m == "hyq-cli") {
+    if cli_alone {
+        let cli_feature = format!("hyq-cli/{feature}");
         commands.push(
             [
                 "test",
@@ -500,21 +572,15 @@ fn mujoco_stage_args(members: &[String]) -> Vec<Vec<String>> {
                 "-p",
                 "hyq-cli",
                 "--features",
-                "hyq-cli/mujoco",
+                &cli_feature,
                 "--test",
-                "mujoco_backend",
+                &own_cli_test,
             ]
             .map(String::from)
             .to_vec(),
         );
     }
     commands
-}
-
-/// The DART stage's `cargo test` arguments: the backend's own tests plus every member crate that
-/// has a `dart` feature, built with it (members not in the workspace yet are left out).
-fn dart_stage_args(members: &[String]) -> Vec<String> {
-    feature_stage_args("hyq-dart", "dart", &DART_FEATURE_CRATES, members)
 }
 
 /// A backend stage's `cargo test` arguments: the backend crate's own tests plus each of
@@ -541,33 +607,46 @@ fn feature_stage_args(
     args
 }
 
-/// Prints the summary table and turns a required-but-skipped part or an empty stage into an error.
-fn summarize(results: &[(&str, Outcome)], required: &[Part]) -> Result<(), String> {
+/// Prints the summary table, one line per stage with its wall time and a last line with the
+/// total, and turns a required-but-skipped part or an empty stage into an error.
+fn summarize(stages: &[Stage], required: &[Part], total: Duration) -> Result<(), String> {
     println!("\n==== cargo xtask test: summary ====");
     let mut problems = Vec::new();
-    for (stage, outcome) in results {
+    for Stage {
+        name,
+        outcome,
+        wall,
+    } in stages
+    {
+        let wall = seconds(*wall);
         match outcome {
             Outcome::Passed { tests } => {
-                println!("  {stage:<34} passed  ({tests} tests)");
+                println!("  {name:<34} {wall:>7}  passed  ({tests} tests)");
                 if *tests == 0 {
-                    problems.push(format!("stage `{stage}` ran no test"));
+                    problems.push(format!("stage `{name}` ran no test"));
                 }
             }
             Outcome::Skipped { why } => {
-                println!("  {stage:<34} NOT RUN: {why}");
-                if required.iter().any(|p| p.name() == *stage) {
+                println!("  {name:<34} {wall:>7}  NOT RUN: {why}");
+                if required.iter().any(|p| p.name() == *name) {
                     problems.push(format!(
-                        "stage `{stage}` was required but did not run: {why}"
+                        "stage `{name}` was required but did not run: {why}"
                     ));
                 }
             }
         }
     }
+    println!("  {:<34} {:>7}  wall clock", "total", seconds(total));
     if problems.is_empty() {
         Ok(())
     } else {
         Err(problems.join("; "))
     }
+}
+
+/// A wall time as the summary prints it: whole seconds (`"812 s"`).
+fn seconds(wall: Duration) -> String {
+    format!("{} s", wall.as_secs_f64().round())
 }
 
 #[cfg(test)]
@@ -627,10 +706,16 @@ mod tests {
 
     #[test]
     fn require_flags_parse_and_reject_unknown_parts() {
+        let engine = |name| Part::Engine(hyq_engines::find(name).expect("an engine"));
         assert_eq!(
             parse_required(&strings(&["--require", "all"])),
-            Ok(vec![Part::Dart, Part::Mujoco, Part::Python])
+            Ok(vec![engine("dart"), engine("mujoco"), Part::Python])
         );
+        assert_eq!(
+            parse_required(&strings(&["--require", "mujoco", "--require", "python"])),
+            Ok(vec![engine("mujoco"), Part::Python])
+        );
+        assert!(parse_required(&strings(&["--require", "rapier"])).is_err());
         let err = parse_required(&strings(&["--require", "matlab"]))
             .expect_err("an unknown part must be refused");
         assert!(err.contains("matlab"), "{err}");
@@ -642,9 +727,13 @@ mod tests {
         let members: Vec<String> = ["hyq-spec", "hyq-dart", "spec-tests", "hyq-env"]
             .map(String::from)
             .to_vec();
+        let dart = hyq_engines::find("dart").expect("an engine");
+        let commands = engine_stage_args(dart, &members, &workspace_root());
         assert_eq!(
-            dart_stage_args(&members).join(" "),
-            "test --locked -p hyq-dart -p spec-tests -p hyq-env --features spec-tests/dart,hyq-env/dart"
+            commands.iter().map(|c| c.join(" ")).collect::<Vec<_>>(),
+            [
+                "test --locked -p hyq-dart -p spec-tests -p hyq-env --features spec-tests/dart,hyq-env/dart"
+            ]
         );
     }
 
@@ -653,7 +742,8 @@ mod tests {
         let members: Vec<String> = ["hyq-mujoco", "spec-tests", "hyq-env", "hyq-cli", "xtask"]
             .map(String::from)
             .to_vec();
-        let commands: Vec<String> = mujoco_stage_args(&members)
+        let mujoco = hyq_engines::find("mujoco").expect("an engine");
+        let commands: Vec<String> = engine_stage_args(mujoco, &members, &workspace_root())
             .iter()
             .map(|c| c.join(" "))
             .collect();
@@ -669,21 +759,38 @@ mod tests {
 
     #[test]
     fn a_required_part_that_did_not_run_fails_the_run() {
-        let results = [(
+        let results = [stage(
             "dart",
             Outcome::Skipped {
                 why: "not installed".into(),
             },
         )];
-        assert!(summarize(&results, &[]).is_ok());
-        let err = summarize(&results, &[Part::Dart])
+        assert!(summarize(&results, &[], Duration::ZERO).is_ok());
+        let dart = hyq_engines::find("dart").expect("an engine");
+        let err = summarize(&results, &[Part::Engine(dart)], Duration::ZERO)
             .expect_err("a required part that did not run must fail");
         assert!(err.contains("dart"), "{err}");
     }
 
     #[test]
     fn a_stage_that_ran_no_test_fails_the_run() {
-        let results = [("rust", Outcome::Passed { tests: 0 })];
-        assert!(summarize(&results, &[]).is_err());
+        let results = [stage("rust", Outcome::Passed { tests: 0 })];
+        assert!(summarize(&results, &[], Duration::ZERO).is_err());
+    }
+
+    /// A stage that took no time, for the summary's tests.
+    fn stage(name: &'static str, outcome: Outcome) -> Stage {
+        Stage {
+            name,
+            outcome,
+            wall: Duration::ZERO,
+        }
+    }
+
+    #[test]
+    fn wall_times_are_whole_seconds() {
+        assert_eq!(seconds(Duration::from_millis(812_400)), "812 s");
+        assert_eq!(seconds(Duration::from_millis(1_600)), "2 s");
+        assert_eq!(seconds(Duration::ZERO), "0 s");
     }
 }

@@ -404,90 +404,113 @@ fn apply_patch(files: &mut Tree, text: &str) -> Result<Vec<String>, String> {
             .ok_or_else(|| format!("line {}: target path does not start with b/", i + 2))?
             .to_string();
         i += 2;
-        let source: Vec<String> = if old == "/dev/null" {
-            if files.contains_key(&path) {
-                return Err(format!("{path}: created by the patch but already exists"));
-            }
-            Vec::new()
-        } else {
-            if old.strip_prefix("a/") != Some(path.as_str()) {
-                return Err(format!("{path}: renames are not supported"));
-            }
-            let bytes = files
-                .get(&path)
-                .ok_or_else(|| format!("{path}: no such file to patch"))?;
-            String::from_utf8(bytes.clone())
-                .map_err(|_| format!("{path}: not UTF-8"))?
-                .split_inclusive('\n')
-                .map(str::to_string)
-                .collect()
-        };
+        let source = patch_source(files, old, &path)?;
         let mut result: Vec<String> = Vec::new();
         let mut next = 0; // first source line not yet copied
         while i < lines.len() && lines[i].starts_with("@@ ") {
-            let (start, mut old_left, mut new_left) = hunk_header(lines[i])
-                .ok_or_else(|| format!("line {}: malformed hunk header", i + 1))?;
-            // Line numbers count from 1; a hunk that adds to an empty side starts at 0.
-            let at = if old_left == 0 {
-                start
-            } else {
-                start.saturating_sub(1)
-            };
-            if at < next || at > source.len() {
-                return Err(format!(
-                    "{path}: hunk at line {start} is out of order or range"
-                ));
-            }
-            result.extend(source[next..at].iter().cloned());
-            next = at;
-            i += 1;
-            while old_left + new_left > 0 || lines.get(i).is_some_and(|l| l.starts_with('\\')) {
-                let line = lines
-                    .get(i)
-                    .ok_or_else(|| format!("{path}: the patch ends inside a hunk"))?;
-                let (kind, body) = line.split_at(line.len().min(1));
-                match kind {
-                    " " | "-" if old_left > 0 => {
-                        if source.get(next).map(String::as_str) != Some(body) {
-                            return Err(format!(
-                                "{path}: line {} does not match the patch's context",
-                                next + 1
-                            ));
-                        }
-                        if kind == " " {
-                            if new_left == 0 {
-                                return Err(format!("{path}: hunk longer than its header says"));
-                            }
-                            new_left -= 1;
-                            result.push(body.to_string());
-                        }
-                        old_left -= 1;
-                        next += 1;
-                    }
-                    "+" if new_left > 0 => {
-                        new_left -= 1;
-                        result.push(body.to_string());
-                    }
-                    "\\" => {
-                        // `\ No newline at end of file`: the previous line has no newline.
-                        if let Some(last) = result.last_mut()
-                            && last.ends_with('\n')
-                        {
-                            last.pop();
-                        }
-                    }
-                    _ => {
-                        return Err(format!("line {}: does not fit the hunk's header", i + 1));
-                    }
-                }
-                i += 1;
-            }
+            apply_hunk(&lines, &mut i, &path, &source, &mut next, &mut result)?;
         }
         result.extend(source[next..].iter().cloned());
         files.insert(path.clone(), result.concat().into_bytes());
         touched.push(path);
     }
     Ok(touched)
+}
+
+/// The lines of the file a patch's `--- old` names: none for a file it creates (which must not
+/// exist yet), else the file of `path`, which the patch must not rename.
+fn patch_source(files: &Tree, old: &str, path: &str) -> Result<Vec<String>, String> {
+    if old == "/dev/null" {
+        if files.contains_key(path) {
+            return Err(format!("{path}: created by the patch but already exists"));
+        }
+        return Ok(Vec::new());
+    }
+    if old.strip_prefix("a/") != Some(path) {
+        return Err(format!("{path}: renames are not supported"));
+    }
+    let bytes = files
+        .get(path)
+        .ok_or_else(|| format!("{path}: no such file to patch"))?;
+    Ok(String::from_utf8(bytes.clone())
+        .map_err(|_| format!("{path}: not UTF-8"))?
+        .split_inclusive('\n')
+        .map(str::to_string)
+        .collect())
+}
+
+/// Applies the hunk whose header is `lines[*i]` to `source` at `*next` (the first source line
+/// not yet copied), appending to `result`; leaves `*i` after the hunk.
+fn apply_hunk(
+    lines: &[&str],
+    i_at: &mut usize,
+    path: &str,
+    source: &[String],
+    next_at: &mut usize,
+    result: &mut Vec<String>,
+) -> Result<(), String> {
+    let mut i = *i_at;
+    let mut next = *next_at;
+    let (start, mut old_left, mut new_left) =
+        hunk_header(lines[i]).ok_or_else(|| format!("line {}: malformed hunk header", i + 1))?;
+    // Line numbers count from 1; a hunk that adds to an empty side starts at 0.
+    let at = if old_left == 0 {
+        start
+    } else {
+        start.saturating_sub(1)
+    };
+    if at < next || at > source.len() {
+        return Err(format!(
+            "{path}: hunk at line {start} is out of order or range"
+        ));
+    }
+    result.extend(source[next..at].iter().cloned());
+    next = at;
+    i += 1;
+    while old_left + new_left > 0 || lines.get(i).is_some_and(|l| l.starts_with('\\')) {
+        let line = lines
+            .get(i)
+            .ok_or_else(|| format!("{path}: the patch ends inside a hunk"))?;
+        let (kind, body) = line.split_at(line.len().min(1));
+        match kind {
+            " " | "-" if old_left > 0 => {
+                if source.get(next).map(String::as_str) != Some(body) {
+                    return Err(format!(
+                        "{path}: line {} does not match the patch's context",
+                        next + 1
+                    ));
+                }
+                if kind == " " {
+                    if new_left == 0 {
+                        return Err(format!("{path}: hunk longer than its header says"));
+                    }
+                    new_left -= 1;
+                    result.push(body.to_string());
+                }
+                old_left -= 1;
+                next += 1;
+            }
+            "+" if new_left > 0 => {
+                new_left -= 1;
+                result.push(body.to_string());
+            }
+            "\\" => {
+                // `\ No newline at end of file`: the previous line has no newline.
+                if let Some(last) = result.last_mut()
+                    && last.ends_with('\n')
+                {
+                    last.pop();
+                }
+            }
+            _ => {
+                return Err(format!("line {}: does not fit the hunk's header", i + 1));
+            }
+        }
+        i += 1;
+    }
+    *i_at = i;
+    *next_at = next;
+    Ok(())
 }
 
 /// The old side's first line and the two sides' lengths of a hunk header

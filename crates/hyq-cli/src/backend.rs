@@ -1,67 +1,77 @@
-//! The physics backend a subcommand runs on: rapier (always built), DART (built only with the
-//! cargo feature `dart`, since it needs Debian's libdart) or MuJoCo (built only with the cargo
-//! feature `mujoco`, since it needs MuJoCo's library).
+//! The physics backend a subcommand runs on, one of hyq-engines' [`ENGINES`]: rapier (always
+//! built) or an engine built in by the cargo feature of its name (`dart`, `mujoco`), since each
+//! needs a C or C++ library.
 //!
 //! Subcommands are generic over `hyq_physics::Backend`; [`with_backend!`] turns the user's
-//! choice into the concrete type, so the choice is made once, at the top, and the hot loops are
-//! monomorphised per engine.
+//! choice into the concrete type (through `hyq_engines::with_engine!`), so the choice is made
+//! once, at the top, and the hot loops are monomorphised per engine.
 
 use clap::ValueEnum;
+use clap::builder::PossibleValue;
+use hyq_engines::{ENGINES, Engine};
 
-/// The install line for DART's C++ library (Debian's packages, as the hyq-dart crate says).
-const DART_INSTALL: &str = "apt-get install -y libdart-dev libdart-collision-bullet-dev";
+/// A physics backend chosen by name (`--backend`, `--backends`): a row of hyq-engines' table.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BackendChoice(pub &'static Engine);
 
-/// The command that fetches MuJoCo's C library (as the hyq-mujoco crate says).
-const MUJOCO_SETUP: &str = "cargo xtask setup mujoco";
-
-/// A physics backend by name.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
-pub enum BackendChoice {
-    /// rapier3d, pure Rust (the default).
-    Rapier,
-    /// DART 6.12 through C++ (needs a build with `--features dart`).
-    Dart,
-    /// MuJoCo 4.0 through its C API (needs a build with `--features mujoco`).
-    Mujoco,
-}
+/// Every engine as a choice, in the table's order (what `--backend` accepts).
+static CHOICES: [BackendChoice; ENGINES.len()] = {
+    let mut out = [BackendChoice(&ENGINES[0]); ENGINES.len()];
+    let mut i = 1;
+    while i < ENGINES.len() {
+        out[i] = BackendChoice(&ENGINES[i]);
+        i += 1;
+    }
+    out
+};
 
 impl BackendChoice {
+    /// The default engine.
+    pub const DEFAULT: BackendChoice = BackendChoice(hyq_engines::DEFAULT);
+
     /// The backend's name on the command line (`rapier`, `dart`, `mujoco`).
     pub fn name(self) -> &'static str {
-        match self {
-            BackendChoice::Rapier => "rapier",
-            BackendChoice::Dart => "dart",
-            BackendChoice::Mujoco => "mujoco",
-        }
+        self.0.name
     }
 
     /// Whether this `hyq` was built with the backend.
     pub fn built(self) -> bool {
-        match self {
-            BackendChoice::Rapier => true,
-            BackendChoice::Dart => cfg!(feature = "dart"),
-            BackendChoice::Mujoco => cfg!(feature = "mujoco"),
-        }
+        self.0.built
+    }
+}
+
+impl ValueEnum for BackendChoice {
+    fn value_variants<'a>() -> &'a [Self] {
+        &CHOICES
+    }
+
+    fn to_possible_value(&self) -> Option<PossibleValue> {
+        let help = match self.0.feature {
+            Some(feature) => format!(
+                "{} (needs a build with `--features {feature}`)",
+                self.0.summary
+            ),
+            None => self.0.summary.to_owned(),
+        };
+        Some(PossibleValue::new(self.0.name).help(help))
     }
 }
 
 /// The one-line usage error for a backend asked for by `option` (e.g. `--backend dart`) in a
 /// build without it: the cargo feature to build it with, and what that feature needs.
 pub fn not_built(choice: BackendChoice, option: &str) -> crate::Failure {
-    let (name, needs) = match choice {
-        BackendChoice::Dart => ("DART", format!("needs DART 6.12: {DART_INSTALL}")),
-        BackendChoice::Mujoco => (
-            "MuJoCo",
-            format!("needs MuJoCo 4.0.0's library, from `{MUJOCO_SETUP}`"),
-        ),
-        BackendChoice::Rapier => ("rapier", "always built".to_owned()),
-    };
+    let engine = choice.0;
+    let needs = engine.needs.map_or_else(
+        || "always built".to_owned(),
+        |n| format!("needs {}: {}", n.what, n.install),
+    );
     crate::Failure {
         status: 2,
         message: format!(
-            "{option}: this hyq was built without the {name} backend; build it with \
+            "{option}: this hyq was built without the {} backend; build it with \
              `cargo build --release -p hyq-cli --features {}` ({needs})",
-            choice.name()
+            engine.title,
+            engine.feature.unwrap_or(engine.name)
         ),
     }
 }
@@ -69,28 +79,15 @@ pub fn not_built(choice: BackendChoice, option: &str) -> crate::Failure {
 /// Evaluates `$body` with the type alias `$b` bound to the chosen backend type; a choice that
 /// was not built evaluates to `Err(not_built(choice, "--backend <name>"))`.
 macro_rules! with_backend {
-    ($choice:expr, $b:ident => $body:expr) => {
-        match $choice {
-            $crate::backend::BackendChoice::Rapier => {
-                type $b = hyq_rapier::RapierBackend;
-                $body
-            }
-            #[cfg(feature = "dart")]
-            $crate::backend::BackendChoice::Dart => {
-                type $b = hyq_dart::DartBackend;
-                $body
-            }
-            #[cfg(feature = "mujoco")]
-            $crate::backend::BackendChoice::Mujoco => {
-                type $b = hyq_mujoco::MujocoBackend;
-                $body
-            }
-            #[allow(unreachable_patterns)]
-            other => Err($crate::backend::not_built(
-                other,
-                &format!("--backend {}", other.name()),
+    ($choice:expr, $b:ident => $body:expr) => {{
+        let choice: $crate::backend::BackendChoice = $choice;
+        match hyq_engines::with_engine!(choice.name(), $b => $body) {
+            Some(out) => out,
+            None => Err($crate::backend::not_built(
+                choice,
+                &format!("--backend {}", choice.name()),
             )),
         }
-    };
+    }};
 }
 pub(crate) use with_backend;

@@ -245,10 +245,10 @@ pub fn execute(args: BenchArgs) -> Result<(), Failure> {
         _ => None,
     };
     let config = match &mlp {
-        Some((policy, _)) => args
-            .env
-            .configuration
-            .config_over(&policy.metadata().env_config)?,
+        Some((policy, file)) => args.env.configuration.config_over(
+            &policy.metadata().env_config,
+            &format!("--policy mlp:{file}: its env_config"),
+        )?,
         None => args.env.config()?,
     };
     if mlp.is_some() && args.num_envs >= 2 {

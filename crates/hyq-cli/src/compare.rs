@@ -13,20 +13,21 @@
 //! be built, such as a MuJoCo library that cannot be loaded), reported before anything runs; 1
 //! for a failure while running.
 
-use std::io::Write as _;
+use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use clap::builder::TypedValueParser as _;
 use clap::{Args, ValueEnum as _};
 use hyq_compare::policy::MAX_EPISODES;
 use hyq_compare::{
-    ComparisonSpec, DEFAULT_ONE_STEP_STATES, Ledger, MARKDOWN_FILE, Plan, PolicyPlan, PolicySpec,
-    Report, Scenario, check_seconds, compare_all, parse_override, prepare_output_dir,
+    ComparisonSpec, DEFAULT_ONE_STEP_STATES, Ledger, MARKDOWN_FILE, Plan, PolicyPlan, PolicyReport,
+    PolicySpec, Report, Scenario, check_seconds, compare_all, parse_override, prepare_output_dir,
 };
 
 use crate::Failure;
 use crate::backend::{BackendChoice, not_built, with_backend};
 use crate::options::{ConfigArgs, RobotArgs, TrainedPolicy, check_mlp, usage};
+use crate::output;
 use crate::run::PolicyChoice;
 
 /// Episodes per backend of a policy comparison unless `--episodes` says otherwise: enough to
@@ -118,7 +119,10 @@ fn parse_backends(s: &str) -> Result<Backends, String> {
     }
     let pick = |name: &str| {
         BackendChoice::from_str(name, false).map_err(|_| {
-            format!("unknown backend {name:?} (possible backends: rapier, dart, mujoco)")
+            format!(
+                "unknown backend {name:?} (possible backends: {})",
+                hyq_engines::NAMES.join(", ")
+            )
         })
     };
     let choices = names
@@ -249,7 +253,7 @@ pub fn execute(args: CompareArgs) -> Result<(), Failure> {
             status: 1,
             message: e.to_string(),
         })?;
-    print_summary(&report, &args);
+    print_summary(&report, &args)?;
     if args.strict && report.flagged > 0 {
         let names: Vec<&str> = report.flags().map(|c| c.metric.name()).collect();
         return Err(strict_failure(report.flagged, &names, &args));
@@ -309,7 +313,7 @@ fn execute_many(
             status: 1,
             message: e.to_string(),
         })?;
-    let mut out = std::io::stdout().lock();
+    let mut out = String::new();
     let end = |s: &hyq_compare::SideReport| {
         let r: Vec<&str> = s.end_reasons.iter().map(|r| r.as_str()).collect();
         format!("{} {} at step {}", s.label, r.join("+"), s.end_step)
@@ -337,6 +341,7 @@ fn execute_many(
         );
     }
     let _ = writeln!(out, "reports written to {}", args.out.display());
+    output::print(&out)?;
     if args.strict && report.flagged > 0 {
         let names: Vec<&str> = report
             .pairs
@@ -356,43 +361,9 @@ fn execute_policy(
     choices: &[BackendChoice],
     model: std::sync::Arc<hyq_physics::RobotModel>,
 ) -> Result<(), Failure> {
-    let configuration = ConfigArgs {
-        config: args.config.clone(),
-        set: args.set.clone(),
-    };
-    let trained = TrainedPolicy::load(file, &configuration)?;
-    check_mlp(&trained.policy, file, &model, &trained.config)?;
-    let mut applied: Vec<String> = trained
-        .inherited
-        .iter()
-        .map(|(k, v)| format!("{k}={v} (the policy file)"))
-        .collect();
-    if let Some(path) = &args.config {
-        applied.push(format!("--config {}", path.display()));
-    }
-    applied.extend(args.set.iter().map(|s| format!("{} (--set)", s.trim())));
-    let spec = PolicySpec {
-        policy: format!("mlp:{}", file.display()),
-        seed: args.seed,
-        episodes: args.episodes.unwrap_or(DEFAULT_EPISODES),
-        configuration: applied,
-    };
-    let plan =
-        PolicyPlan::new(model, trained.config, trained.policy, spec).map_err(compare_failure)?;
+    let plan = policy_plan(args, file, model)?;
     prepare_output_dir(&args.out).map_err(|e| usage(format!("--out: {e}")))?;
-
-    // Self-comparisons get their second label apart, as in the scenario comparison.
-    let labels: Vec<String> = choices
-        .iter()
-        .enumerate()
-        .map(|(k, c)| {
-            if choices[..k].contains(c) {
-                format!("{} (B)", c.name())
-            } else {
-                c.name().to_owned()
-            }
-        })
-        .collect();
+    let labels = side_labels(choices);
     let mut sides = Vec::with_capacity(choices.len());
     for (&choice, label) in choices.iter().zip(&labels) {
         let side = with_backend!(choice, B => {
@@ -416,7 +387,60 @@ fn execute_policy(
             status: 1,
             message: e.to_string(),
         })?;
-    let mut out = std::io::stdout().lock();
+    print_policy_summary(&report, args)
+}
+
+/// The policy comparison's plan: the trained policy of `file` and the environment it was
+/// trained in, with `--config` and `--set` applied on top, each named in the report.
+fn policy_plan(
+    args: &CompareArgs,
+    file: &std::path::Path,
+    model: std::sync::Arc<hyq_physics::RobotModel>,
+) -> Result<PolicyPlan<hyq_env::MlpPolicy>, Failure> {
+    let configuration = ConfigArgs {
+        config: args.config.clone(),
+        set: args.set.clone(),
+    };
+    let trained = TrainedPolicy::load(file, &configuration)?;
+    check_mlp(&trained.policy, file, &model, &trained.config)?;
+    let mut applied: Vec<String> = trained
+        .inherited
+        .iter()
+        .map(|(k, v)| format!("{k}={v} (the policy file)"))
+        .collect();
+    if let Some(path) = &args.config {
+        applied.push(format!("--config {}", path.display()));
+    }
+    applied.extend(args.set.iter().map(|s| format!("{} (--set)", s.trim())));
+    let spec = PolicySpec {
+        policy: format!("mlp:{}", file.display()),
+        seed: args.seed,
+        episodes: args.episodes.unwrap_or(DEFAULT_EPISODES),
+        configuration: applied,
+    };
+    PolicyPlan::new(model, trained.config, trained.policy, spec).map_err(compare_failure)
+}
+
+/// Each backend's label in a comparison: its name, and a self-comparison's second side's name
+/// with ` (B)` to tell them apart, as in the scenario comparison.
+fn side_labels(choices: &[BackendChoice]) -> Vec<String> {
+    choices
+        .iter()
+        .enumerate()
+        .map(|(k, c)| {
+            if choices[..k].contains(c) {
+                format!("{} (B)", c.name())
+            } else {
+                c.name().to_owned()
+            }
+        })
+        .collect()
+}
+
+/// Prints the policy comparison's summary on stdout (the reports are already written), as
+/// [`print_summary`] does.
+fn print_policy_summary(report: &PolicyReport, args: &CompareArgs) -> Result<(), Failure> {
+    let mut out = String::new();
     let _ = writeln!(
         out,
         "policy {} on {} ({} episode(s) per backend, seed {}), closed loop:",
@@ -464,13 +488,13 @@ fn execute_policy(
         "not judged against the ledger (closed loop); reports written to {}",
         args.out.display()
     );
-    Ok(())
+    output::print(&out)
 }
 
-/// Prints the summary on stdout. A closed stdout (e.g. piped into `head`) is not an error of
-/// the comparison: the reports are already written, so write failures are ignored.
-fn print_summary(report: &Report, args: &CompareArgs) {
-    let mut out = std::io::stdout().lock();
+/// Prints the summary on stdout (the reports are already written): a closed stdout (piped into
+/// `head`) ends the command quietly, another write failure (`> /dev/full`) is an error.
+fn print_summary(report: &Report, args: &CompareArgs) -> Result<(), Failure> {
+    let mut out = String::new();
     let [a, b] = &report.sides;
     let end = |s: &hyq_compare::SideReport| {
         let r: Vec<&str> = s.end_reasons.iter().map(|r| r.as_str()).collect();
@@ -515,4 +539,5 @@ fn print_summary(report: &Report, args: &CompareArgs) {
         }
     }
     let _ = writeln!(out, "reports written to {}", args.out.display());
+    output::print(&out)
 }

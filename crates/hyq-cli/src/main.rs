@@ -23,7 +23,7 @@ mod run;
 mod soak;
 mod table;
 
-use std::io::Write;
+use std::io::{IsTerminal as _, Write};
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
@@ -88,15 +88,6 @@ impl Failure {
     }
 }
 
-impl From<anyhow::Error> for Failure {
-    fn from(e: anyhow::Error) -> Self {
-        Failure {
-            status: 1,
-            message: format!("{e:#}"),
-        }
-    }
-}
-
 /// Prints `message` as the one error line `hyq` ever prints, folding any line breaks.
 fn print_error(message: &str) {
     let line = hyq_physics::one_line(message);
@@ -120,13 +111,16 @@ fn main() -> ExitCode {
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
-        Err(failure) => {
-            if !failure.message.is_empty() {
-                print_error(&failure.message);
-            }
-            ExitCode::from(failure.status)
-        }
+        Err(failure) => exit_with(&failure),
     }
+}
+
+/// Ends the command with `failure`: its one line (none for a closed stdout) and its status.
+fn exit_with(failure: &Failure) -> ExitCode {
+    if !failure.message.is_empty() {
+        print_error(&failure.message);
+    }
+    ExitCode::from(failure.status)
 }
 
 /// Help and version go to stdout with status 0; a usage error becomes one line naming what was
@@ -135,16 +129,25 @@ fn main() -> ExitCode {
 fn clap_exit(e: clap::Error) -> ExitCode {
     use clap::error::ErrorKind;
     match e.kind() {
-        ErrorKind::DisplayHelp
-        | ErrorKind::DisplayVersion
-        | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
-            // Printing help can only fail when stdout is closed; there is nothing left to say.
-            let _ = e.print();
-            if e.kind() == ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand {
-                ExitCode::from(2)
+        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => {
+            // Through the one stdout writer: a closed pipe ends quietly, a full stdout
+            // (`hyq --version > /dev/full`) is one error line and status 1. Styled only on a
+            // terminal, as clap itself does.
+            let rendered = e.render();
+            let text = if std::io::stdout().is_terminal() {
+                rendered.ansi().to_string()
             } else {
-                ExitCode::SUCCESS
+                rendered.to_string()
+            };
+            match output::print(&text) {
+                Ok(()) => ExitCode::SUCCESS,
+                Err(failure) => exit_with(&failure),
             }
+        }
+        ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            // The help goes to stderr; there is nothing left to say if that fails too.
+            let _ = e.print();
+            ExitCode::from(2)
         }
         _ => {
             // clap's message is the lines before its usage block (the error, then e.g. the

@@ -20,6 +20,7 @@
 //! The MuJoCo and DART-from-Python benchmarks (`bench/anchors/`) load these three files, which
 //! `cargo xtask bench-vs-anchors` writes afresh from this command at every run.
 
+use std::io::Write as _;
 use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
@@ -27,11 +28,12 @@ use hyq_env::EnvConfig;
 use hyq_physics::RobotModel;
 use hyq_physics::mjcf::{Actuators, MjcfOptions, MujocoOptions, to_mjcf};
 use hyq_physics::urdf_export::{CapsuleAs, UrdfOptions, to_urdf};
-use hyq_physics::{Shape, mjcf, urdf_export};
+use hyq_physics::{Collision, Shape, mjcf, urdf_export};
 use serde::Serialize;
 
 use crate::Failure;
 use crate::options::{ConfigArgs, RobotArgs, usage};
+use crate::output::{self, OutputFile};
 
 /// The file format.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
@@ -230,55 +232,19 @@ pub fn facts(model: &RobotModel, config: &EnvConfig) -> Result<Facts, Failure> {
         }
     };
     let spawn = model.spawn_state();
-    let mut shapes_ok = Ok(());
     let fact_links = links
         .iter()
-        .map(|link| FactLink {
-            name: link.name.clone(),
-            collisions: link
-                .collisions
-                .iter()
-                .map(|c| {
-                    let (shape, half_extents, radius, half_length) = match c.shape {
-                        Shape::Box { half_extents } => {
-                            ("box", Some(vec3(&half_extents)), None, None)
-                        }
-                        Shape::Sphere { radius } => ("sphere", None, Some(radius), None),
-                        Shape::Capsule {
-                            radius,
-                            half_length,
-                        } => ("capsule", None, Some(radius), Some(half_length)),
-                        Shape::Cylinder {
-                            radius,
-                            half_length,
-                        } => ("cylinder", None, Some(radius), Some(half_length)),
-                        // `Shape` is non-exhaustive: a new shape must be described here first.
-                        #[allow(unreachable_patterns)]
-                        ref other => {
-                            shapes_ok = Err(Failure {
-                                status: 1,
-                                message: format!(
-                                    "link {}: collision shape {other:?} has no JSON form",
-                                    link.name
-                                ),
-                            });
-                            ("unsupported", None, None, None)
-                        }
-                    };
-                    FactShape {
-                        name: c.name.clone(),
-                        shape,
-                        half_extents,
-                        radius,
-                        half_length,
-                        position: vec3(&c.origin.translation.vector),
-                        quaternion_wxyz: quat(&c.origin.rotation),
-                    }
-                })
-                .collect(),
+        .map(|link| -> Result<FactLink, Failure> {
+            Ok(FactLink {
+                name: link.name.clone(),
+                collisions: link
+                    .collisions
+                    .iter()
+                    .map(|c| fact_shape(&link.name, c))
+                    .collect::<Result<_, _>>()?,
+            })
         })
-        .collect();
-    shapes_ok?;
+        .collect::<Result<Vec<_>, _>>()?;
     let params = &config.physics.params;
     Ok(Facts {
         schema_version: 1,
@@ -293,28 +259,66 @@ pub fn facts(model: &RobotModel, config: &EnvConfig) -> Result<Facts, Failure> {
         total_mass: model.total_mass(),
         trunk: tracked(model.trunk_tracked_index()),
         feet: (0..model.num_feet()).map(tracked).collect(),
-        joints: model
-            .joints()
-            .iter()
-            .enumerate()
-            .map(|(j, joint)| FactJoint {
-                name: joint.name.clone(),
-                urdf_name: joint.urdf_name.clone(),
-                lower: joint.lower,
-                upper: joint.upper,
-                effort: joint.effort,
-                velocity: joint.velocity,
-                standing: model.standing_pose()[j],
-                kp: kp[j],
-                kd: kd[j],
-            })
-            .collect(),
+        joints: fact_joints(model, &kp, &kd),
         spawn: FactSpawn {
             position: vec3(&spawn.trunk.pose.translation.vector),
             quaternion_wxyz: quat(&spawn.trunk.pose.rotation),
             q: spawn.q.clone(),
         },
         links: fact_links,
+    })
+}
+
+/// The joints of `model` in action order, with their PD gains `kp` and `kd`.
+fn fact_joints(model: &RobotModel, kp: &[f64], kd: &[f64]) -> Vec<FactJoint> {
+    model
+        .joints()
+        .iter()
+        .enumerate()
+        .map(|(j, joint)| FactJoint {
+            name: joint.name.clone(),
+            urdf_name: joint.urdf_name.clone(),
+            lower: joint.lower,
+            upper: joint.upper,
+            effort: joint.effort,
+            velocity: joint.velocity,
+            standing: model.standing_pose()[j],
+            kp: kp[j],
+            kd: kd[j],
+        })
+        .collect()
+}
+
+/// A collision shape of link `link` as the facts write it.
+fn fact_shape(link: &str, c: &Collision) -> Result<FactShape, Failure> {
+    let (shape, half_extents, radius, half_length) = match c.shape {
+        Shape::Box { half_extents } => ("box", Some(vec3(&half_extents)), None, None),
+        Shape::Sphere { radius } => ("sphere", None, Some(radius), None),
+        Shape::Capsule {
+            radius,
+            half_length,
+        } => ("capsule", None, Some(radius), Some(half_length)),
+        Shape::Cylinder {
+            radius,
+            half_length,
+        } => ("cylinder", None, Some(radius), Some(half_length)),
+        // `Shape` is non-exhaustive: a new shape must be described here first.
+        #[allow(unreachable_patterns)]
+        ref other => {
+            return Err(Failure {
+                status: 1,
+                message: format!("link {link}: collision shape {other:?} has no JSON form"),
+            });
+        }
+    };
+    Ok(FactShape {
+        name: c.name.clone(),
+        shape,
+        half_extents,
+        radius,
+        half_length,
+        position: vec3(&c.origin.translation.vector),
+        quaternion_wxyz: quat(&c.origin.rotation),
     })
 }
 
@@ -392,11 +396,18 @@ pub fn execute(args: ModelArgs) -> Result<(), Failure> {
     let config = args.configuration.config()?;
     let text = render(&args, &model, &config)?;
     match &args.out {
-        None => print!("{text}"),
-        Some(path) => std::fs::write(path, text).map_err(|e| Failure {
-            status: 1,
-            message: format!("cannot write {}: {e}", path.display()),
-        })?,
+        // A closed stdout ends the command quietly; a full one is an error (status 1).
+        None => output::print(&text),
+        // Written beside the file and renamed onto it once whole, as every output file is: a
+        // failed write leaves the file as it was.
+        Some(path) => {
+            let cannot = |e: std::io::Error| Failure {
+                status: 1,
+                message: format!("cannot write {}: {e}", path.display()),
+            };
+            let mut file = OutputFile::create(path).map_err(cannot)?;
+            file.write_all(text.as_bytes()).map_err(cannot)?;
+            file.finish().map_err(cannot)
+        }
     }
-    Ok(())
 }

@@ -7,7 +7,9 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use clap::Args;
-use hyq_env::{Env, EnvConfig, LoadError, MlpPolicy, Policy, RandomPolicy, Stand, Trot};
+use hyq_env::{
+    ConfigError, Env, EnvConfig, LoadError, MlpPolicy, Policy, RandomPolicy, Stand, Trot,
+};
 use hyq_physics::{Backend, RobotModel};
 
 use crate::Failure;
@@ -18,7 +20,7 @@ use crate::run::PolicyChoice;
 #[derive(Debug, Clone, Args)]
 pub struct EnvArgs {
     /// The physics backend.
-    #[arg(long, value_enum, default_value_t = BackendChoice::Rapier)]
+    #[arg(long, value_enum, default_value_t = BackendChoice::DEFAULT)]
     pub backend: BackendChoice,
     /// The robot.
     #[command(flatten)]
@@ -90,13 +92,19 @@ impl EnvArgs {
 impl ConfigArgs {
     /// The configuration: the defaults, then the file, then the overrides, validated.
     pub fn config(&self) -> Result<EnvConfig, Failure> {
-        self.config_over(&[])
+        self.config_over(&[], "")
     }
 
     /// The configuration with `base` (dotted keys and TOML values, e.g. a trained policy's
     /// environment) applied too: the defaults, then the file, then `base` except the keys the
-    /// file or an override sets, then the overrides, validated once.
-    pub fn config_over(&self, base: &[(String, String)]) -> Result<EnvConfig, Failure> {
+    /// file or an override sets, then the overrides, validated once. An error about a key of
+    /// `base` is told as `base_origin`'s (e.g. `--policy mlp:FILE: its env_config`), not as
+    /// `--set`'s.
+    pub fn config_over(
+        &self,
+        base: &[(String, String)],
+        base_origin: &str,
+    ) -> Result<EnvConfig, Failure> {
         let mut pairs = Vec::with_capacity(self.set.len());
         for item in &self.set {
             let (key, value) = item.split_once('=').ok_or_else(|| {
@@ -113,9 +121,15 @@ impl ConfigArgs {
             pairs.push((key, value.trim()));
         }
         let inherited = self.inherited(base)?;
+        let base_keys: Vec<&str> = inherited.iter().map(|(k, _)| k.as_str()).collect();
         let inherited = inherited.iter().map(|(k, v)| (k.as_str(), v.as_str()));
         pairs.splice(0..0, inherited);
-        EnvConfig::load(self.config.as_deref(), &pairs).map_err(load_error)
+        EnvConfig::load(self.config.as_deref(), &pairs).map_err(|e| match e {
+            LoadError::Overrides(e) if key_of(&e).is_some_and(|k| base_keys.contains(&k)) => {
+                usage(format!("{base_origin}: {e}"))
+            }
+            other => load_error(other),
+        })
     }
 }
 
@@ -146,6 +160,14 @@ impl ConfigArgs {
     }
 }
 
+/// The key a configuration error names, if it names one.
+fn key_of(e: &ConfigError) -> Option<&str> {
+    match e {
+        ConfigError::Set { key, .. } | ConfigError::Invalid { key, .. } => Some(key),
+        _ => None,
+    }
+}
+
 fn load_error(e: LoadError) -> Failure {
     match e {
         LoadError::File(e) => usage(e.to_string()),
@@ -170,7 +192,7 @@ fn file_keys(path: &std::path::Path) -> Result<Vec<String>, Failure> {
     }
     // The loader has read and validated the file already; these errors are for a file changed
     // in between.
-    let text = std::fs::read_to_string(path)
+    let text = hyq_physics::input::read_text(path, &hyq_physics::input::CONFIG)
         .map_err(|e| usage(format!("--config {}: {e}", path.display())))?;
     let table: toml::Table = text.parse().map_err(|e: toml::de::Error| {
         usage(format!("--config {}: {}", path.display(), e.message()))
@@ -238,7 +260,10 @@ impl TrainedPolicy {
     pub fn load(file: &std::path::Path, configuration: &ConfigArgs) -> Result<Self, Failure> {
         let policy = read_mlp(file)?;
         let base = &policy.metadata().env_config;
-        let config = configuration.config_over(base)?;
+        let config = configuration.config_over(
+            base,
+            &format!("--policy mlp:{}: its env_config", file.display()),
+        )?;
         let inherited = configuration
             .inherited(base)?
             .into_iter()

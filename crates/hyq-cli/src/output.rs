@@ -9,7 +9,8 @@
 //! the target and renamed onto it when the command has finished, so that a usage error, a
 //! failure or an interrupted run leaves the target as it was. A target that exists and is not a
 //! regular file (a device such as `/dev/full`, a FIFO) is written in place instead, and never
-//! replaced.
+//! replaced. A regular file the user could not write (write-protected) is refused, as the
+//! shell's `>` refuses it, rather than replaced by the rename.
 
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
@@ -133,6 +134,23 @@ impl OutputFile {
                 io::ErrorKind::IsADirectory,
                 "is a directory",
             ));
+        }
+        if target.is_file() {
+            // A file the user could not overwrite in place (write-protected, mode 444) is not
+            // replaced by a rename either, as the shell's `>` would refuse it: opening it for
+            // writing, without truncating, asks the operating system the same question and
+            // changes nothing.
+            File::options().write(true).open(&target).map_err(|e| {
+                if e.kind() == io::ErrorKind::PermissionDenied {
+                    io::Error::new(
+                        e.kind(),
+                        "is write-protected (not writable by you): make it writable, or choose \
+                         another file",
+                    )
+                } else {
+                    e
+                }
+            })?;
         }
         let name = target
             .file_name()

@@ -17,7 +17,7 @@ use std::path::{Path, PathBuf};
 
 use clap::Args;
 use hyq_env::{EnvConfig, StepInfo};
-use hyq_render::{EpisodeSeries, PlotError, PlotOptions, StepRecord, TermValues};
+use hyq_render::{EpisodeSeries, PlotError, PlotOptions, PlotRecord, TermValues};
 
 use crate::Failure;
 use crate::options::{ConfigArgs, usage};
@@ -148,7 +148,7 @@ impl LivePlots {
     /// Adds one env step of the current episode. Its terms are the record's: with the height
     /// penalty off, the env's m_height is 1, as an absent `m_height` reads in a record.
     pub fn push(&mut self, info: &StepInfo) {
-        self.series.push(&StepRecord {
+        self.series.push(&PlotRecord {
             t: info.t,
             episode: Some(info.episode),
             reward: info.reward.total,

@@ -209,8 +209,10 @@ fn render_episode<B: Backend>(mut env: Env<B>, args: &RenderArgs) -> Result<(), 
     let mut renderer = Renderer::new(env.model().clone(), render_config)
         .map_err(|e| usage(format!("render settings: {e}")))?;
     let mut output = open_output(args, &plan)?;
-    let write_failed =
-        |e: WriteError| Failure::from(anyhow::anyhow!("--out {}: {e}", args.out.display()));
+    let write_failed = |e: WriteError| Failure {
+        status: 1,
+        message: format!("--out {}: {e}", args.out.display()),
+    };
 
     env.reset(Some(args.policy.seed), &ResetOptions::default())
         .map_err(|e| Failure {

@@ -12,7 +12,7 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
-use hyq_env::{Env, Reason, ResetOptions, StepRecord, TermSums};
+use hyq_env::{Env, Policy, Reason, ResetOptions, Step, StepInfo, StepRecord, TermSums};
 use hyq_physics::Backend;
 use hyq_spec::terms::terms_of;
 use hyq_spec::{REWARD_TERMS, RewardTerm, TaskConfig, TermKind};
@@ -21,6 +21,8 @@ use serde::Serialize;
 use crate::Failure;
 use crate::backend::with_backend;
 use crate::options::{EnvArgs, PolicyArgs, make_env, usage};
+use indicatif::ProgressBar;
+
 use crate::output::{OutputFile, print, print_json_line, print_line, progress_bar};
 use crate::plot::LivePlots;
 use crate::table::Table;
@@ -174,45 +176,193 @@ pub fn execute(args: RunArgs) -> Result<(), Failure> {
     })
 }
 
-fn run_episodes<B: Backend>(mut env: Env<B>, args: &RunArgs) -> Result<(), Failure> {
-    let mut policy = args.policy.make(&env)?;
+/// Runs the episodes, then prints their summary table (or each summary as a JSON line while it
+/// runs) and puts the record and the plots in place.
+fn run_episodes<B: Backend>(env: Env<B>, args: &RunArgs) -> Result<(), Failure> {
+    let policy = args.policy.make(&env)?;
     // Every check first; the outputs are written beside their targets and put in place only
     // when the run has finished.
-    let mut plots = match &args.plot {
-        None => None,
-        Some(dir) => {
-            let title = format!("{}, {}, seed {}", B::NAME, policy.name(), args.policy.seed);
-            Some(LivePlots::new(dir, env.config(), title)?)
-        }
-    };
-    let mut record = match &args.record {
-        None => None,
-        Some(path) => Some(OutputFile::create(path).map_err(|e| {
-            usage(format!(
-                "--record {}: cannot create the file: {e}",
-                path.display()
-            ))
-        })?),
-    };
+    let outputs = Outputs::open(&env, args, policy.name())?;
     let t_max = env.config().task.max_time_steps;
-    let bar = progress_bar(args.episodes.saturating_mul(t_max));
-    let mut action = vec![0.0; env.action_space().len()];
+    let mut run = Run {
+        bar: progress_bar(args.episodes.saturating_mul(t_max)),
+        action: vec![0.0; env.action_space().len()],
+        env,
+        policy,
+        outputs,
+        args,
+        t_max,
+    };
     let mut summaries = Vec::new();
-    let robot = env.model().name().to_owned();
-    let task = env.config().task;
     for episode in 0..args.episodes {
+        let summary = run.episode(episode)?;
+        if args.json {
+            run.bar
+                .suspend(|| print_json_line(&summary, "an episode summary"))?;
+        }
+        summaries.push(summary);
+    }
+    let Run {
+        env,
+        policy,
+        outputs,
+        bar,
+        ..
+    } = run;
+    let plots_written = outputs.finish(args)?;
+    bar.finish_and_clear();
+    if !args.json {
+        print_line(&format!(
+            "hyq run: {} on {}, policy {}, seed {}",
+            env.model().name(),
+            B::NAME,
+            policy.name(),
+            args.policy.seed
+        ))?;
+        print(&summary_table(&summaries))?;
+        if let Some(dir) = &args.plot {
+            print_line(&format!("wrote {plots_written} plots to {}", dir.display()))?;
+        }
+    }
+    Ok(())
+}
+
+/// What a run writes besides stdout: the live plots (`--plot`) and the JSONL record
+/// (`--record`), each opened, and so checked, before the first step.
+struct Outputs {
+    plots: Option<LivePlots>,
+    record: Option<OutputFile>,
+}
+
+impl Outputs {
+    /// Opens the outputs `args` asks for; `policy` names the policy in the plots' titles.
+    fn open<B: Backend>(env: &Env<B>, args: &RunArgs, policy: &str) -> Result<Self, Failure> {
+        let plots = match &args.plot {
+            None => None,
+            Some(dir) => {
+                let title = format!("{}, {policy}, seed {}", B::NAME, args.policy.seed);
+                Some(LivePlots::new(dir, env.config(), title)?)
+            }
+        };
+        let record = match &args.record {
+            None => None,
+            Some(path) => Some(OutputFile::create(path).map_err(|e| {
+                usage(format!(
+                    "--record {}: cannot create the file: {e}",
+                    path.display()
+                ))
+            })?),
+        };
+        Ok(Self { plots, record })
+    }
+
+    /// Writes the step `env` has just taken with `action`: its record line and its plot point.
+    fn step<B: Backend>(
+        &mut self,
+        env: &Env<B>,
+        action: &[f64],
+        args: &RunArgs,
+    ) -> Result<(), Failure> {
+        if let Some(out) = self.record.as_mut() {
+            // Serialised straight into the buffered file: the bytes of `to_json_line`,
+            // without a String per step. A failed write comes back as its io::Error.
+            serde_json::to_writer(&mut *out, &StepRecord::from_env(env, action))
+                .map_err(std::io::Error::from)
+                .and_then(|()| out.write_all(b"\n"))
+                .map_err(|e| record_error(args, e))?;
+        }
+        if let Some(plots) = self.plots.as_mut() {
+            plots.push(env.info());
+        }
+        Ok(())
+    }
+
+    /// Puts the record and the plots in place; returns how many plots were written.
+    fn finish(self, args: &RunArgs) -> Result<usize, Failure> {
+        if let Some(out) = self.record {
+            out.finish().map_err(|e| record_error(args, e))?;
+        }
+        match self.plots {
+            Some(plots) => plots.publish(),
+            None => Ok(0),
+        }
+    }
+}
+
+/// A run in progress: the environment, the policy and its action buffer, the outputs and the
+/// progress bar.
+struct Run<'a, B: Backend> {
+    env: Env<B>,
+    policy: Box<dyn Policy>,
+    action: Vec<f64>,
+    outputs: Outputs,
+    bar: ProgressBar,
+    args: &'a RunArgs,
+    /// The task's `max_time_steps`, the progress bar's steps per episode.
+    t_max: u64,
+}
+
+impl<B: Backend> Run<'_, B> {
+    /// Runs episode `episode` (0 for the first, which resets with the run's seed) to its end.
+    fn episode(&mut self, episode: u64) -> Result<EpisodeSummary, Failure> {
+        let args = self.args;
         let seed = (episode == 0).then_some(args.policy.seed);
-        let reset = env
+        let robot = self.env.model().name().to_owned();
+        let task = self.env.config().task;
+        let reset = self
+            .env
             .reset(seed, &ResetOptions::default())
             .map_err(|e| Failure {
                 status: 1,
                 message: format!("reset: {e}"),
             })?;
-        let info = reset.info;
-        let mut summary = EpisodeSummary {
-            backend: B::NAME,
-            robot: robot.clone(),
-            policy: policy.name(),
+        let policy = self.policy.name();
+        let mut summary = EpisodeSummary::start(B::NAME, robot, policy, task, reset.info);
+        self.bar
+            .set_message(format!("episode {}/{}", episode + 1, args.episodes));
+        loop {
+            self.policy.act(&self.env.policy_input(), &mut self.action);
+            let step = self.env.step(&self.action).map_err(|e| Failure {
+                status: 1,
+                message: format!("step: {e}"),
+            })?;
+            let done = step.terminated || step.truncated;
+            summary.add_step(&step, done);
+            if done {
+                let p = &self.env.trunk().pose.translation;
+                summary.final_position = [p.x, p.y, p.z];
+            }
+            self.outputs.step(&self.env, &self.action, args)?;
+            self.bar
+                .set_position(episode * self.t_max + self.env.info().t);
+            if done {
+                break;
+            }
+        }
+        if let Some(plots) = self.outputs.plots.as_mut() {
+            plots.finish_episode(summary.episode)?;
+        }
+        summary.multipliers.sums = summary.terms;
+        summary.simulated_s = summary.steps as f64 * self.env.env_dt();
+        self.bar.set_position((episode + 1) * self.t_max);
+        Ok(summary)
+    }
+}
+
+impl EpisodeSummary {
+    /// The summary of an episode of `robot` on `backend` under `policy` with the settings
+    /// `task`, just reset to `info`, before its first step.
+    fn start(
+        backend: &'static str,
+        robot: String,
+        policy: &'static str,
+        task: TaskConfig,
+        info: &StepInfo,
+    ) -> Self {
+        EpisodeSummary {
+            backend,
+            robot,
+            policy,
             episode: info.episode,
             steps: 0,
             simulated_s: 0.0,
@@ -230,77 +380,24 @@ fn run_episodes<B: Backend>(mut env: Env<B>, args: &RunArgs) -> Result<(), Failu
             initial_position: info.initial_position,
             final_position: info.initial_position,
             goal: info.goal,
-        };
-        bar.set_message(format!("episode {}/{}", episode + 1, args.episodes));
-        loop {
-            policy.act(&env.policy_input(), &mut action);
-            let step = env.step(&action).map_err(|e| Failure {
-                status: 1,
-                message: format!("step: {e}"),
-            })?;
-            let info = step.info;
-            let r = &info.reward;
-            summary.steps = info.t;
-            summary.ret += r.total;
-            summary.terms.add(r);
-            let done = step.terminated || step.truncated;
-            if done {
-                summary.terminated = step.terminated;
-                summary.truncated = step.truncated;
-                summary.reasons = info.reasons.iter().collect();
-                summary.final_distance_to_goal = info.distance_to_goal;
-                let p = &env.trunk().pose.translation;
-                summary.final_position = [p.x, p.y, p.z];
-            }
-            if let Some(out) = record.as_mut() {
-                // Serialised straight into the buffered file: the bytes of `to_json_line`,
-                // without a String per step. A failed write comes back as its io::Error.
-                serde_json::to_writer(&mut *out, &StepRecord::from_env(&env, &action))
-                    .map_err(std::io::Error::from)
-                    .and_then(|()| out.write_all(b"\n"))
-                    .map_err(|e| record_error(args, e))?;
-            }
-            if let Some(plots) = plots.as_mut() {
-                plots.push(env.info());
-            }
-            bar.set_position(episode * t_max + env.info().t);
-            if done {
-                break;
-            }
-        }
-        if let Some(plots) = plots.as_mut() {
-            plots.finish_episode(summary.episode)?;
-        }
-        summary.multipliers.sums = summary.terms;
-        summary.simulated_s = summary.steps as f64 * env.env_dt();
-        bar.set_position((episode + 1) * t_max);
-        if args.json {
-            bar.suspend(|| print_json_line(&summary, "an episode summary"))?;
-        }
-        summaries.push(summary);
-    }
-    if let Some(out) = record {
-        out.finish().map_err(|e| record_error(args, e))?;
-    }
-    let plots_written = match plots {
-        Some(plots) => plots.publish()?,
-        None => 0,
-    };
-    bar.finish_and_clear();
-    if !args.json {
-        print_line(&format!(
-            "hyq run: {} on {}, policy {}, seed {}",
-            env.model().name(),
-            B::NAME,
-            policy.name(),
-            args.policy.seed
-        ))?;
-        print(&summary_table(&summaries))?;
-        if let Some(dir) = &args.plot {
-            print_line(&format!("wrote {plots_written} plots to {}", dir.display()))?;
         }
     }
-    Ok(())
+
+    /// Adds a step's reward and terms; on the episode's last step (`done`), its flags, reasons
+    /// and final distance (the caller adds where the trunk ended).
+    fn add_step(&mut self, step: &Step<'_>, done: bool) {
+        let info = step.info;
+        let r = &info.reward;
+        self.steps = info.t;
+        self.ret += r.total;
+        self.terms.add(r);
+        if done {
+            self.terminated = step.terminated;
+            self.truncated = step.truncated;
+            self.reasons = info.reasons.iter().collect();
+            self.final_distance_to_goal = info.distance_to_goal;
+        }
+    }
 }
 
 fn record_error(args: &RunArgs, e: std::io::Error) -> Failure {

@@ -140,46 +140,7 @@ pub fn soak<B: Backend>(
     seed: u64,
     progress: bool,
 ) -> Result<SoakReport, Failure> {
-    let rows = env.observation_layout().rows().to_vec();
-    let mut ranges: Vec<RowRange> = rows
-        .iter()
-        .map(|row| RowRange {
-            index: row.index,
-            name: row.name.to_string(),
-            min: f64::INFINITY,
-            max: f64::NEG_INFINITY,
-            max_abs: 0.0,
-            spec_min: row.min,
-            spec_max: row.max,
-            estimated: row.estimated,
-        })
-        .collect();
-    let observe = |ranges: &mut [RowRange], obs: &[f64]| {
-        for (range, v) in ranges.iter_mut().zip(obs) {
-            range.min = range.min.min(*v);
-            range.max = range.max.max(*v);
-            range.max_abs = range.max_abs.max(v.abs());
-        }
-    };
-    let check = |env: &Env<B>, when: &str| -> Result<(), Failure> {
-        match first_non_finite(env.observation(), env.observation_f32(), env.info()) {
-            None => Ok(()),
-            Some((field, value)) => Err(Failure {
-                status: 1,
-                message: format!(
-                    "soak on {}: {field} is {value} after {when} (episode {}, t = {})",
-                    B::NAME,
-                    env.info().episode,
-                    env.info().t
-                ),
-            }),
-        }
-    };
-    let reset_failure = |e: hyq_env::EnvError| Failure {
-        status: 1,
-        message: format!("soak on {}: reset: {e}", B::NAME),
-    };
-
+    let mut ranges = row_ranges(env);
     let bar = if progress {
         progress_bar(steps)
     } else {
@@ -190,29 +151,13 @@ pub fn soak<B: Backend>(
     let mut episodes = 0;
     let mut ended = Ended::default();
     env.reset(Some(seed), &ResetOptions::default())
-        .map_err(reset_failure)?;
-    check(env, "reset")?;
+        .map_err(reset_failure::<B>)?;
+    check_finite(env, "reset")?;
     observe(&mut ranges, env.observation());
     for n in 1..=steps {
         policy.act(&env.policy_input(), &mut action);
-        let done = {
-            let step = env.step(&action).map_err(|e| Failure {
-                status: 1,
-                message: format!("soak on {}: step {n}: {e}", B::NAME),
-            })?;
-            if !step.reward.is_finite() {
-                return Err(Failure {
-                    status: 1,
-                    message: format!(
-                        "soak on {}: the reward is {} at step {n}",
-                        B::NAME,
-                        step.reward
-                    ),
-                });
-            }
-            step.terminated || step.truncated
-        };
-        check(env, "a step")?;
+        let done = soak_step(env, &action, n)?;
+        check_finite(env, "a step")?;
         observe(&mut ranges, env.observation());
         if done {
             episodes += 1;
@@ -220,8 +165,8 @@ pub fn soak<B: Backend>(
                 ended.add(reason);
             }
             env.reset(None, &ResetOptions::default())
-                .map_err(reset_failure)?;
-            check(env, "reset")?;
+                .map_err(reset_failure::<B>)?;
+            check_finite(env, "reset")?;
             observe(&mut ranges, env.observation());
         }
         if n % 1000 == 0 {
@@ -240,6 +185,77 @@ pub fn soak<B: Backend>(
         non_finite: 0,
         rows: ranges,
     })
+}
+
+/// An empty range per observation row of `env`, with the row's table bounds.
+fn row_ranges<B: Backend>(env: &Env<B>) -> Vec<RowRange> {
+    env.observation_layout()
+        .rows()
+        .iter()
+        .map(|row| RowRange {
+            index: row.index,
+            name: row.name.to_string(),
+            min: f64::INFINITY,
+            max: f64::NEG_INFINITY,
+            max_abs: 0.0,
+            spec_min: row.min,
+            spec_max: row.max,
+            estimated: row.estimated,
+        })
+        .collect()
+}
+
+/// Widens each row's range to take in the observation `obs`.
+fn observe(ranges: &mut [RowRange], obs: &[f64]) {
+    for (range, v) in ranges.iter_mut().zip(obs) {
+        range.min = range.min.min(*v);
+        range.max = range.max.max(*v);
+        range.max_abs = range.max_abs.max(v.abs());
+    }
+}
+
+/// The soak's failure when a value of `env`'s observation or info is not finite after `when`.
+fn check_finite<B: Backend>(env: &Env<B>, when: &str) -> Result<(), Failure> {
+    match first_non_finite(env.observation(), env.observation_f32(), env.info()) {
+        None => Ok(()),
+        Some((field, value)) => Err(Failure {
+            status: 1,
+            message: format!(
+                "soak on {}: {field} is {value} after {when} (episode {}, t = {})",
+                B::NAME,
+                env.info().episode,
+                env.info().t
+            ),
+        }),
+    }
+}
+
+/// The soak's failure when a reset fails.
+fn reset_failure<B: Backend>(e: hyq_env::EnvError) -> Failure {
+    Failure {
+        status: 1,
+        message: format!("soak on {}: reset: {e}", B::NAME),
+    }
+}
+
+/// Takes soak step `n` with `action`; whether the episode ended. A failed step or a non-finite
+/// reward is the soak's failure.
+fn soak_step<B: Backend>(env: &mut Env<B>, action: &[f64], n: u64) -> Result<bool, Failure> {
+    let step = env.step(action).map_err(|e| Failure {
+        status: 1,
+        message: format!("soak on {}: step {n}: {e}", B::NAME),
+    })?;
+    if !step.reward.is_finite() {
+        return Err(Failure {
+            status: 1,
+            message: format!(
+                "soak on {}: the reward is {} at step {n}",
+                B::NAME,
+                step.reward
+            ),
+        });
+    }
+    Ok(step.terminated || step.truncated)
 }
 
 fn print_report(r: &SoakReport, json: bool) -> Result<(), Failure> {

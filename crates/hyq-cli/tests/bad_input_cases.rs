@@ -465,3 +465,286 @@ fn randomization_keys_and_values() {
         &["randomize.trunk_added_mass_kg", "positive"],
     );
 }
+
+/// A copy of the bundled HyQ (profile and URDF) in scratch directory `name`, with `profile` and
+/// `urdf` edits (exact text, each present) applied; returns the profile's path.
+fn robot(name: &str, profile: (&str, &str), urdf: (&str, &str)) -> String {
+    let assets = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/hyq");
+    let dir = scratch(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    for (file, (from, to)) in [("profile.toml", profile), ("hyq.urdf", urdf)] {
+        let text = std::fs::read_to_string(assets.join(file)).unwrap();
+        assert!(text.contains(from), "fixture: {from:?} not in {file}");
+        std::fs::write(dir.join(file), text.replacen(from, to, 1)).unwrap();
+    }
+    dir.join("profile.toml").to_str().unwrap().to_owned()
+}
+
+const LF_HAA: &str = "{ name = \"lf_haa\", urdf = \"lf_haa_joint\", standing = -0.2 }";
+
+#[test]
+fn robot_files_outside_the_bounds_table() {
+    let none = ("", "");
+    // Joint limits whose span overflows: refused at load, before the random policy (which
+    // panicked in absolute mode) or the normalised map (NaN targets) can see them.
+    let span = robot(
+        "robot-span",
+        (
+            LF_HAA,
+            "{ name = \"lf_haa\", urdf = \"lf_haa_joint\", standing = -0.2, lower = -1.7e308, upper = 1.7e308 }",
+        ),
+        none,
+    );
+    for args in [
+        &["run", "--policy", "random", "--set", "action.mode=absolute"][..],
+        &["soak", "--steps", "10"],
+        &["bench", "--steps", "10"],
+    ] {
+        let mut args = args.to_vec();
+        args.extend(["--robot", &span]);
+        fails(
+            2,
+            &args,
+            &["robot-span", "joints[0].lower", "[-1000, 1000] rad"],
+        );
+    }
+    // A deeply nested URDF (it overflowed the stack: an abort, status 134).
+    let nest = format!("{}{}</robot>", "<a>".repeat(20_000), "</a>".repeat(20_000));
+    let deep = robot("robot-deep", none, ("</robot>", &nest));
+    fails(
+        2,
+        &["model", "--format", "json", "--robot", &deep],
+        &["hyq.urdf", "nested more than 64 deep"],
+    );
+    // Endless files: a profile, and a URDF named by one.
+    fails(2, &["run", "--robot", "/dev/zero"], &["larger than 1 MiB"]);
+    let zero = robot(
+        "robot-zero",
+        ("urdf = \"hyq.urdf\"", "urdf = \"/dev/zero\""),
+        none,
+    );
+    fails(2, &["run", "--robot", &zero], &["/dev/zero", "8 MiB"]);
+    // Masses an f32 engine cannot hold, a gait frequency the trot cannot use, a 1e6 m box (it
+    // panicked the renderer), a spawn height that failed at reset with status 1.
+    for (name, profile, urdf, words) in [
+        (
+            "robot-mass",
+            none,
+            ("<mass value=\"2.93\"/>", "<mass value=\"1e300\"/>"),
+            &["lf_hipassembly", "kg"][..],
+        ),
+        (
+            "robot-light",
+            none,
+            ("<mass value=\"2.93\"/>", "<mass value=\"1e-30\"/>"),
+            &["lf_hipassembly", "kg"],
+        ),
+        (
+            "robot-gait",
+            ("frequency_hz = 3.0", "frequency_hz = 1e308"),
+            none,
+            &["gait.frequency_hz", "1e308"],
+        ),
+        (
+            "robot-box",
+            none,
+            (
+                "<box size=\"1.2898 0.5954 0.3737\"/>",
+                "<box size=\"1e6 1e6 1e6\"/>",
+            ),
+            &["trunk", "[1e-4, 100] m"],
+        ),
+        (
+            "robot-spawn",
+            ("height = 0.6003", "height = 1e6"),
+            none,
+            &["spawn.height", "(0, 10] m"],
+        ),
+        (
+            "robot-stand",
+            ("standing_height = 0.5895", "standing_height = 1e308"),
+            none,
+            &["spawn.standing_height"],
+        ),
+    ] {
+        let p = robot(name, profile, urdf);
+        fails(2, &["run", "--policy", "trot", "--robot", &p], words);
+    }
+    let p = robot(
+        "robot-render",
+        none,
+        (
+            "<box size=\"1.2898 0.5954 0.3737\"/>",
+            "<box size=\"1e6 1e6 1e6\"/>",
+        ),
+    );
+    fails(
+        2,
+        &[
+            "render",
+            "--robot",
+            &p,
+            "--seconds",
+            "0.1",
+            "--out",
+            scratch("r.gif").to_str().unwrap(),
+        ],
+        &["[1e-4, 100] m"],
+    );
+}
+
+#[test]
+fn robot_names_are_printed_as_names() {
+    // Escapes, a forged line, an empty name: refused, never printed raw in a header.
+    for (name, value) in [
+        ("robot-name-esc", "x\\u001b[31mRED\\nhyq: fake"),
+        ("robot-name-empty", ""),
+    ] {
+        let p = robot(
+            name,
+            ("name = \"hyq\"", &format!("name = \"{value}\"")),
+            ("", ""),
+        );
+        let out = hyq(&["run", "--robot", &p, "--set", "task.max_time_steps=2"]);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert!(
+            !err.contains('\u{1b}') && err.lines().count() == 1,
+            "{err:?}"
+        );
+        assert!(err.contains("robot profile field name"), "{err}");
+    }
+}
+
+#[test]
+fn urdfs_with_too_many_parts() {
+    let mut extra = String::new();
+    for i in 0..1001 {
+        extra.push_str(&format!(
+            "<link name=\"x{i}\"><collision><geometry><sphere radius=\"0.01\"/></geometry>\
+             </collision></link><joint name=\"xj{i}\" type=\"fixed\"><parent link=\"trunk\"/>\
+             <child link=\"x{i}\"/></joint>\n"
+        ));
+    }
+    let p = robot(
+        "robot-many",
+        ("", ""),
+        ("</robot>", &format!("{extra}</robot>")),
+    );
+    fails(
+        2,
+        &["run", "--robot", &p],
+        &["links", "more than the 1000 allowed"],
+    );
+}
+
+/// The committed policy file with its metadata's `env_config` replaced by `env_config` (a JSON
+/// object of dotted keys to TOML values), written to scratch file `name`.
+fn policy_with_env_config(name: &str, env_config: &str) -> String {
+    let bytes = std::fs::read(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/policies/hyq_walk.safetensors"),
+    )
+    .unwrap();
+    let len = u64::from_le_bytes(bytes[..8].try_into().unwrap()) as usize;
+    let mut header: serde_json::Value = serde_json::from_slice(&bytes[8..8 + len]).unwrap();
+    header["__metadata__"]["env_config"] = serde_json::Value::String(env_config.to_owned());
+    let header = serde_json::to_vec(&header).unwrap();
+    let mut out = (header.len() as u64).to_le_bytes().to_vec();
+    out.extend(header);
+    out.extend(&bytes[8 + len..]);
+    write(name, &out)
+}
+
+#[test]
+fn policy_files() {
+    // An endless policy file stops at its cap (it was read until memory ran out).
+    fails(
+        2,
+        &["run", "--policy", "mlp:/dev/zero"],
+        &["/dev/zero", "256 MiB"],
+    );
+    // A bad entry of the policy's own environment names the file, not `--set`.
+    let bad = policy_with_env_config(
+        "bad-env-config.safetensors",
+        r#"{"action.mode": "\"offset\"", "action.max_offset_rad": "0.5", "task.exp_rew_scaling": "1000"}"#,
+    );
+    let out = hyq(&["run", "--policy", &format!("mlp:{bad}")]);
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("bad-env-config.safetensors: its env_config")
+            && err.contains("task.exp_rew_scaling")
+            && !err.contains("--set"),
+        "{err}"
+    );
+    // A bad `--set` beside it is still the user's.
+    fails(
+        2,
+        &[
+            "run",
+            "--policy",
+            &format!("mlp:{bad}"),
+            "--set",
+            "task.bogus=1",
+        ],
+        &["--set", "task.bogus"],
+    );
+}
+
+#[test]
+fn configuration_overrides_mean_what_they_say() {
+    // A table key by key (each `--set` used to be read alone: `missing field tolerance_m`).
+    hyq_ok(&[
+        "run",
+        "--set",
+        "task.max_time_steps=3",
+        "--set",
+        "task.height_penalty.nominal_height_m=0.58",
+        "--set",
+        "task.height_penalty.tolerance_m=0.05",
+        "--set",
+        "task.height_penalty.rate_per_m=1",
+    ]);
+    // Text after a line break was dropped silently (1000 steps ran).
+    fails(
+        2,
+        &["run", "--set", "task.fall_penalty=1\ntask.max_time_steps=3"],
+        &["task.fall_penalty", "more than one TOML value"],
+    );
+    // A spawn point on the world's edge: every episode ended at step 1 as diverged.
+    fails(
+        2,
+        &["run", "--set", "reset.spawn_xy_m=[-100,0]"],
+        &["reset.spawn_xy_m", "no room"],
+    );
+    // A spawn point that pushes the default goal out names itself, not only the goal.
+    fails(
+        2,
+        &["run", "--set", "reset.spawn_xy_m=[100,0]"],
+        &["goal.distance_m", "reset.spawn_xy_m = [100.0, 0.0]"],
+    );
+}
+
+#[test]
+fn comparison_ledgers() {
+    // An endless ledger stops at its cap (it was read until memory ran out).
+    let out = scratch("ledger-zero-out");
+    fails(
+        2,
+        &[
+            "compare",
+            "--scenario",
+            "stand",
+            "--backends",
+            "rapier,rapier",
+            "--seconds",
+            "0.1",
+            "--ledger",
+            "/dev/zero",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        &["/dev/zero", "4 MiB"],
+    );
+}

@@ -35,7 +35,7 @@ fn a_closed_stdout_ends_every_command_quietly() {
         record.to_str().unwrap(),
     ]);
     let plots = scratch("closed-stdout-plots");
-    let cases: [&[&str]; 5] = [
+    let cases: [&[&str]; 9] = [
         &[
             "run",
             "--json",
@@ -47,6 +47,10 @@ fn a_closed_stdout_ends_every_command_quietly() {
         &["run", "--set", "task.max_time_steps=5"],
         &["soak", "--steps", "50"],
         &["bench", "--steps", "20"],
+        &["model", "--format", "json"],
+        &["model", "--format", "mjcf"],
+        &["model", "--format", "urdf"],
+        &["--help"],
         &[
             "plot",
             record.to_str().unwrap(),
@@ -79,4 +83,52 @@ fn a_full_stdout_is_one_error_line() {
         err.starts_with("hyq: error: cannot write to stdout") && err.contains("No space left"),
         "{err}"
     );
+}
+
+/// `hyq args` with its stdout `/dev/full`: status 1 and one line saying stdout could not be
+/// written.
+#[track_caller]
+fn full_stdout_fails(args: &[&str]) {
+    let full = std::fs::OpenOptions::new()
+        .write(true)
+        .open("/dev/full")
+        .unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_hyq"))
+        .args(args)
+        .stdout(full)
+        .output()
+        .unwrap();
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(out.status.code(), Some(1), "hyq {args:?}: {err}");
+    assert_eq!(err.lines().count(), 1, "hyq {args:?}: {err}");
+    assert!(
+        err.starts_with("hyq: error: cannot write to stdout") && !err.contains("panicked"),
+        "hyq {args:?}: {err}"
+    );
+}
+
+#[test]
+fn every_command_reports_a_full_stdout() {
+    // `model` panicked; `--version`, `--help` and `compare` exited 0 having written nothing.
+    let reports = scratch("full-stdout-compare");
+    for args in [
+        &["model", "--format", "json"][..],
+        &["model", "--format", "mjcf"],
+        &["--version"],
+        &["--help"],
+        &["run", "--help"],
+        &[
+            "compare",
+            "--scenario",
+            "stand",
+            "--backends",
+            "rapier,rapier",
+            "--seconds",
+            "0.05",
+            "--out",
+            reports.to_str().unwrap(),
+        ],
+    ] {
+        full_stdout_fails(args);
+    }
 }

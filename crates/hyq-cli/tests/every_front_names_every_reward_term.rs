@@ -90,7 +90,7 @@ fn the_record_and_the_summaries_name_every_term() {
 
 #[test]
 fn the_reward_plot_has_a_legend_entry_for_every_term() {
-    let record = hyq_render::StepRecord {
+    let record = hyq_render::PlotRecord {
         t: 1,
         episode: Some(1),
         reward: 0.0,

@@ -172,3 +172,82 @@ fn a_device_target_is_written_in_place_and_never_replaced() {
     let kind = std::fs::metadata("/dev/full").unwrap().file_type();
     assert!(kind.is_char_device(), "/dev/full is still a device");
 }
+
+#[test]
+fn a_model_survives_a_write_cut_short_and_a_finished_write_replaces_it() {
+    // The shell's file-size limit (2 KiB, far below the 13 KB URDF; its signal ignored, so the
+    // write fails as on a full disk) cuts the write short: `model` wrote in place, leaving the
+    // first bytes of the new model where the old file was.
+    let dir = dir_with_precious("keep-model", "model.urdf");
+    let model = dir.join("model.urdf");
+    let script = format!(
+        "trap '' XFSZ; ulimit -f 2; exec '{}' model --format urdf --out '{}'",
+        env!("CARGO_BIN_EXE_hyq"),
+        model.display()
+    );
+    let out = Command::new("sh").args(["-c", &script]).output().unwrap();
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(
+        err.starts_with("hyq: error: cannot write") && err.lines().count() == 1,
+        "{err}"
+    );
+    assert_kept(&model);
+    assert_eq!(names(&dir), ["model.urdf"], "no temporary file is left");
+
+    hyq_ok(&[
+        "model",
+        "--format",
+        "urdf",
+        "--out",
+        model.to_str().unwrap(),
+    ]);
+    assert!(std::fs::read_to_string(&model).unwrap().contains("<robot"));
+}
+
+/// The effective user id of this process (from /proc, without unsafe code).
+fn euid() -> u32 {
+    let status = std::fs::read_to_string("/proc/self/status").unwrap();
+    let uid = status.lines().find(|l| l.starts_with("Uid:")).unwrap();
+    uid.split_whitespace().nth(2).unwrap().parse().unwrap()
+}
+
+#[test]
+fn a_write_protected_record_is_refused_not_replaced() {
+    use std::os::unix::fs::PermissionsExt;
+    // The shell's `>` refuses a mode-444 file for its (non-root) owner; so must `--record`,
+    // which used to replace it by a rename in the writable directory. Root may write any file,
+    // so as root the command runs as `nobody` (uid 65534).
+    let dir = dir_with_precious("keep-protected", "ro.jsonl");
+    std::fs::set_permissions(&dir, std::fs::Permissions::from_mode(0o777)).unwrap();
+    let record = dir.join("ro.jsonl");
+    let run = [
+        "run",
+        "--set",
+        "task.max_time_steps=3",
+        "--record",
+        record.to_str().unwrap(),
+    ];
+    let mut command = if euid() == 0 {
+        // nobody must own the file (a user's own write-protected file) and reach the binary.
+        std::process::Command::new("chown")
+            .args(["65534", record.to_str().unwrap()])
+            .status()
+            .unwrap();
+        let mut c = Command::new("setpriv");
+        c.args(["--reuid=65534", "--regid=65534", "--clear-groups"])
+            .arg(env!("CARGO_BIN_EXE_hyq"));
+        c
+    } else {
+        Command::new(env!("CARGO_BIN_EXE_hyq"))
+    };
+    std::fs::set_permissions(&record, std::fs::Permissions::from_mode(0o444)).unwrap();
+    let out = command.args(run).output().unwrap();
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("write-protected") && err.lines().count() == 1,
+        "{err}"
+    );
+    assert_kept(&record);
+}

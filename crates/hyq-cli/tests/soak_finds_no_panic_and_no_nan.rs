@@ -1,8 +1,10 @@
-//! Invariant (the CI-sized soak; `cargo xtask soak` runs 10⁶ steps): 2·10⁴ env steps of
+//! Invariant (the CI-sized soak; `cargo xtask soak` runs 10⁶ steps): 5·10³ env steps of
 //! uniformly random actions on the default backend, resetting at every episode end, neither
 //! panic nor emit a non-finite number anywhere (every observation row, the reward and its
 //! terms, every info field: `hyq soak` checks each and fails naming the first bad one), and the
-//! summary accounts for every row and every episode.
+//! summary accounts for every row and every episode. Five episodes at least: enough to cross
+//! resets and falls; longer runs find nothing more here (the 10⁶-step soak found nothing) and
+//! cost CI time twice (this test runs in the rapier and the DART stage).
 
 // In tests a failed unwrap is a failed test, with its location.
 #![allow(clippy::unwrap_used)]
@@ -13,15 +15,15 @@ use common::hyq_ok;
 use serde_json::Value;
 
 #[test]
-fn twenty_thousand_random_steps_emit_only_finite_numbers() {
-    let out = hyq_ok(&["soak", "--steps", "20000", "--seed", "1", "--json"]);
+fn five_thousand_random_steps_emit_only_finite_numbers() {
+    let out = hyq_ok(&["soak", "--steps", "5000", "--seed", "1", "--json"]);
     let r: Value = serde_json::from_str(out.trim()).unwrap_or_else(|e| panic!("{e}: {out}"));
-    assert_eq!(r["steps"], 20000);
+    assert_eq!(r["steps"], 5000);
     assert_eq!(r["non_finite"], 0);
     let episodes = r["episodes"].as_u64().unwrap();
     assert!(
-        episodes >= 20,
-        "t_max = 1000 ends at least 20 episodes, got {episodes}"
+        episodes >= 5,
+        "t_max = 1000 ends at least 5 episodes, got {episodes}"
     );
     let rows = r["rows"].as_array().unwrap();
     assert_eq!(rows.len(), 39);

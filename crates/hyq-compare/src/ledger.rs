@@ -30,6 +30,7 @@ use std::fmt;
 use std::path::Path;
 use std::str::FromStr;
 
+use hyq_physics::input;
 use serde::{Deserialize, Serialize};
 
 use crate::error::CompareError;
@@ -230,11 +231,28 @@ struct RawKnown {
     reason: String,
 }
 
+/// The TOML parser's own words and the line, without the excerpt of the file it draws (which
+/// holds whatever the file holds), control characters escaped.
+fn parser_message(text: &str, e: &toml::de::Error) -> String {
+    let line = e
+        .span()
+        .and_then(|s| text.get(..s.start))
+        .map(|before| format!("line {}: ", 1 + before.matches('\n').count()));
+    format!(
+        "{}{}",
+        line.unwrap_or_default(),
+        hyq_physics::printable(e.message())
+    )
+}
+
 fn check_tolerance(value: f64) -> Result<(), String> {
     if value.is_finite() && value >= 0.0 {
         Ok(())
     } else {
-        Err(format!("tolerance {value} must be finite and ≥ 0"))
+        Err(format!(
+            "tolerance {} must be finite and ≥ 0",
+            hyq_physics::bounds::short(value)
+        ))
     }
 }
 
@@ -244,13 +262,14 @@ impl Ledger {
         Self::parse(BUILT_IN, "built-in")
     }
 
-    /// Reads a ledger file.
+    /// Reads a ledger file of at most hyq-physics' [`input::LEDGER`] cap.
     pub fn from_file(path: impl AsRef<Path>) -> Result<Self, CompareError> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|e| CompareError::LedgerRead {
-            path: path.to_owned(),
-            message: e.to_string(),
-        })?;
+        let text =
+            input::read_text(path, &input::LEDGER).map_err(|e| CompareError::LedgerRead {
+                path: path.to_owned(),
+                message: e.to_string(),
+            })?;
         Self::parse(&text, &path.display().to_string())
     }
 
@@ -263,12 +282,11 @@ impl Ledger {
             origin: origin.to_owned(),
             message,
         };
-        let raw: RawLedger =
-            toml::from_str(text).map_err(|e| bad(e.to_string().replace('\n', " ")))?;
+        let raw: RawLedger = toml::from_str(text).map_err(|e| bad(parser_message(text, &e)))?;
         let mut default = BTreeMap::new();
         for (name, value) in &raw.default {
             let metric: Metric = name.parse().map_err(|e| bad(format!("[default]: {e}")))?;
-            check_tolerance(*value).map_err(|e| bad(format!("[default] {name}: {e}")))?;
+            check_tolerance(*value).map_err(|e| bad(format!("[default] {name:?}: {e}")))?;
             default.insert(metric, *value);
         }
         if let Some(missing) = Metric::ALL.iter().find(|m| !default.contains_key(m)) {
@@ -276,8 +294,9 @@ impl Ledger {
         }
         let mut known: Vec<Known> = Vec::with_capacity(raw.known.len());
         for (i, k) in raw.known.into_iter().enumerate() {
+            // Quoted with escapes: the names are the file's, whatever they hold.
             let at = format!(
-                "[[known]] entry {} ({} {} {} {})",
+                "[[known]] entry {} ({:?} {:?} {:?} {:?})",
                 i + 1,
                 k.robot,
                 k.backends.join(","),

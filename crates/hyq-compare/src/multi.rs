@@ -179,7 +179,19 @@ impl MultiReport {
     /// The Markdown report; `command` is the command line that produced it.
     pub fn to_markdown(&self, command: &str) -> String {
         let mut m = String::new();
-        let w = &mut m;
+        self.markdown_header(&mut m, command);
+        self.markdown_per_backend(&mut m);
+        self.markdown_pairs(&mut m);
+        // Writing into a String cannot fail.
+        let _ = writeln!(
+            m,
+            "\n## Plot\n\n![trunk x and z over time, every backend]({PLOT_FILE})"
+        );
+        m
+    }
+
+    /// The title, the run (seed, length, script, ledger), the overrides and the verdict.
+    fn markdown_header(&self, w: &mut String, command: &str) {
         let labels: Vec<&str> = self.sides.iter().map(|s| s.label.as_str()).collect();
         crate::report::markdown_title(
             w,
@@ -215,7 +227,11 @@ impl MultiReport {
             )
         };
         let _ = writeln!(w, "\n{verdict}\n");
+    }
 
+    /// Each backend's run, a column per backend.
+    fn markdown_per_backend(&self, w: &mut String) {
+        let labels: Vec<&str> = self.sides.iter().map(|s| s.label.as_str()).collect();
         let _ = writeln!(w, "## Per backend\n");
         let _ = writeln!(w, "| | {} |", labels.join(" | "));
         let _ = writeln!(w, "|---|{}", "---|".repeat(labels.len()));
@@ -245,7 +261,10 @@ impl MultiReport {
                 s.final_position[0], s.final_position[1], s.final_position[2]
             )
         });
+    }
 
+    /// Each pair's divergences, ledger verdict and report.
+    fn markdown_pairs(&self, w: &mut String) {
         let _ = writeln!(w, "\n## Per pair\n");
         let _ = writeln!(
             w,
@@ -279,11 +298,6 @@ impl MultiReport {
                 p.dir
             );
         }
-        let _ = writeln!(
-            w,
-            "\n## Plot\n\n![trunk x and z over time, every backend]({PLOT_FILE})"
-        );
-        m
     }
 }
 

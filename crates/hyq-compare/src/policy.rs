@@ -353,6 +353,23 @@ impl Stats {
     }
 }
 
+/// How many of the episodes reached the goal (`reached` among their end reasons), as
+/// "18 of 20 (90 %)".
+fn reach_rate(ended_by: &[EndCount]) -> String {
+    let total: u32 = ended_by.iter().map(|e| e.episodes).sum();
+    let reached: u32 = ended_by
+        .iter()
+        .filter(|e| e.reasons.split('+').any(|r| r == "reached"))
+        .map(|e| e.episodes)
+        .sum();
+    let percent = if total == 0 {
+        0.0
+    } else {
+        100.0 * f64::from(reached) / f64::from(total)
+    };
+    format!("{reached} of {total} ({percent:.0} %)")
+}
+
 /// How many episodes ended for a set of reasons.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct EndCount {
@@ -534,10 +551,27 @@ impl PolicyReport {
         })
     }
 
-    /// The Markdown report; `command` is the command line that produced it.
+    /// The Markdown report; `command` is the command line that produced it: the run's
+    /// description, the per-engine table, the pairs, the open-loop replay, every episode and
+    /// the plot.
     pub fn to_markdown(&self, command: &str) -> String {
         let mut m = String::new();
-        let w = &mut m;
+        self.markdown_header(&mut m, command);
+        self.markdown_per_engine(&mut m);
+        self.markdown_pairs(&mut m);
+        self.markdown_replay(&mut m);
+        self.markdown_episodes(&mut m);
+        // Writing into a String cannot fail.
+        let _ = writeln!(
+            m,
+            "\n## Plot\n\n![first episode: trunk x per engine, closed loop and replayed; trunk position divergence per pair]({PLOT_FILE})"
+        );
+        m
+    }
+
+    /// The title, the robot, the command, how the episodes ran, the configuration and why the
+    /// report is not judged.
+    fn markdown_header(&self, w: &mut String, command: &str) {
         let labels: Vec<&str> = self.sides.iter().map(|s| s.label.as_str()).collect();
         // Writing into a String cannot fail.
         let _ = writeln!(
@@ -564,7 +598,12 @@ impl PolicyReport {
             w,
             "**Not judged against the ledger.** Closed-loop runs part by nature (every difference changes the next observation and so the next action), so no tolerance fits them: this report states the gap, it does not pass or fail. The ledger judges identical action scripts (`--scenario`).\n"
         );
+    }
 
+    /// Each engine's episode statistics, a column per engine.
+    fn markdown_per_engine(&self, w: &mut String) {
+        let labels: Vec<&str> = self.sides.iter().map(|s| s.label.as_str()).collect();
+        // Writing into a String cannot fail.
         let _ = writeln!(w, "## Per engine ({} episodes each)\n", self.episodes);
         let _ = writeln!(w, "| | {} |", labels.join(" | "));
         let _ = writeln!(w, "|---|{}", "---|".repeat(labels.len()));
@@ -585,6 +624,7 @@ impl PolicyReport {
             format!("{:.3} ± {:.3}", s.ret.mean, s.ret.sd)
         });
         row("steps, mean", &|s| format!("{:.1}", s.steps.mean));
+        row("reached the goal (§6.1)", &|s| reach_rate(&s.ended_by));
         row("ended by", &|s| {
             s.ended_by
                 .iter()
@@ -592,7 +632,11 @@ impl PolicyReport {
                 .collect::<Vec<_>>()
                 .join(", ")
         });
+    }
 
+    /// Each pair's divergence over the first episodes and the gaps between their means.
+    fn markdown_pairs(&self, w: &mut String) {
+        // Writing into a String cannot fail.
         let _ = writeln!(w, "\n## Per pair\n");
         let _ = writeln!(
             w,
@@ -622,7 +666,11 @@ impl PolicyReport {
                 p.return_gap
             );
         }
+    }
 
+    /// The first engine's first-episode actions replayed open loop on every engine.
+    fn markdown_replay(&self, w: &mut String) {
+        // Writing into a String cannot fail.
         let _ = writeln!(
             w,
             "\n## Open loop: {} actions replayed\n",
@@ -664,7 +712,11 @@ impl PolicyReport {
                 }
             }
         }
+    }
 
+    /// Every episode of every engine.
+    fn markdown_episodes(&self, w: &mut String) {
+        // Writing into a String cannot fail.
         let _ = writeln!(w, "\n## Episodes\n");
         let _ = writeln!(
             w,
@@ -686,11 +738,6 @@ impl PolicyReport {
                 );
             }
         }
-        let _ = writeln!(
-            w,
-            "\n## Plot\n\n![first episode: trunk x per engine, closed loop and replayed; trunk position divergence per pair]({PLOT_FILE})"
-        );
-        m
     }
 
     fn replay_title(&self) -> String {
@@ -711,7 +758,23 @@ fn reasons(r: &[Reason]) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::{Stats, travel};
+    use super::{EndCount, Stats, reach_rate, travel};
+
+    #[test]
+    fn the_reach_rate_counts_every_end_that_includes_reached() {
+        let end = |reasons: &str, episodes| EndCount {
+            reasons: reasons.into(),
+            episodes,
+        };
+        let ends = [
+            end("reached", 15),
+            end("reached+timeout", 3),
+            end("timeout", 2),
+        ];
+        assert_eq!(reach_rate(&ends), "18 of 20 (90 %)");
+        assert_eq!(reach_rate(&[end("timeout", 20)]), "0 of 20 (0 %)");
+        assert_eq!(reach_rate(&[]), "0 of 0 (0 %)");
+    }
 
     #[test]
     fn travel_is_the_displacement_along_the_start_to_goal_direction() {

@@ -394,6 +394,7 @@ impl<B: Backend> Env<B> {
         // A fixed goal can be checked against the spawn point once, here, rather than fail at
         // every reset.
         goals.check(&config.task)?;
+        crate::goal::check_spawn_fits(&model, &config.reset)?;
         let robustness = robustness(&model, &config, &actuator)?;
         let backend = B::build(model.clone(), &config.physics.params, &options)?;
         let tracked = model.tracked().len();

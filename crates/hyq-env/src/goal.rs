@@ -20,7 +20,9 @@ use hyq_spec::TaskConfig;
 use rand::RngExt;
 use rand_chacha::ChaCha8Rng;
 
-use crate::config::{EnvConfig, GoalMode, ResetConfig};
+use hyq_physics::bounds::short;
+
+use crate::config::{ConfigError, EnvConfig, GoalMode, ResetConfig, WORLD_HALF_EXTENT_M};
 use crate::env::{EnvError, episode_rules};
 
 /// Draws (or computes) each episode's goal from the configuration.
@@ -96,6 +98,31 @@ impl GoalSampler {
             }
         }
     }
+}
+
+/// The spawn point leaves the robot room inside the world: standing there, no part of it
+/// reaches past the world's edge on any axis, whatever its yaw (a trunk spawned on the edge
+/// leaves the world at once, and every episode ends at its first step as `diverged`).
+pub(crate) fn check_spawn_fits(model: &RobotModel, reset: &ResetConfig) -> Result<(), ConfigError> {
+    let reach = model.standing_reach();
+    let [x, y] = reset.spawn_xy_m;
+    let room = WORLD_HALF_EXTENT_M - reach;
+    let z = model.spawn_height() + reach;
+    if x.abs() <= room && y.abs() <= room && z <= WORLD_HALF_EXTENT_M {
+        return Ok(());
+    }
+    Err(ConfigError::Invalid {
+        key: "reset.spawn_xy_m".into(),
+        value: format!("{:?}", reset.spawn_xy_m),
+        expected: format!(
+            "leaves robot {:?} no room in the world: standing, it reaches {} m from its trunk \
+             frame, and the world ends at ±{WORLD_HALF_EXTENT_M} m on each axis (a trunk \
+             leaving it ends the episode as diverged); keep the spawn point within ±{} m",
+            model.name(),
+            short(reach),
+            short(room.max(0.0))
+        ),
+    })
 }
 
 /// The reset state of `model` under `reset` (see the module docs), drawing noise from `rng`

@@ -2,7 +2,8 @@
 //! termination that fired (the spec's four, §6, plus the environment's own `diverged`), the
 //! distances, the attitude, the goal, the start and the joint targets used.
 
-use hyq_spec::{JointLimitHit, RewardBreakdown, Termination, Terminations};
+use hyq_physics::RobotModel;
+use hyq_spec::{JointLimitHit, LimitSide, RewardBreakdown, Termination, Terminations};
 
 use crate::divergence::Divergence;
 use serde::{Deserialize, Serialize, Serializer};
@@ -143,6 +144,15 @@ impl Reasons {
     pub fn iter(self) -> impl Iterator<Item = Reason> {
         Reason::ALL.into_iter().filter(move |r| self.contains(*r))
     }
+
+    /// The names of the reasons that hold joined by `+`, in [`Reason::ALL`]'s order
+    /// (`"joint_limit+fell"`; `""` while the episode goes on): the Python info's `reasons`.
+    pub fn joined(self) -> String {
+        self.iter()
+            .map(Reason::as_str)
+            .collect::<Vec<_>>()
+            .join("+")
+    }
 }
 
 impl FromIterator<Reason> for Reasons {
@@ -209,6 +219,24 @@ pub struct StepInfo {
 }
 
 impl StepInfo {
+    /// The name of the first joint at a limit when `joint_limit` holds (`model` names the
+    /// joints), else `""`.
+    pub fn joint_at_limit_name(&self, model: &RobotModel) -> String {
+        self.joint_at_limit
+            .as_ref()
+            .and_then(|hit| model.joints().get(hit.joint))
+            .map_or_else(String::new, |j| j.name.clone())
+    }
+
+    /// Which limit that joint is at, `"lower"` or `"upper"`, else `""`.
+    pub fn joint_at_limit_side(&self) -> &'static str {
+        match self.joint_at_limit.as_ref().map(|hit| hit.side) {
+            Some(LimitSide::Lower) => "lower",
+            Some(LimitSide::Upper) => "upper",
+            None => "",
+        }
+    }
+
     /// Gymnasium's `terminated`.
     pub fn terminated(&self) -> bool {
         self.reasons.terminated()
@@ -219,6 +247,180 @@ impl StepInfo {
         self.reasons.truncated()
     }
 }
+
+/// How a front reads the value of an info key from a step's [`StepInfo`] (and the robot, which
+/// names the joints), and so the key's one type.
+#[derive(Clone, Copy)]
+pub enum InfoValue {
+    /// An integer (Python `int`, int64 in a vector env).
+    Int(fn(&StepInfo) -> u64),
+    /// A number (`float`, float64).
+    Float(fn(&StepInfo) -> f64),
+    /// A flag (`bool`).
+    Bool(fn(&StepInfo) -> bool),
+    /// Text (`str`, an object array of str); the robot names the joints.
+    Text(fn(&StepInfo, &RobotModel) -> String),
+    /// A vector of numbers (a float64 array (k,), (N, k) in a vector env).
+    Vector(fn(&StepInfo) -> &[f64], VectorLen),
+    /// Every reward term of hyq-spec's table, each a number under its own name.
+    Terms,
+    /// Every end reason of [`Reason::ALL`], each a flag under its own name.
+    ReasonFlags,
+    /// A flag the front sets itself, since it does the work (Python's observation clipping).
+    FrontFlag,
+}
+
+/// The length of a vector info value.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum VectorLen {
+    /// A point in space.
+    Three,
+    /// One value per actuated joint.
+    Joints,
+}
+
+/// One key (or, for [`InfoValue::Terms`] and [`InfoValue::ReasonFlags`], one family of keys) of
+/// the info a front reports on every step and reset.
+#[derive(Clone, Copy)]
+pub struct InfoKey {
+    /// The key (for a family, what the documents call it).
+    pub name: &'static str,
+    /// How its value is read, and so its type.
+    pub value: InfoValue,
+    /// What it holds.
+    pub meaning: &'static str,
+}
+
+impl InfoKey {
+    /// The keys this row stands for: its name, or a family's names.
+    pub fn names(&self) -> Vec<&'static str> {
+        match self.value {
+            InfoValue::Terms => hyq_spec::TERM_NAMES.to_vec(),
+            InfoValue::ReasonFlags => Reason::ALL.iter().map(|r| r.as_str()).collect(),
+            _ => vec![self.name],
+        }
+    }
+
+    /// Its type as Python sees it (`"int"`, `"float"`, `"bool"`, `"str"`, `"float64 array
+    /// (k,)"`), `joints` being the robot's joint count.
+    pub fn kind(&self, joints: usize) -> String {
+        match self.value {
+            InfoValue::Int(_) => "int".into(),
+            InfoValue::Float(_) | InfoValue::Terms => "float".into(),
+            InfoValue::Bool(_) | InfoValue::ReasonFlags | InfoValue::FrontFlag => "bool".into(),
+            InfoValue::Text(_) => "str".into(),
+            InfoValue::Vector(_, VectorLen::Three) => "float64 array (3,)".into(),
+            InfoValue::Vector(_, VectorLen::Joints) => format!("float64 array ({joints},)"),
+        }
+    }
+}
+
+/// The info's keys, in the order a front writes them: its one schema. The Python info dicts
+/// (single and vector), `hyq.INFO_SCHEMA` and the README's info table are made from it, so a
+/// key is added here alone.
+pub const INFO_KEYS: [InfoKey; 19] = [
+    InfoKey {
+        name: "t",
+        value: InfoValue::Int(|i| i.t),
+        meaning: "env steps since reset (0 after reset)",
+    },
+    InfoKey {
+        name: "terms",
+        value: InfoValue::Terms,
+        meaning: "every reward term by name (hyq-spec's `REWARD_TERMS`)",
+    },
+    InfoKey {
+        name: "reward",
+        value: InfoValue::Float(|i| i.reward.total),
+        meaning: "the step's reward, the number `step` returns",
+    },
+    InfoKey {
+        name: "distance_to_goal",
+        value: InfoValue::Float(|i| i.distance_to_goal),
+        meaning: "D^t (m)",
+    },
+    InfoKey {
+        name: "d_n",
+        value: InfoValue::Float(|i| i.d_n),
+        meaning: "D_n^t = D^t / K",
+    },
+    InfoKey {
+        name: "roll",
+        value: InfoValue::Float(|i| i.roll),
+        meaning: "the trunk's roll (rad, intrinsic Z-Y-X)",
+    },
+    InfoKey {
+        name: "pitch",
+        value: InfoValue::Float(|i| i.pitch),
+        meaning: "the trunk's pitch (rad)",
+    },
+    InfoKey {
+        name: "yaw",
+        value: InfoValue::Float(|i| i.yaw),
+        meaning: "the trunk's yaw (rad)",
+    },
+    InfoKey {
+        name: "reasons",
+        value: InfoValue::Text(|i, _| i.reasons.joined()),
+        meaning: "the reasons that hold, joined by `+` in the order below (`\"joint_limit+fell\"`); \
+                  `\"\"` while the episode goes on",
+    },
+    InfoKey {
+        name: "reason flags",
+        value: InfoValue::ReasonFlags,
+        meaning: "the same reasons as flags",
+    },
+    InfoKey {
+        name: "goal",
+        value: InfoValue::Vector(|i| &i.goal, VectorLen::Three),
+        meaning: "G (m, world)",
+    },
+    InfoKey {
+        name: "initial_position",
+        value: InfoValue::Vector(|i| &i.initial_position, VectorLen::Three),
+        meaning: "C^0 (m, world; C^t is the observation's trunk position)",
+    },
+    InfoKey {
+        name: "joint_targets",
+        value: InfoValue::Vector(|i| &i.joint_targets, VectorLen::Joints),
+        meaning: "the joint targets the actuator tracked (rad)",
+    },
+    InfoKey {
+        name: "action_clipped",
+        value: InfoValue::Bool(|i| i.action_clipped),
+        meaning: "an action value was outside the space and clipped",
+    },
+    InfoKey {
+        name: "observation_clipped",
+        value: InfoValue::FrontFlag,
+        meaning: "an observation value was clipped to the table (`clip_observations=True`)",
+    },
+    InfoKey {
+        name: "joint_at_limit",
+        value: InfoValue::Text(|i, model| i.joint_at_limit_name(model)),
+        meaning: "the first joint at a limit when `joint_limit` holds, else `\"\"`",
+    },
+    InfoKey {
+        name: "joint_at_limit_angle",
+        value: InfoValue::Float(|i| i.joint_at_limit.as_ref().map_or(0.0, |hit| hit.angle)),
+        meaning: "its angle (rad), else 0.0",
+    },
+    InfoKey {
+        name: "joint_at_limit_side",
+        value: InfoValue::Text(|i, _| i.joint_at_limit_side().to_owned()),
+        meaning: "`\"lower\"` or `\"upper\"`, else `\"\"`",
+    },
+    InfoKey {
+        name: "divergence",
+        value: InfoValue::Text(|i, _| {
+            i.divergence
+                .as_ref()
+                .map(ToString::to_string)
+                .unwrap_or_default()
+        }),
+        meaning: "what diverged when `diverged` holds, else `\"\"`",
+    },
+];
 
 #[cfg(test)]
 mod tests {

@@ -43,7 +43,7 @@
 //! | [`config`] | [`EnvConfig`] and its tables, one file each; reading, validation, messages |
 //! | [`action`] | [`ActionSpace`]: checking actions and mapping them to joint targets |
 //! | [`goal`] | goal sampling and the reset state |
-//! | [`info`] | [`StepInfo`], [`Reason`], [`Reasons`] |
+//! | [`info`] | [`StepInfo`], [`Reason`], [`Reasons`]; [`INFO_KEYS`], the info's schema |
 //! | [`divergence`] | [`Divergence`]: why a step diverged, the text of the info's `divergence` |
 //! | [`policy`] | [`Stand`], [`RandomPolicy`], [`Trot`] |
 //! | [`mlp`] | [`MlpPolicy`]: a trained policy read from a safetensors file, run in plain Rust |
@@ -82,11 +82,11 @@ pub use env::{
     DEFAULT_SEED, Env, EnvError, Reset, ResetOptions, Step, StepTiming, observation_layout_of,
 };
 pub use hyq_spec::TermSums;
-pub use info::{Reason, Reasons, StepInfo};
+pub use info::{INFO_KEYS, InfoKey, InfoValue, Reason, Reasons, StepInfo, VectorLen};
 pub use mlp::{MlpError, MlpMetadata, MlpPolicy};
 pub use policy::{Policy, PolicyInput, RandomPolicy, Stand, Trot, TrotParams};
 pub use randomize::{EpisodeDraw, Preset};
-pub use record::StepRecord;
+pub use record::{RECORD_KEYS, RecordKey, StepRecord};
 pub use vec_env::{AutoReset, MAX_ENVS, MAX_THREADS, VecEnv, VecEnvError, VecStepOut};
 
 /// The repository README, whose Rust quickstart runs as a doctest of this crate so that it stays

@@ -40,7 +40,7 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use hyq_physics::RobotModel;
+use hyq_physics::{RobotModel, input};
 use safetensors::{Dtype, SafeTensors};
 use thiserror::Error;
 
@@ -54,9 +54,10 @@ pub const FORMAT: &str = "hyq-mlp-policy";
 /// The `format_version` this reader understands.
 pub const FORMAT_VERSION: &str = "1";
 
-/// A policy file that cannot be used: which file, and what is wrong with it (one line).
+/// A policy file that cannot be used: which file, and what is wrong with it (one line; what it
+/// quotes of the file, such as a metadata string, with control characters escaped).
 #[derive(Clone, Debug, PartialEq, Eq, Error)]
-#[error("{file}: {reason}")]
+#[error("{file}: {}", hyq_physics::printable(.reason))]
 pub struct MlpError {
     /// The file (as given), or the source's name.
     pub file: String,
@@ -169,50 +170,23 @@ fn parse_mode(name: &str) -> Option<ActionMode> {
     }
 }
 
-impl MlpPolicy {
-    /// Reads a policy file. Every check that needs only the file is done here: the format, the
-    /// metadata, the tensors' shapes and dtypes, and that every number is finite.
-    pub fn from_file(path: &Path) -> Result<Self, MlpError> {
-        let file = path.display().to_string();
-        let bytes = std::fs::read(path).map_err(|e| MlpError {
-            file: file.clone(),
-            reason: format!("cannot read the policy file: {e}"),
-        })?;
-        Self::from_bytes(&bytes, &file)
-    }
+/// Makes the error of a policy file from what is wrong with it (the file's name is bound in).
+type Fail<'a> = &'a dyn Fn(String) -> MlpError;
 
-    /// Reads a policy from the bytes of a file; `file` names it in errors.
-    pub fn from_bytes(bytes: &[u8], file: &str) -> Result<Self, MlpError> {
-        let err = |reason: String| MlpError {
-            file: file.to_owned(),
-            reason,
-        };
-        let (_, header) = SafeTensors::read_metadata(bytes).map_err(|e| {
-            err(format!(
-                "not a safetensors policy file ({}): expected a `{FORMAT}` file as \
-                 examples/export_policy.py writes",
-                hyq_physics::one_line(&e.to_string())
-            ))
-        })?;
-        let tensors = SafeTensors::deserialize(bytes).map_err(|e| {
-            err(format!(
-                "not a valid safetensors file: {}",
-                hyq_physics::one_line(&e.to_string())
-            ))
-        })?;
-        let raw: BTreeMap<String, String> = header
-            .metadata()
-            .clone()
-            .unwrap_or_default()
-            .into_iter()
-            .collect();
-        let get = |key: &str| -> Result<&str, MlpError> {
-            raw.get(key).map(String::as_str).ok_or_else(|| {
-                err(format!(
-                    "metadata has no `{key}` entry (not a `{FORMAT}` file)"
-                ))
-            })
-        };
+/// A policy file's metadata, read and checked.
+struct Header {
+    metadata: MlpMetadata,
+    activation: Activation,
+    obs_clip: f64,
+    obs_epsilon: f64,
+}
+
+impl Header {
+    /// Reads the metadata entries `raw` in the order their errors are reported: the format and
+    /// its version, the observation and action names, the action mode (and its scale), the
+    /// activation, the normaliser's clip and epsilon, the training configuration, the robot.
+    fn read(raw: BTreeMap<String, String>, err: Fail<'_>) -> Result<Self, MlpError> {
+        let get = |key: &str| entry(&raw, key, err);
         let format = get("format")?;
         if format != FORMAT {
             return Err(err(format!(
@@ -237,37 +211,15 @@ impl MlpPolicy {
         let mode_text = get("action_mode")?;
         let action_mode = parse_mode(mode_text)
             .ok_or_else(|| err(format!("unknown action mode {mode_text:?}")))?;
-        let action_scale_rad = match action_mode {
-            ActionMode::Offset | ActionMode::Delta => {
-                let text = get("action_scale_rad")?;
-                let v: f64 = text
-                    .parse()
-                    .ok()
-                    .filter(|v: &f64| v.is_finite() && *v > 0.0)
-                    .ok_or_else(|| {
-                        err(format!(
-                            "`action_scale_rad` = {text:?} is not a finite number > 0"
-                        ))
-                    })?;
-                Some(v)
-            }
-            ActionMode::Normalized | ActionMode::Absolute => None,
-        };
+        let action_scale_rad = action_scale(action_mode, &raw, err)?;
         let activation_text = get("activation")?;
         let activation = Activation::parse(activation_text).ok_or_else(|| {
             err(format!(
                 "unknown activation {activation_text:?} (expected tanh, relu or elu)"
             ))
         })?;
-        let number = |key: &str, min: f64| -> Result<f64, MlpError> {
-            let text = get(key)?;
-            text.parse::<f64>()
-                .ok()
-                .filter(|v| v.is_finite() && *v >= min)
-                .ok_or_else(|| err(format!("`{key}` = {text:?} is not a finite number ≥ {min}")))
-        };
-        let obs_clip = number("obs_clip", 0.0)?;
-        let obs_epsilon = number("obs_epsilon", 0.0)?;
+        let obs_clip = finite_at_least(&raw, "obs_clip", 0.0, err)?;
+        let obs_epsilon = finite_at_least(&raw, "obs_epsilon", 0.0, err)?;
         let env_config: BTreeMap<String, String> = serde_json::from_str(get("env_config")?)
             .map_err(|e| {
                 err(format!(
@@ -275,101 +227,6 @@ impl MlpPolicy {
                 ))
             })?;
         let robot = get("robot")?.to_owned();
-
-        let tensor = |name: &str, dtype: Dtype| -> Result<(Vec<usize>, Vec<f64>), MlpError> {
-            let view = tensors
-                .tensor(name)
-                .map_err(|_| err(format!("has no tensor `{name}`")))?;
-            if view.dtype() != dtype {
-                return Err(err(format!(
-                    "tensor `{name}` is {:?}, expected {dtype:?}",
-                    view.dtype()
-                )));
-            }
-            let data = view.data();
-            let values: Vec<f64> = match dtype {
-                Dtype::F32 => data
-                    .chunks_exact(4)
-                    .map(|c| f64::from(f32::from_le_bytes([c[0], c[1], c[2], c[3]])))
-                    .collect(),
-                _ => data
-                    .chunks_exact(8)
-                    .map(|c| f64::from_le_bytes(c.try_into().unwrap_or([0; 8])))
-                    .collect(),
-            };
-            if let Some(i) = values.iter().position(|v| !v.is_finite()) {
-                return Err(err(format!(
-                    "tensor `{name}` holds a non-finite value ({}) at flat index {i}",
-                    values[i]
-                )));
-            }
-            Ok((view.shape().to_vec(), values))
-        };
-
-        let n_obs = observation.len();
-        let n_act = action.len();
-        let (mean_shape, obs_mean) = tensor("obs_mean", Dtype::F64)?;
-        let (var_shape, obs_var) = tensor("obs_var", Dtype::F64)?;
-        for (name, shape) in [("obs_mean", &mean_shape), ("obs_var", &var_shape)] {
-            if shape.as_slice() != [n_obs] {
-                return Err(err(format!(
-                    "tensor `{name}` has shape {shape:?}, expected [{n_obs}] (one per observation row)"
-                )));
-            }
-        }
-        if let Some(i) = obs_var.iter().position(|v| *v < 0.0) {
-            return Err(err(format!("`obs_var` is negative at row {i}")));
-        }
-        let obs_std: Vec<f64> = obs_var.iter().map(|v| (v + obs_epsilon).sqrt()).collect();
-        if let Some(i) = obs_std.iter().position(|s| *s == 0.0) {
-            return Err(err(format!(
-                "row {i} has zero variance and epsilon 0: its normalisation divides by zero"
-            )));
-        }
-
-        let mut layers = Vec::new();
-        let mut inputs = n_obs;
-        loop {
-            let k = layers.len();
-            let w_name = format!("layers.{k}.weight");
-            if tensors.tensor(&w_name).is_err() {
-                break;
-            }
-            let (w_shape, weight) = tensor(&w_name, Dtype::F32)?;
-            let (b_shape, bias) = tensor(&format!("layers.{k}.bias"), Dtype::F32)?;
-            if w_shape.len() != 2 || w_shape[1] != inputs {
-                return Err(err(format!(
-                    "tensor `{w_name}` has shape {w_shape:?}, expected [_, {inputs}]"
-                )));
-            }
-            let outputs = w_shape[0];
-            if b_shape.as_slice() != [outputs] {
-                return Err(err(format!(
-                    "tensor `layers.{k}.bias` has shape {b_shape:?}, expected [{outputs}]"
-                )));
-            }
-            layers.push(Layer {
-                inputs,
-                outputs,
-                weight,
-                bias,
-            });
-            inputs = outputs;
-        }
-        if layers.is_empty() {
-            return Err(err("has no tensor `layers.0.weight`".into()));
-        }
-        if inputs != n_act {
-            return Err(err(format!(
-                "the last layer has {inputs} outputs, the metadata's action layout {n_act}"
-            )));
-        }
-        let width = layers
-            .iter()
-            .map(|l| l.outputs)
-            .chain([n_obs])
-            .max()
-            .unwrap_or(n_obs);
         Ok(Self {
             metadata: MlpMetadata {
                 robot,
@@ -381,9 +238,233 @@ impl MlpPolicy {
                 raw,
             },
             activation,
+            obs_clip,
+            obs_epsilon,
+        })
+    }
+}
+
+/// The metadata entry `key`, which a policy file must have.
+fn entry<'r>(
+    raw: &'r BTreeMap<String, String>,
+    key: &str,
+    err: Fail<'_>,
+) -> Result<&'r str, MlpError> {
+    raw.get(key).map(String::as_str).ok_or_else(|| {
+        err(format!(
+            "metadata has no `{key}` entry (not a `{FORMAT}` file)"
+        ))
+    })
+}
+
+/// `action_scale_rad` for the modes that scale the action (`offset`, `delta`): a finite number
+/// > 0; `None` for the others, which have no such entry.
+fn action_scale(
+    mode: ActionMode,
+    raw: &BTreeMap<String, String>,
+    err: Fail<'_>,
+) -> Result<Option<f64>, MlpError> {
+    match mode {
+        ActionMode::Offset | ActionMode::Delta => {
+            let text = entry(raw, "action_scale_rad", err)?;
+            let v: f64 = text
+                .parse()
+                .ok()
+                .filter(|v: &f64| v.is_finite() && *v > 0.0)
+                .ok_or_else(|| {
+                    err(format!(
+                        "`action_scale_rad` = {text:?} is not a finite number > 0"
+                    ))
+                })?;
+            Ok(Some(v))
+        }
+        ActionMode::Normalized | ActionMode::Absolute => Ok(None),
+    }
+}
+
+/// The metadata entry `key` as a finite number ≥ `min`.
+fn finite_at_least(
+    raw: &BTreeMap<String, String>,
+    key: &str,
+    min: f64,
+    err: Fail<'_>,
+) -> Result<f64, MlpError> {
+    let text = entry(raw, key, err)?;
+    text.parse::<f64>()
+        .ok()
+        .filter(|v| v.is_finite() && *v >= min)
+        .ok_or_else(|| err(format!("`{key}` = {text:?} is not a finite number ≥ {min}")))
+}
+
+/// The tensor `name` of `dtype` as f64 values with its shape; every value finite.
+fn read_tensor(
+    tensors: &SafeTensors<'_>,
+    name: &str,
+    dtype: Dtype,
+    err: Fail<'_>,
+) -> Result<(Vec<usize>, Vec<f64>), MlpError> {
+    let view = tensors
+        .tensor(name)
+        .map_err(|_| err(format!("has no tensor `{name}`")))?;
+    if view.dtype() != dtype {
+        return Err(err(format!(
+            "tensor `{name}` is {:?}, expected {dtype:?}",
+            view.dtype()
+        )));
+    }
+    let data = view.data();
+    let values: Vec<f64> = match dtype {
+        Dtype::F32 => data
+            .chunks_exact(4)
+            .map(|c| f64::from(f32::from_le_bytes([c[0], c[1], c[2], c[3]])))
+            .collect(),
+        _ => data
+            .chunks_exact(8)
+            .map(|c| f64::from_le_bytes(c.try_into().unwrap_or([0; 8])))
+            .collect(),
+    };
+    if let Some(i) = values.iter().position(|v| !v.is_finite()) {
+        return Err(err(format!(
+            "tensor `{name}` holds a non-finite value ({}) at flat index {i}",
+            values[i]
+        )));
+    }
+    Ok((view.shape().to_vec(), values))
+}
+
+/// The observation normaliser: the mean and the standard deviation √(var + epsilon) of each of
+/// the `n_obs` rows, none of them zero.
+fn normaliser(
+    tensors: &SafeTensors<'_>,
+    n_obs: usize,
+    obs_epsilon: f64,
+    err: Fail<'_>,
+) -> Result<(Vec<f64>, Vec<f64>), MlpError> {
+    let (mean_shape, obs_mean) = read_tensor(tensors, "obs_mean", Dtype::F64, err)?;
+    let (var_shape, obs_var) = read_tensor(tensors, "obs_var", Dtype::F64, err)?;
+    for (name, shape) in [("obs_mean", &mean_shape), ("obs_var", &var_shape)] {
+        if shape.as_slice() != [n_obs] {
+            return Err(err(format!(
+                "tensor `{name}` has shape {shape:?}, expected [{n_obs}] (one per observation row)"
+            )));
+        }
+    }
+    if let Some(i) = obs_var.iter().position(|v| *v < 0.0) {
+        return Err(err(format!("`obs_var` is negative at row {i}")));
+    }
+    let obs_std: Vec<f64> = obs_var.iter().map(|v| (v + obs_epsilon).sqrt()).collect();
+    if let Some(i) = obs_std.iter().position(|s| *s == 0.0) {
+        return Err(err(format!(
+            "row {i} has zero variance and epsilon 0: its normalisation divides by zero"
+        )));
+    }
+    Ok((obs_mean, obs_std))
+}
+
+/// The layers `layers.0`, `layers.1`, ... until one is missing: each takes the previous one's
+/// outputs (the first, the `n_obs` observation rows), and the last gives the `n_act` actions.
+fn read_layers(
+    tensors: &SafeTensors<'_>,
+    n_obs: usize,
+    n_act: usize,
+    err: Fail<'_>,
+) -> Result<Vec<Layer>, MlpError> {
+    let mut layers = Vec::new();
+    let mut inputs = n_obs;
+    loop {
+        let k = layers.len();
+        let w_name = format!("layers.{k}.weight");
+        if tensors.tensor(&w_name).is_err() {
+            break;
+        }
+        let (w_shape, weight) = read_tensor(tensors, &w_name, Dtype::F32, err)?;
+        let (b_shape, bias) = read_tensor(tensors, &format!("layers.{k}.bias"), Dtype::F32, err)?;
+        if w_shape.len() != 2 || w_shape[1] != inputs {
+            return Err(err(format!(
+                "tensor `{w_name}` has shape {w_shape:?}, expected [_, {inputs}]"
+            )));
+        }
+        let outputs = w_shape[0];
+        if b_shape.as_slice() != [outputs] {
+            return Err(err(format!(
+                "tensor `layers.{k}.bias` has shape {b_shape:?}, expected [{outputs}]"
+            )));
+        }
+        layers.push(Layer {
+            inputs,
+            outputs,
+            weight,
+            bias,
+        });
+        inputs = outputs;
+    }
+    if layers.is_empty() {
+        return Err(err("has no tensor `layers.0.weight`".into()));
+    }
+    if inputs != n_act {
+        return Err(err(format!(
+            "the last layer has {inputs} outputs, the metadata's action layout {n_act}"
+        )));
+    }
+    Ok(layers)
+}
+
+impl MlpPolicy {
+    /// Reads a policy file of at most hyq-physics' [`input::POLICY`] cap (the capped reader
+    /// every user file goes through). Every check that needs only the file is done here: the
+    /// format, the metadata, the tensors' shapes and dtypes, and that every number is finite.
+    pub fn from_file(path: &Path) -> Result<Self, MlpError> {
+        let file = path.display().to_string();
+        let bytes = input::read_bytes(path, &input::POLICY).map_err(|e| MlpError {
+            file: file.clone(),
+            reason: format!("cannot read the policy file: {e}"),
+        })?;
+        Self::from_bytes(&bytes, &file)
+    }
+
+    /// Reads a policy from the bytes of a file; `file` names it in errors. In order: the file's
+    /// format, its metadata (`Header::read`), the observation normaliser (`normaliser`) and the
+    /// layers (`read_layers`); the first problem found is the error.
+    pub fn from_bytes(bytes: &[u8], file: &str) -> Result<Self, MlpError> {
+        let err = |reason: String| MlpError {
+            file: file.to_owned(),
+            reason,
+        };
+        let (_, header) = SafeTensors::read_metadata(bytes).map_err(|e| {
+            err(format!(
+                "not a safetensors policy file ({}): expected a `{FORMAT}` file as \
+                 examples/export_policy.py writes",
+                hyq_physics::one_line(&e.to_string())
+            ))
+        })?;
+        let tensors = SafeTensors::deserialize(bytes).map_err(|e| {
+            err(format!(
+                "not a valid safetensors file: {}",
+                hyq_physics::one_line(&e.to_string())
+            ))
+        })?;
+        let raw: BTreeMap<String, String> = header
+            .metadata()
+            .clone()
+            .unwrap_or_default()
+            .into_iter()
+            .collect();
+        let header = Header::read(raw, &err)?;
+        let n_obs = header.metadata.observation.len();
+        let (obs_mean, obs_std) = normaliser(&tensors, n_obs, header.obs_epsilon, &err)?;
+        let layers = read_layers(&tensors, n_obs, header.metadata.action.len(), &err)?;
+        let width = layers
+            .iter()
+            .map(|l| l.outputs)
+            .chain([n_obs])
+            .max()
+            .unwrap_or(n_obs);
+        Ok(Self {
+            metadata: header.metadata,
+            activation: header.activation,
             obs_mean,
             obs_std,
-            obs_clip,
+            obs_clip: header.obs_clip,
             layers,
             scratch: [vec![0.0; width], vec![0.0; width]],
         })

@@ -1,23 +1,9 @@
 //! The per-step record: one JSON object per env step (the CLI's `--record` JSONL, the Python
 //! binding's logs and the comparison tools all share this schema).
 //!
-//! | key | type | meaning |
-//! |---|---|---|
-//! | `robot` | string | the robot's name (its profile's, e.g. `hyq`, `anymal_c`) |
-//! | `episode` | integer | episode number, 1 for the first since the env was built |
-//! | `t` | integer | env steps since reset, 1 for the first step |
-//! | `obs` | 39 numbers | the observation after the step (§3 order) |
-//! | `action` | 12 numbers | the action as given (before clipping) |
-//! | `joint_targets` | 12 numbers | the joint targets the actuator tracked (rad) |
-//! | `reward` | number | the step's reward (`terms` composed) |
-//! | `terms` | object | every reward term by name (`hyq_spec::REWARD_TERMS`: `r_b`, `r_n`, `r_e`, `r_reach`, `m_yaw`, `m_pitch`, `joint_penalty`, `fall_penalty`), an opt-in term (`m_height`) only when it is configured |
-//! | `yaw`, `pitch` | numbers | the trunk's yaw and pitch (rad, intrinsic Z-Y-X) |
-//! | `distance_to_goal` | number | D^t (m) |
-//! | `d_n` | number | D_n^t = D^t / K |
-//! | `goal` | 3 numbers | G (m, world) |
-//! | `initial_position` | 3 numbers | C^0 (m, world) |
-//! | `terminated`, `truncated` | booleans | Gymnasium's flags |
-//! | `reasons` | list of strings | a subset of `reached`, `joint_limit`, `fell`, `timeout`, `diverged`, in that order |
+//! The keys, their JSON types and meanings are [`RECORD_KEYS`], declared once beside the struct;
+//! the README's step record table is generated from it (`cargo xtask codegen`), and a test checks
+//! it against a record as written.
 //!
 //! Numbers are written with full f64 precision (shortest round-trip form): reading a record
 //! back gives the same bits.
@@ -33,6 +19,130 @@ use serde::{Deserialize, Serialize};
 
 use crate::env::Env;
 use crate::info::{Reason, Reasons, StepInfo};
+
+/// One key of the step record: its name, its JSON type and what it holds. In a type or a
+/// meaning, `{obs}` stands for the robot's observation length, `{joints}` for its joint count
+/// and `{terms}` for the reward terms' names (the documents write them for HyQ).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RecordKey {
+    /// The key.
+    pub name: &'static str,
+    /// Its JSON type.
+    pub kind: &'static str,
+    /// What it holds.
+    pub meaning: &'static str,
+    /// Whether it is written only when set (`#[serde(skip_serializing_if = ...)]`), so that
+    /// records of a configuration that leaves it unset stay as they were before it existed.
+    pub optional: bool,
+}
+
+/// The step record's keys, in the order written: its one schema ([`StepRecord`]'s fields).
+pub const RECORD_KEYS: [RecordKey; 17] = [
+    RecordKey {
+        name: "robot",
+        kind: "string",
+        meaning: "the robot's name (`hyq`, `anymal_c`, or the profile's `name`); a record \
+                  written before this key was added has none, and still reads",
+        optional: false,
+    },
+    RecordKey {
+        name: "episode",
+        kind: "integer",
+        meaning: "episode number, 1 for the first since the env was built",
+        optional: false,
+    },
+    RecordKey {
+        name: "t",
+        kind: "integer",
+        meaning: "env steps since reset, 1 after the first step",
+        optional: false,
+    },
+    RecordKey {
+        name: "obs",
+        kind: "{obs} numbers",
+        meaning: "the observation after the step, §3 order",
+        optional: false,
+    },
+    RecordKey {
+        name: "action",
+        kind: "{joints} numbers",
+        meaning: "the action as given (before clipping)",
+        optional: false,
+    },
+    RecordKey {
+        name: "joint_targets",
+        kind: "{joints} numbers",
+        meaning: "the joint targets the actuator tracked (rad)",
+        optional: false,
+    },
+    RecordKey {
+        name: "reward",
+        kind: "number",
+        meaning: "the step's reward, `terms` composed",
+        optional: false,
+    },
+    RecordKey {
+        name: "terms",
+        kind: "object",
+        meaning: "every reward term by name: {terms}",
+        optional: false,
+    },
+    RecordKey {
+        name: "yaw",
+        kind: "number",
+        meaning: "the trunk's yaw (rad, intrinsic Z-Y-X)",
+        optional: false,
+    },
+    RecordKey {
+        name: "pitch",
+        kind: "number",
+        meaning: "the trunk's pitch (rad)",
+        optional: false,
+    },
+    RecordKey {
+        name: "distance_to_goal",
+        kind: "number",
+        meaning: "D^t (m)",
+        optional: false,
+    },
+    RecordKey {
+        name: "d_n",
+        kind: "number",
+        meaning: "D_n^t = D^t / K (a goal closer than 10⁻⁶ m to the start is refused)",
+        optional: false,
+    },
+    RecordKey {
+        name: "goal",
+        kind: "3 numbers",
+        meaning: "G (m, world)",
+        optional: false,
+    },
+    RecordKey {
+        name: "initial_position",
+        kind: "3 numbers",
+        meaning: "C^0 (m, world): the trunk position after reset",
+        optional: false,
+    },
+    RecordKey {
+        name: "terminated",
+        kind: "boolean",
+        meaning: "Gymnasium's `terminated`",
+        optional: false,
+    },
+    RecordKey {
+        name: "truncated",
+        kind: "boolean",
+        meaning: "Gymnasium's `truncated`",
+        optional: false,
+    },
+    RecordKey {
+        name: "reasons",
+        kind: "list of strings",
+        meaning: "why the episode ended: a subset of `reached`, `joint_limit`, `fell`, \
+                  `timeout`, `diverged`, in that order; empty while it goes on",
+        optional: false,
+    },
+];
 
 /// One env step as written to a JSONL record (see the module docs for the schema). Borrows the
 /// environment's buffers when written; owns them when read back.

@@ -17,6 +17,7 @@ use nalgebra::{Isometry3, Vector3};
 use serde::de::DeserializeOwned;
 use serde::{Deserialize, Serialize};
 
+use crate::bounds::short;
 use crate::error::PhysicsError;
 use crate::inertia::MassProperties;
 use crate::model::RobotModel;
@@ -61,7 +62,7 @@ impl PhysicsParams {
             })
         };
         if !(self.dt.is_finite() && self.dt > 0.0 && self.dt <= 0.1) {
-            return bad("dt", self.dt.to_string(), "must be in (0, 0.1] s");
+            return bad("dt", short(self.dt), "must be in (0, 0.1] s");
         }
         if !self.gravity.iter().all(|g| g.is_finite()) {
             return bad("gravity", format!("{:?}", self.gravity), "must be finite");
@@ -69,14 +70,14 @@ impl PhysicsParams {
         if !(self.ground_friction.is_finite() && self.ground_friction >= 0.0) {
             return bad(
                 "ground_friction",
-                self.ground_friction.to_string(),
+                short(self.ground_friction),
                 "must be finite and non-negative",
             );
         }
         if !(self.contact_distance.is_finite() && self.contact_distance >= 0.0) {
             return bad(
                 "contact_distance",
-                self.contact_distance.to_string(),
+                short(self.contact_distance),
                 "must be finite and non-negative (m)",
             );
         }

@@ -73,8 +73,8 @@ pub fn by_name(name: &str) -> Option<Arc<RobotModel>> {
         MODELS[i]
             .get_or_init(|| {
                 // The bundled assets are compiled in and loaded by this crate's tests
-                // (`tests/bundled_robots.rs`), so a failure here is a broken build, not bad
-                // input.
+                // (`tests/bundled_hyq.rs`, `tests/bundled_anymal_c.rs`), so a failure here is a
+                // broken build, not bad input.
                 #[allow(clippy::expect_used)]
                 Arc::new(load(name).expect("the bundled robot assets are valid"))
             })

@@ -218,6 +218,22 @@ pub fn one_line(message: &str) -> String {
         .join(": ")
 }
 
+/// `text` with every control character escaped (`\n`, `\u{1b}`), the rest as it is: what a
+/// file or an argument holds (a name, a key, a parser's quote of it), safe to print in a
+/// one-line message, where a raw escape sequence could recolour the terminal or a line break
+/// forge another line.
+pub fn printable(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        if c.is_control() {
+            out.extend(c.escape_debug());
+        } else {
+            out.push(c);
+        }
+    }
+    out
+}
+
 /// Whether a trimmed line is part of a parser's source excerpt: `|` rules, or a source line
 /// after its number (`3 | key = 1`).
 fn is_source_excerpt(line: &str) -> bool {
@@ -229,7 +245,12 @@ fn is_source_excerpt(line: &str) -> bool {
 
 #[cfg(test)]
 mod tests {
-    use super::one_line;
+    use super::{one_line, printable};
+
+    #[test]
+    fn control_characters_are_escaped_and_the_rest_kept() {
+        assert_eq!(printable("a\u{1b}[31m\"b\"\nc"), "a\\u{1b}[31m\"b\"\\nc");
+    }
 
     #[test]
     fn a_parser_message_keeps_its_header_and_explanation() {

@@ -5,8 +5,8 @@
 //!   actuated joints in the profile's order, tracked bodies (feet, then the trunk), standing
 //!   pose, spawn height, default gains, and forward kinematics.
 //! - [`Backend`]: the trait a simulator implements (rapier in `hyq-rapier`, DART in
-//!   `hyq-dart`): build, set a state, apply joint torques, advance one sub-step, read joint and
-//!   trunk state and real ground contacts.
+//!   `hyq-dart`, MuJoCo in `hyq-mujoco`; hyq-engines names them): build, set a state, apply
+//!   joint torques, advance one sub-step, read joint and trunk state and real ground contacts.
 //! - [`actuator`]: the joint PD law with effort and velocity limits, evaluated every sub-step in
 //!   shared code ([`pd_substep`]), so every backend is driven identically.
 //! - [`randomize`]: per-episode variations of the physics as plain data (ground friction,
@@ -20,6 +20,10 @@
 //!   builds from it, and how far a shape is above it.
 //! - [`urdf_export`]: the loaded robot written back as URDF (fixed links lumped, primitive
 //!   shapes only), for engines and tools outside the project that read URDF.
+//! - [`bounds`]: the one table of bounds every number of a robot is checked against, so that
+//!   everything derived from it stays finite (in f64 and in f32); [`input`]: the size-capped
+//!   reader every loader of a user's file goes through, and the checks made before a parser
+//!   runs (XML nesting depth).
 //! - [`bundled`]: the robots shipped in `assets/` (HyQ, the default, and ANYmal C), usable from
 //!   any directory, and [`resolve_robot`], which every front end uses to turn a robot choice
 //!   (a bundled name or a profile path) into a model.
@@ -31,11 +35,13 @@
 
 pub mod actuator;
 pub mod backend;
+pub mod bounds;
 pub mod bundled;
 #[cfg(feature = "conformance")]
 pub mod conformance;
 pub mod error;
 pub mod inertia;
+pub mod input;
 pub mod mjcf;
 pub mod model;
 pub mod profile;
@@ -46,7 +52,7 @@ pub mod urdf_export;
 pub use actuator::{Actuator, PdScratch, apply_pd, apply_pd_to_valid_targets, pd_substep};
 pub use backend::{Backend, PhysicsParams, RobotState, TrunkState, check_joint_values};
 pub use bundled::resolve as resolve_robot;
-pub use error::{ModelError, PhysicsError, one_line};
+pub use error::{ModelError, PhysicsError, one_line, printable};
 pub use inertia::MassProperties;
 pub use model::{Collision, Joint, Link, RobotModel, Shape, TrackedBody};
 pub use model::{Gait, GaitLeg};

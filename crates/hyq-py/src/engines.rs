@@ -20,51 +20,40 @@ use pyo3::exceptions::PyValueError;
 
 use crate::errors::{env_error, vec_env_error};
 
-/// The backends this build has, the default (`rapier`) first.
+/// The backends this build has, the default first (hyq-engines' table order).
 pub fn built_backends() -> Vec<&'static str> {
-    let mut names = vec!["rapier"];
-    if cfg!(feature = "mujoco") {
-        names.push("mujoco");
-    }
-    if cfg!(feature = "dart") {
-        names.push("dart");
-    }
-    names
+    hyq_engines::built().map(|e| e.name).collect()
 }
 
 /// The error for a backend this build lacks or does not know.
 fn backend_error(name: &str) -> pyo3::PyErr {
     let built = built_backends().join(", ");
-    let (what, needs) = match name {
-        "mujoco" => (
-            "MuJoCo",
-            "MuJoCo 4.0.0's library: `cargo xtask setup mujoco` first",
-        ),
-        "dart" => (
-            "DART",
-            "DART 6.12: `apt-get install -y libdart-dev libdart-collision-bullet-dev` first",
-        ),
-        _ => {
-            return PyValueError::new_err(format!(
-                "backend={name:?}: unknown backend (this package was built with: {built}; \
-                 the project's backends are rapier, mujoco and dart)"
-            ));
+    match hyq_engines::find(name) {
+        None => PyValueError::new_err(format!(
+            "backend={name:?}: unknown backend (this package was built with: {built}; \
+             the project's backends are {})",
+            hyq_engines::all_names()
+        )),
+        Some(engine) => {
+            let needs = engine.needs.map_or_else(String::new, |n| {
+                format!(" (needs {}: `{}` first)", n.what, n.install)
+            });
+            PyValueError::new_err(format!(
+                "backend={name:?}: this hyq package was built without the {} backend (built: \
+                 {built}); rebuild it with `maturin develop --release --features {}` in \
+                 crates/hyq-py{needs}",
+                engine.title,
+                engine.feature.unwrap_or(engine.name)
+            ))
         }
-    };
-    PyValueError::new_err(format!(
-        "backend={name:?}: this hyq package was built without the {what} backend (built: \
-         {built}); rebuild it with `maturin develop --release --features {name}` in \
-         crates/hyq-py (needs {needs})"
-    ))
+    }
 }
 
 /// The robot chosen by name or profile path (`None`: the default, HyQ).
 pub fn robot(choice: Option<&str>) -> PyResult<Arc<RobotModel>> {
     let choice = choice.unwrap_or(hyq_physics::bundled::DEFAULT);
     hyq_physics::resolve_robot(choice).map_err(|e| {
-        let text = e.to_string();
-        let text = text.split_whitespace().collect::<Vec<_>>().join(" ");
-        PyValueError::new_err(format!("robot: {text}"))
+        PyValueError::new_err(format!("robot: {}", hyq_physics::one_line(&e.to_string())))
     })
 }
 
@@ -208,28 +197,14 @@ impl<B: Backend> VecView for VecEnv<B> {
     }
 }
 
-/// Evaluates `$body` with the type alias `$b` bound to the backend named `$name`; a name this
-/// build lacks is a `ValueError` naming the build option.
+/// Evaluates `$body` with the type alias `$b` bound to the backend named `$name`
+/// (`hyq_engines::with_engine!`); a name this build lacks is a `ValueError` naming the build
+/// option.
 macro_rules! with_backend {
-    ($name:expr, $b:ident => $body:expr) => {
-        match $name {
-            "rapier" => {
-                type $b = hyq_rapier::RapierBackend;
-                $body
-            }
-            #[cfg(feature = "mujoco")]
-            "mujoco" => {
-                type $b = hyq_mujoco::MujocoBackend;
-                $body
-            }
-            #[cfg(feature = "dart")]
-            "dart" => {
-                type $b = hyq_dart::DartBackend;
-                $body
-            }
-            other => Err(backend_error(other)),
-        }
-    };
+    ($name:expr, $b:ident => $body:expr) => {{
+        let name: &str = $name;
+        hyq_engines::with_engine!(name, $b => $body).unwrap_or_else(|| Err(backend_error(name)))
+    }};
 }
 
 /// One environment of `model` on the backend named `backend`.

@@ -66,6 +66,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(backends, m)?)?;
     m.add("ROBOTS", hyq_physics::bundled::NAMES.to_vec())?;
     m.add("DEFAULT_ROBOT", hyq_physics::bundled::DEFAULT)?;
+    m.add("DEFAULT_BACKEND", hyq_engines::DEFAULT.name)?;
     // The configuration's tables, which keyword arguments may give as dicts.
     m.add("CONFIG_TABLES", hyq_env::EnvConfig::TABLES.to_vec())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
@@ -78,6 +79,13 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("CLIP_OBSERVATIONS_DEFAULT", CLIP_OBSERVATIONS_DEFAULT)?;
     m.add("RENDER_WIDTH_DEFAULT", hyq_render::DEFAULT_WIDTH_PX)?;
     m.add("RENDER_HEIGHT_DEFAULT", hyq_render::DEFAULT_HEIGHT_PX)?;
+    // The info's keys and their types (`hyq.INFO_SCHEMA`), for the default robot.
+    let default_robot = hyq_physics::resolve_robot(hyq_physics::bundled::DEFAULT)
+        .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))?;
+    m.add(
+        "INFO_SCHEMA",
+        info::info_schema(default_robot.joints().len()),
+    )?;
     // The reward terms' names in hyq-spec's table order: the info's term keys.
     m.add(
         "REWARD_TERMS",

@@ -12,7 +12,9 @@ use crate::errors::env_error;
 use crate::frames::FrameSource;
 use crate::guard::{Retirable, call, call_mut};
 use crate::info::info_dict;
-use crate::spaces::{Bounds, clip_in_place, declared_bounds, table_bounds, to_f32};
+use crate::spaces::{
+    Bounds, clip_in_place, declared_bounds, high_inward, low_inward, table_bounds,
+};
 
 /// One environment (a robot on a backend). Built by `hyq.HyQEnv`, which adds the Gymnasium API.
 #[pyclass(module = "hyq._core")]
@@ -51,8 +53,7 @@ impl Core {
         let env = self.env.get();
         let mut obs = env.observation_f32().to_vec();
         let clipped = clip_in_place(&mut obs, self.clip.as_ref());
-        let info = info_dict(py, env.info(), env.model())?;
-        info.set_item("observation_clipped", clipped)?;
+        let info = info_dict(py, env.info(), env.model(), clipped)?;
         Ok((obs.into_pyarray(py), info))
     }
 }
@@ -63,7 +64,7 @@ impl Core {
     /// (`("task.fall_penalty", "1.5")`); errors name the key and value. `robot` is a bundled
     /// robot's name or a profile path (default HyQ), `backend` one this build has.
     #[new]
-    #[pyo3(signature = (pairs, config_file=None, clip_observations=crate::CLIP_OBSERVATIONS_DEFAULT, render_width=hyq_render::DEFAULT_WIDTH_PX, render_height=hyq_render::DEFAULT_HEIGHT_PX, robot=None, backend="rapier"))]
+    #[pyo3(signature = (pairs, config_file=None, clip_observations=crate::CLIP_OBSERVATIONS_DEFAULT, render_width=hyq_render::DEFAULT_WIDTH_PX, render_height=hyq_render::DEFAULT_HEIGHT_PX, robot=None, backend=hyq_engines::DEFAULT.name))]
     fn new(
         pairs: Vec<(String, String)>,
         config_file: Option<String>,
@@ -189,7 +190,7 @@ impl Core {
         py: Python<'py>,
     ) -> PyResult<Bound<'py, PyArray1<f32>>> {
         call(slf, "action_low", |this| {
-            Ok(to_f32(this.env.get().action_space().low()).into_pyarray(py))
+            Ok(low_inward(this.env.get().action_space().low()).into_pyarray(py))
         })
     }
 
@@ -199,7 +200,7 @@ impl Core {
         py: Python<'py>,
     ) -> PyResult<Bound<'py, PyArray1<f32>>> {
         call(slf, "action_high", |this| {
-            Ok(to_f32(this.env.get().action_space().high()).into_pyarray(py))
+            Ok(high_inward(this.env.get().action_space().high()).into_pyarray(py))
         })
     }
 

@@ -1,4 +1,5 @@
-//! The observation and action spaces as the Python side needs them: bounds as f32 arrays, the
+//! The observation and action spaces as the Python side needs them: bounds as f32 arrays (the
+//! action space's rounded inward, so that every float32 action in it is inside the env's), the
 //! spec's §3 table as data, and observations clipped to the table when the env was built with
 //! `clip_observations=True`.
 //!
@@ -98,9 +99,30 @@ pub fn observation_table(robot: Option<&str>) -> PyResult<Vec<TableRow>> {
         .collect())
 }
 
-/// `values` (action space bounds, f64) as the f32 a `gymnasium.spaces.Box` of float32 takes.
-pub fn to_f32(values: &[f64]) -> Vec<f32> {
-    values.iter().map(|v| *v as f32).collect()
+/// Lower action-space bounds (f64) as the float32 a `gymnasium.spaces.Box` takes, rounded
+/// inward: the smallest f32 at or above each bound. Rounded to nearest, a bound could land just
+/// outside the environment's space (HyQ's -0.8726646259971648 rad becomes -0.87266463), and
+/// `step(action_space.low)` would be clipped, or refused under `out_of_range = "error"`.
+pub fn low_inward(values: &[f64]) -> Vec<f32> {
+    values
+        .iter()
+        .map(|&v| {
+            let f = v as f32;
+            if f64::from(f) < v { f.next_up() } else { f }
+        })
+        .collect()
+}
+
+/// Upper action-space bounds as float32, rounded inward: the largest f32 at or below each
+/// (see [`low_inward`]).
+pub fn high_inward(values: &[f64]) -> Vec<f32> {
+    values
+        .iter()
+        .map(|&v| {
+            let f = v as f32;
+            if f64::from(f) > v { f.next_down() } else { f }
+        })
+        .collect()
 }
 
 /// Clips `obs` in place to `clip`'s bounds when given; returns whether any value was outside

@@ -18,7 +18,9 @@ use crate::errors::vec_env_error;
 use crate::frames::FrameSource;
 use crate::guard::{Retirable, call, call_mut};
 use crate::info::{info_dict, vector_info_dict};
-use crate::spaces::{Bounds, clip_in_place, declared_bounds, table_bounds, to_f32, would_clip};
+use crate::spaces::{
+    Bounds, clip_in_place, declared_bounds, high_inward, low_inward, table_bounds, would_clip,
+};
 
 /// N environments (a robot on a backend) stepped in parallel.
 #[pyclass(module = "hyq._core")]
@@ -92,12 +94,7 @@ impl VecCore {
         let array = Array2::from_shape_vec((vec.num_envs(), vec.observation_len()), flat)
             .map_err(|e| PyValueError::new_err(format!("observations: {e}")))?;
         let infos: Vec<_> = (0..vec.num_envs()).map(|i| vec.info(i)).collect();
-        let info = vector_info_dict(py, &infos, vec.env(0).model())?;
-        info.set_item("observation_clipped", clipped.into_pyarray(py))?;
-        info.set_item(
-            "_observation_clipped",
-            vec![true; infos.len()].into_pyarray(py),
-        )?;
+        let info = vector_info_dict(py, &infos, vec.env(0).model(), &clipped)?;
         Ok((array.into_pyarray(py), info))
     }
 
@@ -115,7 +112,7 @@ impl VecCore {
     /// `"next_step"`, `"same_step"` or `"disabled"`, on rayon's global pool or on a pool of
     /// `threads` threads.
     #[new]
-    #[pyo3(signature = (pairs, num_envs, autoreset_mode="next_step", config_file=None, threads=None, clip_observations=crate::CLIP_OBSERVATIONS_DEFAULT, render_width=hyq_render::DEFAULT_WIDTH_PX, render_height=hyq_render::DEFAULT_HEIGHT_PX, robot=None, backend="rapier"))]
+    #[pyo3(signature = (pairs, num_envs, autoreset_mode="next_step", config_file=None, threads=None, clip_observations=crate::CLIP_OBSERVATIONS_DEFAULT, render_width=hyq_render::DEFAULT_WIDTH_PX, render_height=hyq_render::DEFAULT_HEIGHT_PX, robot=None, backend=hyq_engines::DEFAULT.name))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         pairs: Vec<(String, String)>,
@@ -269,10 +266,8 @@ impl VecCore {
         call(slf, "env_info", |this| {
             this.check_index(i)?;
             let vec = this.vec.get();
-            let info = info_dict(py, vec.info(i), vec.env(i).model())?;
             let clipped = would_clip(vec.env(i).observation_f32(), this.clip.as_ref());
-            info.set_item("observation_clipped", clipped)?;
-            Ok(info)
+            info_dict(py, vec.info(i), vec.env(i).model(), clipped)
         })
     }
 
@@ -306,9 +301,8 @@ impl VecCore {
             let (Some(info), Some(obs)) = (vec.final_info(i), vec.final_observation(i)) else {
                 return Ok(None);
             };
-            let info = info_dict(py, info, vec.env(i).model())?;
-            info.set_item("observation_clipped", would_clip(obs, this.clip.as_ref()))?;
-            Ok(Some(info))
+            let clipped = would_clip(obs, this.clip.as_ref());
+            info_dict(py, info, vec.env(i).model(), clipped).map(Some)
         })
     }
 
@@ -370,7 +364,7 @@ impl VecCore {
         py: Python<'py>,
     ) -> PyResult<Bound<'py, PyArray1<f32>>> {
         call(slf, "action_low", |this| {
-            Ok(to_f32(this.vec.get().env(0).action_space().low()).into_pyarray(py))
+            Ok(low_inward(this.vec.get().env(0).action_space().low()).into_pyarray(py))
         })
     }
 
@@ -380,7 +374,7 @@ impl VecCore {
         py: Python<'py>,
     ) -> PyResult<Bound<'py, PyArray1<f32>>> {
         call(slf, "action_high", |this| {
-            Ok(to_f32(this.vec.get().env(0).action_space().high()).into_pyarray(py))
+            Ok(high_inward(this.vec.get().env(0).action_space().high()).into_pyarray(py))
         })
     }
 

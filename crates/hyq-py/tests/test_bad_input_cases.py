@@ -9,12 +9,15 @@ from __future__ import annotations
 
 import copy
 import pickle
+import subprocess
+import sys
 
 import gymnasium as gym
 import numpy as np
 import pytest
 
 import hyq
+from conftest import REPO
 
 
 def stepped(env: hyq.HyQEnv, n: int) -> list[np.ndarray]:
@@ -239,3 +242,76 @@ def test_vector_env_arguments() -> None:
     with pytest.raises(IndexError):
         envs.env_info(5)
     envs.reset(seed=2**64 - 1)
+
+
+@pytest.mark.parametrize("robot", ["hyq", "anymal_c"])
+def test_absolute_action_space_bounds_are_inside_the_env(robot: str) -> None:
+    # The float32 Box is rounded inward: its bounds step unclipped, even under
+    # out_of_range="error" (rounded to nearest, 4 of HyQ's lower limits fell outside).
+    env = hyq.HyQEnv(robot=robot, action={"mode": "absolute", "out_of_range": "error"})
+    space = env.action_space
+    for bound in (space.low, space.high):
+        env.reset(seed=0)
+        _, _, _, _, info = env.step(bound)
+        assert not info["action_clipped"]
+    vec = hyq.HyQVectorEnv(num_envs=2, robot=robot, action={"mode": "absolute"})
+    vec.reset(seed=0)
+    *_, infos = vec.step(np.stack([vec.single_action_space.low] * 2))
+    assert not np.any(infos["action_clipped"])
+
+
+def test_reset_options_and_paths_are_checked_by_name() -> None:
+    env = hyq.HyQEnv()
+    env.reset(seed=0)
+    # A string's letters were listed as unknown options.
+    with pytest.raises(TypeError, match="reset options = 'notadict': expected a dict"):
+        env.reset(options="notadict")
+    # Strings are not numbers here either (as in actions).
+    with pytest.raises(ValueError, match="goal"):
+        env.reset(options={"goal": ["1", "0", "0.6"]})
+    with pytest.raises(TypeError, match="config_file = 123"):
+        hyq.HyQEnv(config_file=123)
+    vec = hyq.HyQVectorEnv(num_envs=2)
+    with pytest.raises(TypeError, match="reset options"):
+        vec.reset(options="abc")
+
+
+def robot_copy(tmp_path, profile_edit=("", ""), urdf_edit=("", "")) -> str:
+    """The bundled HyQ profile and URDF copied to `tmp_path`, each with one edit."""
+    for name, (old, new) in (("profile.toml", profile_edit), ("hyq.urdf", urdf_edit)):
+        text = (REPO / "assets" / "hyq" / name).read_text()
+        assert old in text, old
+        (tmp_path / name).write_text(text.replace(old, new, 1))
+    return str(tmp_path / "profile.toml")
+
+
+def test_robot_files_outside_the_bounds_are_value_errors(tmp_path) -> None:
+    lf_haa = '{ name = "lf_haa", urdf = "lf_haa_joint", standing = -0.2 }'
+    wide = lf_haa.replace(" }", ", lower = -1.7e308, upper = 1.7e308 }")
+    # Limits whose span overflows gave a NaN joint target; a 1e6 m box killed render().
+    with pytest.raises(ValueError, match=r"joints\[0\].lower"):
+        hyq.HyQEnv(robot=robot_copy(tmp_path, profile_edit=(lf_haa, wide)))
+    box = '<box size="1.2898 0.5954 0.3737"/>'
+    with pytest.raises(ValueError, match="trunk"):
+        hyq.HyQEnv(
+            robot=robot_copy(tmp_path, urdf_edit=(box, '<box size="1e6 1e6 1e6"/>')),
+            render_mode="rgb_array",
+        )
+
+
+def test_a_deeply_nested_urdf_is_a_value_error_not_a_crash(tmp_path) -> None:
+    # 20 000 nested elements overflowed the parser's stack: a segmentation fault that no
+    # exception handler could catch. A child interpreter, so that a crash fails this test
+    # instead of ending the test run.
+    deep = "<a>" * 20_000 + "</a>" * 20_000 + "</robot>"
+    profile = robot_copy(tmp_path, urdf_edit=("</robot>", deep))
+    script = (
+        "import hyq\n"
+        "try:\n"
+        f"    hyq.HyQEnv(robot={profile!r})\n"
+        "except ValueError as e:\n"
+        "    print('ValueError:', e)\n"
+    )
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    assert "nested more than 64 deep" in done.stdout, done.stdout

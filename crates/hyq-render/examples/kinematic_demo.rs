@@ -16,8 +16,8 @@ use std::path::PathBuf;
 
 use hyq_physics::na::{Isometry3, Point3, Translation3, UnitQuaternion};
 use hyq_render::{
-    GifWriter, Overlay, PlotOptions, PngSequence, RenderConfig, Renderer, RobotPose, Scene,
-    StepRecord, TermValues, plot_jsonl,
+    GifWriter, Overlay, PlotOptions, PlotRecord, PngSequence, RenderConfig, Renderer, RobotPose,
+    Scene, TermValues, plot_jsonl,
 };
 use hyq_spec::{EpisodeRules, RobotDescription, StepSnapshot, TaskConfig};
 
@@ -81,7 +81,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         previous = position;
         episode_return += outcome.reward.total;
         let b = outcome.reward;
-        let record = StepRecord {
+        let record = PlotRecord {
             t: step,
             episode: Some(1),
             reward: b.total,

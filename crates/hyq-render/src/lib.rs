@@ -11,7 +11,7 @@
 //!   (this crate only projects and orders the shapes), text with a bundled font.
 //! - [`write_gif`] / [`GifWriter`] (streaming) and [`write_png`] / [`PngSequence`] write
 //!   frames to files.
-//! - [`StepRecord`] is one line of the environment's JSONL log; [`plot_jsonl`] turns a log into
+//! - [`PlotRecord`] is one line of the environment's JSONL log; [`plot_jsonl`] turns a log into
 //!   two PNG plots per episode ([`plot_reward_terms`], [`plot_distance`]): every reward term, the
 //!   multipliers, the penalties and the cumulative reward over time, and D_n over time beside
 //!   the spec's §4.3 curve R_e(D_n) with the episode's points on it.
@@ -82,6 +82,7 @@
 //! - Text is DejaVu Sans cut to Latin, Greek and a few symbols (`assets/fonts/README.md`).
 
 mod camera;
+mod clip;
 #[cfg(feature = "env")]
 mod env_scene;
 mod error;
@@ -100,14 +101,14 @@ pub use camera::{Camera, CameraConfig, NEAR_PLANE_M, REFERENCE_DISTANCE_M, REFER
 pub use env_scene::env_scene;
 pub use error::{PlotError, RenderError, WriteError};
 pub use frame::Frame;
-/// A record's reward terms by name (hyq-spec's type, which [`StepRecord::terms`] holds).
+/// A record's reward terms by name (hyq-spec's type, which [`PlotRecord::terms`] holds).
 pub use hyq_spec::TermValues;
 pub use plot::{
     DISTANCE_PLOT_SIZE, EpisodePlots, JsonlPlots, PlotOptions, REWARD_PLOT_SIZE, plot_distance,
     plot_episode, plot_jsonl, plot_records, plot_reward_terms, reward_plot_legend,
 };
 pub use records::{
-    EpisodeSeries, JsonlRecords, MAX_RECORD_LINE_BYTES, StepRecord, cumulative, parse_jsonl,
+    EpisodeSeries, JsonlRecords, MAX_RECORD_LINE_BYTES, PlotRecord, cumulative, parse_jsonl,
     read_jsonl, split_episodes,
 };
 pub use renderer::{

@@ -26,7 +26,7 @@ use plotters::style::FontStyle;
 
 use crate::error::PlotError;
 use crate::frame::Frame;
-use crate::records::{EpisodeSeries, StepRecord, cumulative, read_jsonl, split_episodes};
+use crate::records::{EpisodeSeries, PlotRecord, cumulative, read_jsonl, split_episodes};
 use crate::text::{SANS, SANS_BOLD};
 use crate::writer::write_png;
 
@@ -177,6 +177,25 @@ fn padded_range<'a>(values: impl IntoIterator<Item = &'a f64>, also: &'a [f64]) 
     (lo - 0.06 * span, hi + 0.06 * span)
 }
 
+/// The upper end of an axis that starts near 0: the largest finite value of `values`, at least
+/// `at_least`, within [`AXIS_LIMIT`], times `scale` (at most 2, for padding). Every axis of the
+/// plots is made by this or [`padded_range`], so no value of any series can make one infinite.
+fn axis_end(values: impl IntoIterator<Item = f64>, at_least: f64, scale: f64) -> f64 {
+    let max = values
+        .into_iter()
+        .filter(|v| v.is_finite())
+        .fold(at_least, f64::max);
+    max.min(AXIS_LIMIT) * scale
+}
+
+/// `p` moved onto the chart whose axes span `x` and `y`: a value beyond an axis (a foreign
+/// record's, or a sum past [`AXIS_LIMIT`]) is drawn at the edge, where the plotting library's
+/// pixel arithmetic cannot overflow. Points inside are unchanged.
+fn within(p: (f64, f64), x: (f64, f64), y: (f64, f64)) -> (f64, f64) {
+    let clamp = |v: f64, (a, b): (f64, f64)| v.clamp(a.min(b), a.max(b));
+    (clamp(p.0, x), clamp(p.1, y))
+}
+
 fn t_range(t: &[f64]) -> (f64, f64) {
     let (lo, hi) = (t[0], t[t.len() - 1]);
     if hi - lo < 1e-9 {
@@ -279,7 +298,10 @@ fn line_panel(
         let colour = line.colour;
         chart
             .draw_series(LineSeries::new(
-                t.iter().copied().zip(line.ys.iter().copied()),
+                t.iter()
+                    .copied()
+                    .zip(line.ys.iter().copied())
+                    .map(|p| within(p, (t0, t1), y_range)),
                 colour.stroke_width(line.width),
             ))
             .map_err(|e| e.to_string())?
@@ -292,7 +314,7 @@ fn line_panel(
             .draw_series(
                 points
                     .iter()
-                    .map(|&(x, y)| Circle::new((x, y), 5, colour.filled())),
+                    .map(|&p| Circle::new(within(p, (t0, t1), y_range), 5, colour.filled())),
             )
             .map_err(|e| e.to_string())?
             .label(label.as_str())
@@ -527,7 +549,9 @@ pub fn plot_distance(
         .d_n
         .iter()
         .zip(&series.distance_to_goal)
-        .find_map(|(d, &dist)| d.filter(|d| *d > 1e-9).map(|d| dist / d));
+        .find_map(|(d, &dist)| d.filter(|d| *d > 1e-9).map(|d| dist / d))
+        // Only a K the environment could have had is shown (a foreign record may hold any).
+        .filter(|k| k.is_finite() && k.abs() < 1e6);
     // The exponential reward against its §4.3 curve: Σ r_e is R_e(D_n).
     let cum_e = cumulative(series.term("r_e").unwrap_or_default());
     let points: Vec<(f64, f64)> = series
@@ -564,7 +588,7 @@ fn draw_distance_over_time(
     d_n: &[(f64, f64)],
 ) -> Result<(), String> {
     let (t0, t1) = t_range(t);
-    let y_hi = d_n.iter().map(|p| p.1).fold(1.0, f64::max) * 1.08;
+    let y_hi = axis_end(d_n.iter().map(|p| p.1), 1.0, 1.08);
     let mut chart = styled_chart(
         left,
         "Normalised distance D_n = D / K (§4.2)",
@@ -588,7 +612,10 @@ fn draw_distance_over_time(
             .legend(move |(x, y)| PathElement::new([(x, y), (x + 22, y)], colour.stroke_width(2)));
     }
     chart
-        .draw_series(LineSeries::new(d_n.iter().copied(), BLUE.stroke_width(3)))
+        .draw_series(LineSeries::new(
+            d_n.iter().map(|&p| within(p, (t0, t1), (-0.04, y_hi))),
+            BLUE.stroke_width(3),
+        ))
         .map_err(|e| e.to_string())?
         .label("D_n")
         .legend(|(x, y)| PathElement::new([(x, y), (x + 22, y)], BLUE.stroke_width(3)));
@@ -603,7 +630,7 @@ fn draw_exponential_curve(
     points: &[(f64, f64)],
     k_exp: Option<f64>,
 ) -> Result<(), String> {
-    let x_hi = points.iter().map(|p| p.0).fold(1.2, f64::max) * 1.06;
+    let x_hi = axis_end(points.iter().map(|p| p.0), 1.2, 1.06);
     let curve: Vec<(f64, f64)> = match k_exp {
         Some(k) => (0..=600)
             .map(|i| {
@@ -622,7 +649,7 @@ fn draw_exponential_curve(
     if !curve.is_empty() {
         chart
             .draw_series(LineSeries::new(
-                curve.iter().copied(),
+                curve.iter().map(|&p| within(p, (0.0, x_hi), (y_lo, y_hi))),
                 GREEN.stroke_width(3),
             ))
             .map_err(|e| e.to_string())?
@@ -636,7 +663,7 @@ fn draw_exponential_curve(
             let s = i as f64 / n as f64;
             let mix = |a: u8, b: u8| (f64::from(a) + (f64::from(b) - f64::from(a)) * s) as u8;
             let c = RGBColor(mix(0xa6, 0x1f), mix(0xc8, 0x3a), mix(0xe8, 0x6b));
-            Circle::new(p, 4, c.filled())
+            Circle::new(within(p, (0.0, x_hi), (y_lo, y_hi)), 4, c.filled())
         }))
         .map_err(|e| e.to_string())?
         .label("(D_n^t, Σ r_e), light → dark with time")
@@ -705,7 +732,7 @@ pub fn plot_jsonl(
 /// Writes both plots of every episode in `records` into `dir`, as [`plot_jsonl`] does for a
 /// file; `origin` names the records in errors.
 pub fn plot_records(
-    records: &[StepRecord],
+    records: &[PlotRecord],
     origin: &str,
     options: &PlotOptions,
     dir: impl AsRef<Path>,

@@ -15,7 +15,7 @@
 //! from the previous record's, or, when neither has one, when its `t` is not after the previous
 //! record's (the environment was reset).
 //!
-//! [`StepRecord`] is a read view of `hyq_env::StepRecord`, not a copy of it: the environment's
+//! [`PlotRecord`] is a read view of `hyq_env::StepRecord`, not a copy of it: the environment's
 //! type refuses unknown keys and requires every key (`obs`, `action`, `episode`, …), which is
 //! right for its round-trip contract but would make the plots break whenever the log gains a
 //! key, and refuse logs written by other tools with only the plotted keys. Reading that type
@@ -25,14 +25,15 @@
 use std::io::BufRead;
 use std::path::Path;
 
+use hyq_physics::input::{self, Line};
 use hyq_spec::{NUM_REWARD_TERMS, REWARD_TERMS, TermValues, terms::term_index};
 use serde::{Deserialize, Serialize};
 
 use crate::error::PlotError;
 
-/// One line of the environment's JSONL log.
+/// One line of the environment's JSONL log, as the plots read it (the keys they draw).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct StepRecord {
+pub struct PlotRecord {
     /// Env steps since reset, counting this one (1 for the first step).
     pub t: u64,
     /// The episode's number, if the log carries it.
@@ -53,15 +54,16 @@ pub struct StepRecord {
 }
 
 /// The longest line of a JSONL record file read (bytes): 1 MiB, several hundred times a step
-/// record, so that a wrong file (`/dev/zero`, a binary) is refused at once.
-pub const MAX_RECORD_LINE_BYTES: usize = 1 << 20;
+/// record, so that a wrong file (`/dev/zero`, a binary) is refused at once (hyq-physics'
+/// [`input::RECORDS`], the cap of every user file's reader).
+pub const MAX_RECORD_LINE_BYTES: usize = input::RECORDS.max_line_bytes as usize;
 
 /// The records of a JSONL file, and the number of its last line if that line was left out
 /// because it is torn (see [`parse_jsonl`]).
 #[derive(Clone, Debug, PartialEq)]
 pub struct JsonlRecords {
     /// Every whole record, in order.
-    pub records: Vec<StepRecord>,
+    pub records: Vec<PlotRecord>,
     /// The 1-based number of a torn last line that was left out, if there was one.
     pub torn_last_line: Option<usize>,
 }
@@ -74,29 +76,39 @@ pub struct JsonlRecords {
 /// bad line is an error naming it, and so is a line longer than [`MAX_RECORD_LINE_BYTES`]
 /// (which is not read further).
 pub fn parse_jsonl(mut reader: impl BufRead, origin: &str) -> Result<JsonlRecords, PlotError> {
-    use std::io::Read;
     let mut records = Vec::new();
     let mut line = Vec::new();
+    let mut total = 0;
     for number in 1.. {
-        line.clear();
-        let read = (&mut reader)
-            .take(MAX_RECORD_LINE_BYTES as u64 + 1)
-            .read_until(b'\n', &mut line)
-            .map_err(|source| PlotError::Read {
+        let read = input::read_line(&mut reader, &input::RECORDS, &mut line, &mut total).map_err(
+            |source| PlotError::Read {
                 path: origin.into(),
                 source,
-            })?;
-        if read == 0 {
-            break;
-        }
-        let ended = line.last() == Some(&b'\n');
-        if !ended && line.len() > MAX_RECORD_LINE_BYTES {
-            return Err(PlotError::LineTooLong {
-                origin: origin.to_owned(),
-                line: number,
-                limit: MAX_RECORD_LINE_BYTES,
-            });
-        }
+            },
+        )?;
+        let ended = match read {
+            Line::End => break,
+            Line::Read { ended } => ended,
+            Line::TooLong => {
+                return Err(PlotError::LineTooLong {
+                    origin: origin.to_owned(),
+                    line: number,
+                    limit: MAX_RECORD_LINE_BYTES,
+                });
+            }
+            Line::TooMuch => {
+                return Err(PlotError::Read {
+                    path: origin.into(),
+                    source: std::io::Error::new(
+                        std::io::ErrorKind::FileTooLarge,
+                        format!(
+                            "larger than {} at line {number}, more than any record plotted",
+                            input::size_text(input::RECORDS.max_bytes)
+                        ),
+                    ),
+                });
+            }
+        };
         let text = String::from_utf8_lossy(&line);
         if text.trim().is_empty() {
             continue;
@@ -136,7 +148,7 @@ pub fn read_jsonl(path: impl AsRef<Path>) -> Result<JsonlRecords, PlotError> {
 }
 
 /// Splits records into episodes (see the module documentation for the rule).
-pub fn split_episodes(records: &[StepRecord]) -> Vec<&[StepRecord]> {
+pub fn split_episodes(records: &[PlotRecord]) -> Vec<&[PlotRecord]> {
     let mut episodes = Vec::new();
     let mut start = 0;
     for i in 1..records.len() {
@@ -179,7 +191,7 @@ impl EpisodeSeries {
     }
 
     /// The series of an episode's records.
-    pub fn from_records(records: &[StepRecord]) -> Self {
+    pub fn from_records(records: &[PlotRecord]) -> Self {
         let mut s = Self::new();
         for r in records {
             s.push(r);
@@ -188,7 +200,7 @@ impl EpisodeSeries {
     }
 
     /// Appends one step.
-    pub fn push(&mut self, r: &StepRecord) {
+    pub fn push(&mut self, r: &PlotRecord) {
         // Step counts are far below 2^53, so the conversion is exact.
         self.t.push(r.t as f64);
         self.reward.push(r.reward);

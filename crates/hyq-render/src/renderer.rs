@@ -26,6 +26,7 @@ use tiny_skia::{
 };
 
 use crate::camera::{Camera, CameraConfig, NEAR_PLANE_M, REFERENCE_DISTANCE_M, REFERENCE_HEIGHT_M};
+use crate::clip;
 use crate::error::RenderError;
 use crate::frame::Frame;
 use crate::geom::{clip_polygon_near, clip_segment_near, convex_hull, push_circle_points};
@@ -575,7 +576,13 @@ impl Renderer {
         let mut cells = std::mem::take(&mut self.quads);
         quads(grid, cam, &target, &light, &mut cells);
         for q in &cells {
-            if let Some(path) = self.world_polygon_path(cam, &q.corners) {
+            let Some(path) = self.world_polygon_path(cam, &q.corners) else {
+                continue;
+            };
+            // Cut to the rasteriser's safe range like every other path: a cell of a tall
+            // field just past the near plane projects to millions of pixels.
+            let (w, h) = (self.pixmap.width(), self.pixmap.height());
+            if let Some(path) = clip::for_fill(&path, w, h) {
                 let colour = GROUND.scale(0.9 * q.shade).tint(q.tint).opaque();
                 self.pixmap.fill_path(
                     &path,
@@ -1036,26 +1043,35 @@ fn paint(shader: Shader<'static>) -> Paint<'static> {
     }
 }
 
-/// Fills `path` with one colour.
-fn fill_solid(pixmap: &mut Pixmap, path: &Path, colour: Color) {
-    pixmap.fill_path(
-        path,
-        &paint(Shader::SolidColor(colour)),
-        FillRule::Winding,
-        Transform::identity(),
-        None,
-    );
+/// Fills `path` with `shader`, cut to the rasteriser's safe range first ([`clip`]).
+fn fill_with(pixmap: &mut Pixmap, path: &Path, shader: Shader<'static>) {
+    if let Some(path) = clip::for_fill(path, pixmap.width(), pixmap.height()) {
+        pixmap.fill_path(
+            &path,
+            &paint(shader),
+            FillRule::Winding,
+            Transform::identity(),
+            None,
+        );
+    }
 }
 
-/// Strokes `path` with one colour.
+/// Fills `path` with one colour.
+fn fill_solid(pixmap: &mut Pixmap, path: &Path, colour: Color) {
+    fill_with(pixmap, path, Shader::SolidColor(colour));
+}
+
+/// Strokes `path` with one colour, cut to the rasteriser's safe range first ([`clip`]).
 fn stroke_solid(pixmap: &mut Pixmap, path: &Path, colour: Color, stroke: &Stroke) {
-    pixmap.stroke_path(
-        path,
-        &paint(Shader::SolidColor(colour)),
-        stroke,
-        Transform::identity(),
-        None,
-    );
+    if let Some(path) = clip::for_stroke(path, pixmap.width(), pixmap.height()) {
+        pixmap.stroke_path(
+            &path,
+            &paint(Shader::SolidColor(colour)),
+            stroke,
+            Transform::identity(),
+            None,
+        );
+    }
 }
 
 /// Fills `path` with `shader` and outlines it in a darker shade of `colour`.
@@ -1066,13 +1082,7 @@ fn fill_and_outline(
     colour: Rgb,
     width: f32,
 ) {
-    pixmap.fill_path(
-        path,
-        &paint(shader),
-        FillRule::Winding,
-        Transform::identity(),
-        None,
-    );
+    fill_with(pixmap, path, shader);
     let stroke = Stroke {
         width,
         line_join: LineJoin::Round,

@@ -10,7 +10,7 @@ mod common;
 
 use common::*;
 use hyq_render::{
-    DISTANCE_PLOT_SIZE, EpisodeSeries, PlotError, PlotOptions, REWARD_PLOT_SIZE, StepRecord,
+    DISTANCE_PLOT_SIZE, EpisodeSeries, PlotError, PlotOptions, PlotRecord, REWARD_PLOT_SIZE,
     TermValues, cumulative, parse_jsonl, plot_distance, plot_episode, plot_jsonl, split_episodes,
 };
 use hyq_spec::nalgebra::{Point3, UnitQuaternion};
@@ -21,7 +21,7 @@ const K_EXP: f64 = 5.0;
 
 /// An episode scored by the spec's rules: the trunk walks 4 m towards a goal 5 m away, yawing a
 /// little (so m_yaw dips), then falls (so the fall penalty is paid).
-fn spec_episode() -> Vec<StepRecord> {
+fn spec_episode() -> Vec<PlotRecord> {
     let config = TaskConfig {
         base_rew_scaling: Some(1.0),
         norm_rew_scaling: Some(10.0),
@@ -55,7 +55,7 @@ fn spec_episode() -> Vec<StepRecord> {
             .unwrap();
         previous = position;
         let b = outcome.reward;
-        records.push(StepRecord {
+        records.push(PlotRecord {
             t: step,
             episode: None,
             reward: b.total,
@@ -67,7 +67,7 @@ fn spec_episode() -> Vec<StepRecord> {
     records
 }
 
-fn to_jsonl(records: &[StepRecord]) -> String {
+fn to_jsonl(records: &[PlotRecord]) -> String {
     records
         .iter()
         .map(|r| serde_json::to_string(r).unwrap() + "\n")
@@ -150,7 +150,7 @@ fn jsonl_with_several_episodes_gives_one_plot_pair_each() {
 #[test]
 fn episodes_split_on_an_episode_key_or_a_time_reset() {
     let records = spec_episode();
-    let mut numbered: Vec<StepRecord> = records[..6].to_vec();
+    let mut numbered: Vec<PlotRecord> = records[..6].to_vec();
     for (i, r) in numbered.iter_mut().enumerate() {
         r.episode = Some(if i < 4 { 7 } else { 8 });
         r.t = i as u64 + 1; // t never resets: only the key splits

@@ -33,6 +33,18 @@ pub enum TermKind {
 }
 
 impl TermKind {
+    /// Every kind, in the order the terms are reported.
+    pub const ALL: [TermKind; 3] = [TermKind::Reward, TermKind::Multiplier, TermKind::Penalty];
+
+    /// What the terms of this kind are, as the documents' tables say it.
+    pub const fn meaning(self) -> &'static str {
+        match self {
+            TermKind::Reward => "the reward terms (§4)",
+            TermKind::Multiplier => "the multipliers (§5.1, §5.2)",
+            TermKind::Penalty => "the penalties subtracted (§5.3, §5.4)",
+        }
+    }
+
     /// The value of a term of this kind that changes nothing: 0, or 1 for a multiplier. Every
     /// term has it after reset and on a diverged step.
     pub const fn neutral(self) -> f64 {

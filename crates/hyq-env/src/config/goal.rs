@@ -186,8 +186,21 @@ fn goal_in_world(g: &GoalConfig, spawn_xy: [f64; 2]) -> Result<(), ConfigError> 
     let [x, y] = spawn_xy;
     let dmax = g.distance_range_m[1];
     let outside = match g.mode {
-        GoalMode::Ahead => (!in_world(x + g.distance_m))
-            .then(|| invalid("goal.distance_m", g.distance_m, &outside_world_reason())),
+        // The spawn point is named too: the goal is placed from it, and either may be the
+        // value to change.
+        GoalMode::Ahead => (!in_world(x + g.distance_m)).then(|| {
+            invalid(
+                "goal.distance_m",
+                g.distance_m,
+                &format!(
+                    "the goal {:?} m ahead of the spawn point reset.spawn_xy_m = [{x:?}, \
+                     {y:?}] is at x = {:?}, and {}: move the spawn point or the goal",
+                    g.distance_m,
+                    x + g.distance_m,
+                    outside_world_reason()
+                ),
+            )
+        }),
         GoalMode::Fixed => g
             .position
             .filter(|p| !p.iter().all(|v| in_world(*v)))

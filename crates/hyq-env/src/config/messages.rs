@@ -89,7 +89,8 @@ fn compact_numbers(message: &str) -> String {
 }
 
 /// A parser's message on one line (the fronts print errors on one line), as hyq-physics'
-/// [`hyq_physics::one_line`] writes it, with numbers in their short form ([`compact_numbers`]).
+/// [`hyq_physics::one_line`] writes it, with numbers in their short form ([`compact_numbers`])
+/// and control characters escaped ([`hyq_physics::printable`]: it quotes the user's keys).
 pub(super) fn parser_message(message: &str) -> String {
-    compact_numbers(&hyq_physics::one_line(message))
+    hyq_physics::printable(&compact_numbers(&hyq_physics::one_line(message)))
 }

@@ -4,6 +4,7 @@
 
 use std::path::Path;
 
+use hyq_physics::input;
 use serde::Deserialize;
 
 use super::messages::parser_message;
@@ -11,8 +12,8 @@ use super::{ConfigError, EnvConfig, LoadError};
 
 /// The largest configuration file read (bytes): 1 MiB, hundreds of times any real
 /// configuration, so that a wrong path (`/dev/zero`, a log file) is refused at once rather than
-/// read until memory runs out.
-pub const CONFIG_FILE_MAX_BYTES: usize = 1 << 20;
+/// read until memory runs out (hyq-physics' [`input::CONFIG`]).
+pub const CONFIG_FILE_MAX_BYTES: usize = input::CONFIG.max_bytes as usize;
 
 impl EnvConfig {
     /// Parses and validates a configuration from TOML text; `origin` (a path, or "text")
@@ -63,28 +64,14 @@ impl EnvConfig {
     }
 
     /// Reads, parses and validates a configuration file of at most
-    /// [`CONFIG_FILE_MAX_BYTES`].
+    /// [`CONFIG_FILE_MAX_BYTES`], through hyq-physics' capped reader (the one every user file
+    /// goes through).
     pub fn from_file(path: impl AsRef<Path>) -> Result<Self, ConfigError> {
-        use std::io::Read;
         let path = path.as_ref();
-        let io = |message: String| ConfigError::Io {
+        let text = input::read_text(path, &input::CONFIG).map_err(|e| ConfigError::Io {
             path: path.display().to_string(),
-            message,
-        };
-        let mut bytes = Vec::new();
-        std::fs::File::open(path)
-            .and_then(|f| {
-                f.take(CONFIG_FILE_MAX_BYTES as u64 + 1)
-                    .read_to_end(&mut bytes)
-            })
-            .map_err(|e| io(e.to_string()))?;
-        if bytes.len() > CONFIG_FILE_MAX_BYTES {
-            return Err(io(format!(
-                "larger than {} MiB, which no configuration is (is it the right file?)",
-                CONFIG_FILE_MAX_BYTES >> 20
-            )));
-        }
-        let text = String::from_utf8(bytes).map_err(|e| io(format!("not UTF-8 text: {e}")))?;
+            message: e.to_string(),
+        })?;
         Self::from_toml_str(&text, &path.display().to_string())
     }
 
@@ -105,68 +92,114 @@ impl EnvConfig {
 
     /// Sets several values by their dotted keys, then validates the whole configuration once,
     /// so that values that only make sense together can be given together
-    /// (`goal.mode=fixed` with `goal.position=[5, 1, 0.6]`). This is what the CLI's `--set`
-    /// options and the Python keyword arguments use.
+    /// (`goal.mode=fixed` with `goal.position=[5, 1, 0.6]`, or a table key by key:
+    /// `task.height_penalty.nominal_height_m`, `.tolerance_m`, `.rate_per_m`). This is what
+    /// the CLI's `--set` options and the Python keyword arguments use.
     ///
-    /// Each value is read as a TOML value (number, boolean, array, quoted string); anything
-    /// that is not one is taken as a bare string, so `mode=random` works unquoted. An unknown
-    /// key, or a value of the wrong type or outside its range, is an error naming that key and
-    /// value; a combination that is invalid as a whole is an error naming the offending key. On
-    /// error the configuration is unchanged.
+    /// Each value is read as one TOML value (number, boolean, array, quoted string); anything
+    /// that is not one is taken as a bare string, so `mode=random` works unquoted, and text
+    /// holding more than one value (a second line) is refused rather than cut. An unknown key,
+    /// or a value of the wrong type or outside its range, is an error naming that key and value;
+    /// a combination that is invalid as a whole is an error naming the offending key. On error
+    /// the configuration is unchanged.
     pub fn set_all(&mut self, pairs: &[(&str, &str)]) -> Result<(), ConfigError> {
-        let mut doc = toml::Table::try_from(&*self).map_err(|e| ConfigError::Parse {
+        let base = toml::Table::try_from(&*self).map_err(|e| ConfigError::Parse {
             origin: "configuration".into(),
             message: e.to_string(),
         })?;
-        let mut config = self.clone();
+        let mut doc = base.clone();
         for (key, value) in pairs {
-            // One line: the CLI prints errors on one line.
-            let fail = |message: String| ConfigError::Set {
-                key: (*key).to_owned(),
-                value: (*value).to_owned(),
-                message: parser_message(&message),
-            };
-            let path: Vec<&str> = key.split('.').collect();
-            if path.len() < 2 || path.iter().any(|p| p.is_empty()) {
-                return Err(fail(
-                    "a key is `table.name`, e.g. `task.fall_penalty` or \
-                     `physics.rapier.solver_iterations`"
-                        .into(),
-                ));
-            }
-            let parsed = match toml::from_str::<toml::Table>(&format!("v = {value}")) {
-                Ok(mut t) => t.remove("v"),
-                // An integer TOML cannot hold: say so, rather than read it as a bare string.
-                Err(_) if is_integer_literal(value) => {
-                    return Err(fail(
-                        "not an integer a configuration can hold: TOML's integers are 64-bit \
-                         signed, from -9223372036854775808 to 9223372036854775807"
-                            .into(),
-                    ));
-                }
-                Err(_) => None,
-            }
-            .unwrap_or_else(|| toml::Value::String((*value).to_owned()));
-            let mut table = &mut doc;
-            for part in &path[..path.len() - 1] {
-                let entry = table
-                    .entry(part.to_string())
-                    .or_insert_with(|| toml::Value::Table(toml::Table::new()));
-                table = match entry {
-                    toml::Value::Table(t) => t,
-                    _ => return Err(fail(format!("`{part}` is a value, not a table"))),
-                };
-            }
-            table.insert(path[path.len() - 1].to_owned(), parsed);
-            // Deserialised after every pair, so an unknown key or a wrong type is blamed on the
-            // pair that brought it.
-            config = EnvConfig::deserialize(toml::Value::Table(doc.clone()))
-                .map_err(|e| fail(e.to_string()))?;
+            insert(&mut doc, key, value).map_err(|m| set_error(key, value, &m))?;
         }
+        let config =
+            EnvConfig::deserialize(toml::Value::Table(doc)).map_err(|_| blame(base, pairs))?;
         config.validate()?;
         *self = config;
         Ok(())
     }
+}
+
+/// The error of the override `key = value`: the parser's `message` on one line, every part
+/// printable (they are the user's text).
+fn set_error(key: &str, value: &str, message: &str) -> ConfigError {
+    ConfigError::Set {
+        key: hyq_physics::printable(key),
+        value: hyq_physics::printable(value),
+        message: parser_message(message),
+    }
+}
+
+/// Sets the dotted `key` of `doc` to `value`, read as one TOML value (see
+/// [`EnvConfig::set_all`]); the reason when the key or the value cannot be used.
+fn insert(doc: &mut toml::Table, key: &str, value: &str) -> Result<(), String> {
+    let path: Vec<&str> = key.split('.').collect();
+    if path.len() < 2 || path.iter().any(|p| p.is_empty()) {
+        return Err("a key is `table.name`, e.g. `task.fall_penalty` or \
+                    `physics.rapier.solver_iterations`"
+            .into());
+    }
+    let parsed = match toml::from_str::<toml::Table>(&format!("v = {value}")) {
+        // More than `v`: the text held a line break and more after it, which would be dropped.
+        Ok(t) if t.len() > 1 => {
+            return Err(
+                "the value holds more than one TOML value (text after a line break): \
+                        give one value per override"
+                    .into(),
+            );
+        }
+        Ok(mut t) => t.remove("v"),
+        // An integer TOML cannot hold: say so, rather than read it as a bare string.
+        Err(_) if is_integer_literal(value) => {
+            return Err(
+                "not an integer a configuration can hold: TOML's integers are 64-bit \
+                        signed, from -9223372036854775808 to 9223372036854775807"
+                    .into(),
+            );
+        }
+        Err(_) => None,
+    }
+    .unwrap_or_else(|| toml::Value::String(value.to_owned()));
+    let mut table = doc;
+    for part in &path[..path.len() - 1] {
+        let entry = table
+            .entry(part.to_string())
+            .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+        table = match entry {
+            toml::Value::Table(t) => t,
+            _ => return Err(format!("`{part}` is a value, not a table")),
+        };
+    }
+    table.insert(path[path.len() - 1].to_owned(), parsed);
+    Ok(())
+}
+
+/// The override a set that cannot be read is blamed on: replayed one at a time onto `doc`, the
+/// first after which the configuration cannot be read for a reason other than a table still
+/// missing keys (a later override may give them); failing that, the first that left a table
+/// incomplete.
+fn blame(mut doc: toml::Table, pairs: &[(&str, &str)]) -> ConfigError {
+    let mut incomplete = None;
+    for (key, value) in pairs {
+        // Every pair was inserted once already: it inserts again.
+        let _ = insert(&mut doc, key, value);
+        if let Err(e) = EnvConfig::deserialize(toml::Value::Table(doc.clone())) {
+            if !e.message().starts_with("missing field") {
+                return set_error(key, value, &e.to_string());
+            }
+            incomplete.get_or_insert_with(|| {
+                let message = format!(
+                    "{} (a table given key by key needs every key: set the others too, or the \
+                     table whole)",
+                    e.message()
+                );
+                set_error(key, value, &message)
+            });
+        }
+    }
+    incomplete.unwrap_or_else(|| {
+        let (key, value) = pairs.last().copied().unwrap_or(("", ""));
+        set_error(key, value, "the overrides together cannot be read")
+    })
 }
 
 /// The line (1 first) of the dotted `key` in the TOML `text`, if the text holds it.

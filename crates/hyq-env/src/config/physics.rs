@@ -9,11 +9,10 @@ use serde::{Deserialize, Serialize};
 
 use super::{ConfigError, EnvConfig, Table};
 
-/// The names of the engine tables `[physics.<name>]` a configuration may hold, one per backend
-/// crate (`hyq-rapier`, `hyq-dart`, `hyq-mujoco`). A table is read only by the backend of that
-/// name; the list exists so that a misspelt engine table is an error rather than silently
-/// ignored.
-pub const ENGINE_TABLES: [&str; 3] = ["rapier", "dart", "mujoco"];
+/// The names of the engine tables `[physics.<name>]` a configuration may hold: one per engine of
+/// hyq-engines' table. A table is read only by the backend of that name; the list exists so that
+/// a misspelt engine table is an error rather than silently ignored.
+pub const ENGINE_TABLES: [&str; hyq_engines::NAMES.len()] = hyq_engines::NAMES;
 
 /// `[physics]`: hyq-physics' engine-independent [`PhysicsParams`] as plain keys, plus one
 /// optional sub-table per engine (`[physics.rapier]`, `[physics.dart]`, `[physics.mujoco]`, see

@@ -5,6 +5,8 @@
 use std::collections::HashSet;
 
 use super::Joint;
+use super::profile_values::bounded;
+use crate::bounds;
 use crate::error::ModelError;
 use crate::profile::{GaitEntry, Profile};
 
@@ -44,35 +46,18 @@ impl Gait {
         joints: &[Joint],
     ) -> Result<Self, ModelError> {
         let invalid = |field: String, reason: String| ModelError::InvalidProfile { field, reason };
-        let check = |key: &str, v: f64, ok: bool, what: &str| {
-            if v.is_finite() && ok {
-                Ok(v)
-            } else {
-                Err(invalid(
-                    format!("gait.{key}"),
-                    format!("{v} must be {what}"),
-                ))
-            }
-        };
-        let frequency_hz = check(
-            "frequency_hz",
+        let frequency_hz = bounded(
+            &bounds::GAIT_FREQUENCY,
+            "gait.frequency_hz",
             entry.frequency_hz,
-            entry.frequency_hz > 0.0,
-            "finite and positive (Hz)",
         )?;
-        let hip_amplitude = check("hip_amplitude", entry.hip_amplitude, true, "finite (rad)")?;
-        let knee_lift = check(
-            "knee_lift",
-            entry.knee_lift,
-            entry.knee_lift >= 0.0,
-            "finite and non-negative (rad)",
+        let hip_amplitude = bounded(
+            &bounds::GAIT_HIP_AMPLITUDE,
+            "gait.hip_amplitude",
+            entry.hip_amplitude,
         )?;
-        let ramp_s = check(
-            "ramp_s",
-            entry.ramp_s,
-            entry.ramp_s >= 0.0,
-            "finite and non-negative (s)",
-        )?;
+        let knee_lift = bounded(&bounds::GAIT_KNEE_LIFT, "gait.knee_lift", entry.knee_lift)?;
+        let ramp_s = bounded(&bounds::GAIT_RAMP, "gait.ramp_s", entry.ramp_s)?;
         if entry.legs.is_empty() {
             return Err(invalid("gait.legs".into(), "lists no leg".into()));
         }
@@ -101,12 +86,11 @@ impl Gait {
             };
             let hip = joint("hip", &leg.hip)?;
             let knee = joint("knee", &leg.knee)?;
-            if !(leg.phase.is_finite() && (0.0..1.0).contains(&leg.phase)) {
-                return Err(invalid(
-                    format!("gait.legs[{li}].phase"),
-                    format!("{} must be in [0, 1) (a fraction of a cycle)", leg.phase),
-                ));
-            }
+            bounded(
+                &bounds::GAIT_PHASE,
+                format!("gait.legs[{li}].phase"),
+                leg.phase,
+            )?;
             legs.push(GaitLeg {
                 hip,
                 knee,

@@ -7,8 +7,10 @@ use std::collections::{HashMap, HashSet};
 use nalgebra::{Isometry3, Unit, Vector3};
 
 use super::index::UrdfIndex;
+use super::profile_values;
 use super::tree::BodyBuild;
 use super::{Joint, Link};
+use crate::bounds::{self, Bound, short};
 use crate::error::ModelError;
 use crate::profile::{JointEntry, Profile};
 
@@ -33,7 +35,8 @@ pub(super) fn resolve(
                     .joints
                     .iter()
                     .filter(|j| is_movable(&j.joint_type))
-                    .map(|j| j.name.as_str())
+                    // Escaped: the names are the file's, whatever they hold.
+                    .map(|j| crate::printable(&j.name))
                     .collect::<Vec<_>>()
                     .join(", "),
             })?;
@@ -141,7 +144,10 @@ pub(super) fn check_standing(profile: &Profile, joints: &[Joint]) -> Result<(), 
                 field: format!("joints[{pi}].standing"),
                 reason: format!(
                     "{} rad is outside joint {:?}'s limits [{}, {}]",
-                    entry.standing, entry.urdf, joint.lower, joint.upper
+                    short(entry.standing),
+                    entry.urdf,
+                    short(joint.lower),
+                    short(joint.upper)
                 ),
             });
         }
@@ -164,10 +170,16 @@ fn make_joint(
         reason,
     };
     let axis = Vector3::from(joint.axis.xyz.0);
-    if !axis.iter().all(|v| v.is_finite()) || axis.norm() < 1e-9 {
+    for v in axis.iter() {
+        bounds::AXIS_COMPONENT
+            .check(*v)
+            .map_err(|reason| invalid(format!("axis {:?}: {reason}", joint.axis.xyz.0)))?;
+    }
+    if axis.norm() < bounds::AXIS_MIN_LENGTH {
         return Err(invalid(format!(
-            "axis {:?} must be finite and non-zero",
-            joint.axis.xyz.0
+            "axis {:?} must be non-zero (at least {} long)",
+            joint.axis.xyz.0,
+            bounds::AXIS_MIN_LENGTH
         )));
     }
     let limits = Limits::of(joint, pi, entry)?;
@@ -175,16 +187,12 @@ fn make_joint(
         .dynamics
         .as_ref()
         .map_or((0.0, 0.0), |d| (d.damping, d.friction));
-    if !(damping.is_finite() && damping >= 0.0) {
-        return Err(invalid(format!(
-            "damping {damping} N·m·s/rad must be finite and non-negative"
-        )));
-    }
-    if !(friction.is_finite() && friction >= 0.0) {
-        return Err(invalid(format!(
-            "Coulomb friction {friction} N·m must be finite and non-negative"
-        )));
-    }
+    bounds::JOINT_DAMPING
+        .check(damping)
+        .map_err(|reason| invalid(format!("damping: {reason}")))?;
+    bounds::JOINT_FRICTION
+        .check(friction)
+        .map_err(|reason| invalid(format!("Coulomb friction: {reason}")))?;
     Ok(Joint {
         name: entry.name.clone(),
         urdf_name: joint.name.clone(),
@@ -212,17 +220,10 @@ struct Limits {
 impl Limits {
     fn of(joint: &urdf_rs::Joint, pi: usize, entry: &JointEntry) -> Result<Self, ModelError> {
         let field = |key: &str| format!("joints[{pi}].{key}");
-        let overridden = |key: &str, value: Option<f64>, positive: bool| match value {
-            Some(v) if !(v.is_finite() && (!positive || v > 0.0)) => {
-                Err(ModelError::InvalidProfile {
-                    field: field(key),
-                    reason: format!(
-                        "{v} must be finite{}",
-                        if positive { " and positive" } else { "" }
-                    ),
-                })
-            }
-            other => Ok(other),
+        let overridden = |key: &str, value: Option<f64>, bound: &Bound| {
+            value
+                .map(|v| profile_values::bounded(bound, field(key), v))
+                .transpose()
         };
         let l = &joint.limit;
         let continuous = joint.joint_type == urdf_rs::JointType::Continuous;
@@ -232,10 +233,11 @@ impl Limits {
         } else {
             (Some(l.lower), Some(l.upper))
         };
-        let lower = overridden("lower", entry.lower, false)?.or(urdf_lower);
-        let upper = overridden("upper", entry.upper, false)?.or(urdf_upper);
-        let effort = overridden("effort", entry.effort, true)?.unwrap_or(l.effort);
-        let velocity = overridden("velocity", entry.velocity, true)?.unwrap_or(l.velocity);
+        let lower = overridden("lower", entry.lower, &bounds::JOINT_ANGLE)?.or(urdf_lower);
+        let upper = overridden("upper", entry.upper, &bounds::JOINT_ANGLE)?.or(urdf_upper);
+        let effort = overridden("effort", entry.effort, &bounds::JOINT_EFFORT)?.unwrap_or(l.effort);
+        let velocity =
+            overridden("velocity", entry.velocity, &bounds::JOINT_VELOCITY)?.unwrap_or(l.velocity);
         let invalid = |reason: String| ModelError::InvalidJoint {
             joint: joint.name.clone(),
             reason,
@@ -255,33 +257,62 @@ impl Limits {
                 field("upper")
             )));
         }
-        if !(lower.is_finite() && upper.is_finite() && lower < upper) {
-            return Err(invalid(format!(
-                "position limits [{lower}, {upper}] must be finite with lower < upper \
-                 (the profile's {} and {} override the URDF's)",
-                field("lower"),
-                field("upper")
-            )));
-        }
-        if !(effort.is_finite() && effort > 0.0) {
-            return Err(invalid(format!(
-                "effort limit {effort} N·m must be finite and positive (the profile's {} \
-                 overrides the URDF's)",
-                field("effort")
-            )));
-        }
-        if !(velocity.is_finite() && velocity > 0.0) {
-            return Err(invalid(format!(
-                "velocity limit {velocity} rad/s must be finite and positive (the profile's \
-                 {} overrides the URDF's)",
-                field("velocity")
-            )));
-        }
-        Ok(Self {
+        let limits = Self {
             lower,
             upper,
             effort,
             velocity,
-        })
+        };
+        limits.check(&joint.name, pi)?;
+        Ok(limits)
+    }
+
+    /// Checks the limits (the URDF's figures and the profile's overrides, which were checked
+    /// under their own keys already) against the bounds table, and the range for lower < upper.
+    fn check(&self, joint: &str, pi: usize) -> Result<(), ModelError> {
+        let field = |key: &str| format!("joints[{pi}].{key}");
+        let invalid = |reason: String| ModelError::InvalidJoint {
+            joint: joint.to_owned(),
+            reason,
+        };
+        let (lower, upper, effort, velocity) = (self.lower, self.upper, self.effort, self.velocity);
+        let urdf_bound = |what: &str, key: &str, v: f64, bound: &Bound| {
+            bound.check(v).map_err(|reason| {
+                invalid(format!(
+                    "{what}: {reason} (the profile's {} overrides the URDF's)",
+                    field(key)
+                ))
+            })
+        };
+        urdf_bound("lower position limit", "lower", lower, &bounds::JOINT_ANGLE)?;
+        urdf_bound("upper position limit", "upper", upper, &bounds::JOINT_ANGLE)?;
+        if lower >= upper {
+            return Err(invalid(format!(
+                "position limits [{}, {}] must have lower < upper \
+                 (the profile's {} and {} override the URDF's)",
+                short(lower),
+                short(upper),
+                field("lower"),
+                field("upper")
+            )));
+        }
+        bounds::JOINT_SPAN.check(upper - lower).map_err(|reason| {
+            invalid(format!(
+                "position limits [{}, {}]: the range {reason} (the profile's {} and \
+                 {} override the URDF's)",
+                short(lower),
+                short(upper),
+                field("lower"),
+                field("upper")
+            ))
+        })?;
+        urdf_bound("effort limit", "effort", effort, &bounds::JOINT_EFFORT)?;
+        urdf_bound(
+            "velocity limit",
+            "velocity",
+            velocity,
+            &bounds::JOINT_VELOCITY,
+        )?;
+        Ok(())
     }
 }

@@ -33,7 +33,9 @@ use std::path::Path;
 use nalgebra::{Isometry3, Matrix3, Unit, UnitQuaternion, Vector3};
 
 use crate::backend::{RobotState, TrunkState};
+use crate::bounds;
 use crate::error::{ModelError, PhysicsError};
+use crate::input;
 use crate::profile::{ObservationBounds, Profile};
 pub use gait::{Gait, GaitLeg};
 use index::UrdfIndex;
@@ -71,6 +73,22 @@ pub enum Shape {
 }
 
 impl Shape {
+    /// The radius (m) of the smallest sphere about the shape's origin that holds it.
+    pub fn bounding_radius(&self) -> f64 {
+        match *self {
+            Shape::Box { half_extents } => half_extents.norm(),
+            Shape::Sphere { radius } => radius,
+            Shape::Capsule {
+                radius,
+                half_length,
+            } => radius + half_length,
+            Shape::Cylinder {
+                radius,
+                half_length,
+            } => radius.hypot(half_length),
+        }
+    }
+
     /// The lowest world z reached by this shape when its frame is at `pose` (world frame, z up).
     ///
     /// Used to measure a shape's clearance above flat ground without a simulator.
@@ -208,21 +226,24 @@ impl RobotModel {
     pub fn load(profile_path: impl AsRef<Path>) -> Result<Self, ModelError> {
         let profile_path = profile_path.as_ref();
         let profile_text =
-            std::fs::read_to_string(profile_path).map_err(|source| ModelError::Io {
-                what: "robot profile",
-                path: profile_path.to_owned(),
-                source,
+            input::read_text(profile_path, &input::ROBOT_PROFILE).map_err(|source| {
+                ModelError::Io {
+                    what: "robot profile",
+                    path: profile_path.to_owned(),
+                    source,
+                }
             })?;
         let profile = Profile::from_toml_str(&profile_text, &profile_path.display().to_string())?;
         let urdf_path = profile_path
             .parent()
             .unwrap_or_else(|| Path::new("."))
             .join(&profile.urdf);
-        let urdf_text = std::fs::read_to_string(&urdf_path).map_err(|source| ModelError::Io {
-            what: "URDF",
-            path: urdf_path.clone(),
-            source,
-        })?;
+        let urdf_text =
+            input::read_text(&urdf_path, &input::URDF).map_err(|source| ModelError::Io {
+                what: "URDF",
+                path: urdf_path.clone(),
+                source,
+            })?;
         Self::from_urdf_str(&urdf_text, &urdf_path.display().to_string(), &profile).map_err(|e| {
             match e {
                 // These already name the URDF file.
@@ -237,15 +258,38 @@ impl RobotModel {
 
     /// Builds a robot from URDF text and a parsed profile (the profile's `urdf` path is not
     /// read). `urdf_origin` (a path or "bundled") appears in error messages.
+    ///
+    /// Before the XML parser sees the text, its size is held to [`input::URDF`]'s cap and its
+    /// nesting to [`input::XML_MAX_DEPTH`] (a deeper text would overflow the parser's stack);
+    /// after parsing, its links, joints and collision shapes are counted against
+    /// [`crate::bounds`].
     pub fn from_urdf_str(
         urdf_text: &str,
         urdf_origin: &str,
         profile: &Profile,
     ) -> Result<Self, ModelError> {
-        let robot = urdf_rs::read_from_string(urdf_text).map_err(|e| ModelError::Urdf {
+        let malformed = |message: String| ModelError::Urdf {
             origin: urdf_origin.to_owned(),
-            message: e.to_string(),
+            message,
+        };
+        if urdf_text.len() as u64 > input::URDF.max_bytes {
+            return Err(malformed(format!(
+                "larger than {}, which no URDF is",
+                input::size_text(input::URDF.max_bytes)
+            )));
+        }
+        input::check_xml_depth(urdf_text, input::XML_MAX_DEPTH).map_err(malformed)?;
+        // The parser's message folded onto one line, anything unprintable escaped: it may quote
+        // the file.
+        let robot = urdf_rs::read_from_string(urdf_text).map_err(|e| {
+            let folded = e
+                .to_string()
+                .split_whitespace()
+                .collect::<Vec<_>>()
+                .join(" ");
+            malformed(crate::printable(&folded))
         })?;
+        check_counts(&robot)?;
         Self::from_urdf_robot(&robot, profile)
     }
 
@@ -301,7 +345,7 @@ impl RobotModel {
         })
     }
 
-    /// The robot's name (from the profile).
+    /// The robot's name (from the profile): 1 to 64 ASCII letters, digits, `_`, `-`, `.`.
     pub fn name(&self) -> &str {
         &self.name
     }
@@ -529,6 +573,23 @@ impl RobotModel {
             .fold(f64::INFINITY, f64::min)
     }
 
+    /// The farthest (m) any collision shape reaches from the trunk frame's origin when the
+    /// robot stands at its standing pose: the room it needs around its spawn point.
+    pub fn standing_reach(&self) -> f64 {
+        let mut poses = vec![Isometry3::identity(); self.links.len()];
+        // One angle per joint and one pose per body: the call cannot fail.
+        let _ = self.link_poses(&Isometry3::identity(), &self.standing, &mut poses);
+        self.links
+            .iter()
+            .zip(&poses)
+            .flat_map(|(l, p)| {
+                l.collisions.iter().map(move |c| {
+                    (p * c.origin).translation.vector.norm() + c.shape.bounding_radius()
+                })
+            })
+            .fold(0.0, f64::max)
+    }
+
     /// The lowest world z of all the robot's collision shapes for body poses from
     /// [`RobotModel::link_poses`].
     ///
@@ -550,4 +611,22 @@ impl RobotModel {
             })
             .fold(f64::INFINITY, f64::min)
     }
+}
+
+/// Refuses a URDF with more links, joints or collision shapes than [`crate::bounds`] allows,
+/// before anything is built from it (tens of thousands of shapes take minutes and gigabytes).
+fn check_counts(robot: &urdf_rs::Robot) -> Result<(), ModelError> {
+    let shapes: usize = robot.links.iter().map(|l| l.collision.len()).sum();
+    for (what, bound, count) in [
+        ("links", &bounds::LINK_COUNT, robot.links.len()),
+        ("joints", &bounds::JOINT_COUNT, robot.joints.len()),
+        ("collision shapes", &bounds::SHAPE_COUNT, shapes),
+    ] {
+        bound
+            .check_count(count)
+            .map_err(|reason| ModelError::Structure {
+                reason: format!("the URDF's {what}: {reason}"),
+            })?;
+    }
+    Ok(())
 }

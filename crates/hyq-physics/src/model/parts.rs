@@ -5,6 +5,7 @@ use nalgebra::{Isometry3, Matrix3, Translation3, UnitQuaternion, Vector3};
 
 use super::tree::BodyBuild;
 use super::{Collision, Shape};
+use crate::bounds;
 use crate::error::ModelError;
 use crate::inertia::MassProperties;
 
@@ -19,13 +20,20 @@ pub(super) fn urdf_pose(pose: &urdf_rs::Pose) -> Isometry3<f64> {
     )
 }
 
-/// Whether every number of a URDF pose is finite.
-pub(super) fn pose_is_finite(pose: &urdf_rs::Pose) -> bool {
-    pose.xyz
-        .0
-        .iter()
-        .chain(pose.rpy.0.iter())
-        .all(|v| v.is_finite())
+/// Checks every number of a URDF `<origin>` against its bound ([`bounds::ORIGIN_OFFSET`] for
+/// xyz, [`bounds::ORIGIN_ANGLE`] for rpy); the reason names the attribute.
+pub(super) fn check_pose(pose: &urdf_rs::Pose) -> Result<(), String> {
+    for v in pose.xyz.0 {
+        bounds::ORIGIN_OFFSET
+            .check(v)
+            .map_err(|reason| format!("<origin xyz {:?}>: {reason}", pose.xyz.0))?;
+    }
+    for v in pose.rpy.0 {
+        bounds::ORIGIN_ANGLE
+            .check(v)
+            .map_err(|reason| format!("<origin rpy {:?}>: {reason}", pose.rpy.0))?;
+    }
+    Ok(())
 }
 
 /// Adds one URDF link (its mass and collision shapes) to a body, at `in_body`.
@@ -39,29 +47,24 @@ pub(super) fn add_link_to_body(
         link: link.name.clone(),
         reason,
     };
-    let m = inertial.mass.value;
-    if !m.is_finite() || m < 0.0 {
-        return Err(invalid(format!(
-            "mass {m} kg must be finite and non-negative"
-        )));
-    }
-    if !pose_is_finite(&inertial.origin) {
-        return Err(invalid("non-finite inertial <origin>".into()));
-    }
+    let m = bounds::LINK_MASS
+        .check(inertial.mass.value)
+        .map_err(|reason| invalid(format!("mass: {reason}")))?;
+    check_pose(&inertial.origin).map_err(|reason| invalid(format!("inertial {reason}")))?;
     let i = &inertial.inertia;
     let tensor = Matrix3::new(
         i.ixx, i.ixy, i.ixz, //
         i.ixy, i.iyy, i.iyz, //
         i.ixz, i.iyz, i.izz,
     );
-    // Only finiteness is checked per link: a link fixed to others is part of one rigid body,
-    // and it is that body's tensor that must be physically valid (see `tree::check_masses`).
-    // Upstream URDFs give sensor links placeholder tensors that are invalid on their own.
-    if tensor.iter().any(|v| !v.is_finite()) {
-        return Err(invalid(format!(
-            "non-finite tensor entry in {:?}",
-            tensor.as_slice()
-        )));
+    // Only the entries' range is checked per link: a link fixed to others is part of one rigid
+    // body, and it is that body's tensor that must be physically valid (see
+    // `tree::check_masses`). Upstream URDFs give sensor links placeholder tensors that are
+    // invalid on their own.
+    for v in tensor.iter() {
+        bounds::INERTIA_ENTRY
+            .check(*v)
+            .map_err(|reason| invalid(format!("tensor entry: {reason}")))?;
     }
     // The tensor is given in the inertial frame; rotate it into the body frame.
     let frame = in_body * urdf_pose(&inertial.origin);
@@ -86,21 +89,21 @@ fn collision(
     c: &urdf_rs::Collision,
     in_body: &Isometry3<f64>,
 ) -> Result<Collision, ModelError> {
-    let label = c.name.clone().unwrap_or_else(|| format!("#{ci}"));
+    // Escaped: the name is the file's, whatever it holds.
+    let label = c
+        .name
+        .as_ref()
+        .map_or_else(|| format!("#{ci}"), |n| crate::printable(n));
     let invalid = |reason: String| ModelError::InvalidGeometry {
         link: link.name.clone(),
         collision: label.clone(),
         reason,
     };
-    if !pose_is_finite(&c.origin) {
-        return Err(invalid("non-finite <origin>".into()));
-    }
+    check_pose(&c.origin).map_err(invalid)?;
     let positive = |what: &str, v: f64| {
-        if v.is_finite() && v > 0.0 {
-            Ok(v)
-        } else {
-            Err(invalid(format!("{what} {v} m must be finite and positive")))
-        }
+        bounds::SHAPE_SIZE
+            .check(v)
+            .map_err(|reason| invalid(format!("{what}: {reason}")))
     };
     let shape = match &c.geometry {
         urdf_rs::Geometry::Box { size } => {
@@ -117,11 +120,9 @@ fn collision(
             radius: positive("sphere radius", *radius)?,
         },
         urdf_rs::Geometry::Capsule { radius, length } => {
-            if !(length.is_finite() && *length >= 0.0) {
-                return Err(invalid(format!(
-                    "capsule length {length} m must be finite and non-negative"
-                )));
-            }
+            let length = bounds::CAPSULE_LENGTH
+                .check(*length)
+                .map_err(|reason| invalid(format!("capsule length: {reason}")))?;
             Shape::Capsule {
                 radius: positive("capsule radius", *radius)?,
                 half_length: length / 2.0,

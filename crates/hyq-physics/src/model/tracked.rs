@@ -89,7 +89,11 @@ fn collision_names(body: &Link, link: &str) -> String {
         .iter()
         .filter(|c| c.urdf_link == link)
         .enumerate()
-        .map(|(i, c)| c.name.clone().unwrap_or_else(|| format!("#{i}")))
+        .map(|(i, c)| {
+            c.name
+                .as_ref()
+                .map_or_else(|| format!("#{i}"), |n| crate::printable(n))
+        })
         .collect();
     if names.is_empty() {
         "none".into()

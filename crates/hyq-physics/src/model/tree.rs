@@ -9,7 +9,8 @@ use nalgebra::Isometry3;
 use super::Collision;
 use super::index::UrdfIndex;
 use super::joints::is_movable;
-use super::parts::{add_link_to_body, pose_is_finite, urdf_pose};
+use super::parts::{add_link_to_body, check_pose, urdf_pose};
+use crate::bounds;
 use crate::error::ModelError;
 use crate::inertia::{MassProperties, check_inertia};
 
@@ -103,12 +104,10 @@ pub(super) fn walk(
         for &ji in children.iter().rev() {
             let joint = &robot.joints[ji];
             let child = index.link_by_name[joint.child.link.as_str()];
-            if !pose_is_finite(&joint.origin) {
-                return Err(ModelError::InvalidJoint {
-                    joint: joint.name.clone(),
-                    reason: "non-finite <origin>".into(),
-                });
-            }
+            check_pose(&joint.origin).map_err(|reason| ModelError::InvalidJoint {
+                joint: joint.name.clone(),
+                reason,
+            })?;
             let origin = in_body * urdf_pose(&joint.origin);
             let target = match joint.joint_type {
                 urdf_rs::JointType::Fixed => {
@@ -160,23 +159,40 @@ pub(super) fn check_masses(bodies: &[BodyBuild]) -> Result<(), ModelError> {
             format!(
                 "the body of link {:?} and the links fixed to it ({}) ",
                 body.name,
-                body.lumped.join(", ")
+                body.lumped
+                    .iter()
+                    .map(|l| crate::printable(l))
+                    .collect::<Vec<_>>()
+                    .join(", ")
             )
         };
-        if body.mass.mass <= 0.0 {
-            return Err(ModelError::InvalidInertia {
-                link: body.name.clone(),
-                reason: format!(
-                    "{whole}has total mass {} kg; a moving body's mass must be positive: give \
-                     the link (or a link fixed to it) an <inertial> with a mass",
-                    body.mass.mass
-                ),
-            });
-        }
-        check_inertia(&body.mass.inertia, true).map_err(|reason| ModelError::InvalidInertia {
+        let invalid = |reason: String| ModelError::InvalidInertia {
             link: body.name.clone(),
             reason: format!("{whole}{reason}"),
+        };
+        if body.mass.mass <= 0.0 {
+            return Err(invalid(format!(
+                "has total mass {} kg; a moving body's mass must be positive: give the link \
+                 (or a link fixed to it) an <inertial> with a mass",
+                bounds::short(body.mass.mass)
+            )));
+        }
+        bounds::BODY_MASS.check(body.mass.mass).map_err(|reason| {
+            invalid(format!(
+                "total mass: {reason} (an f32 engine cannot hold it faithfully)"
+            ))
         })?;
+        check_inertia(&body.mass.inertia, true).map_err(invalid)?;
+        let mut moments: [f64; 3] = body.mass.inertia.symmetric_eigenvalues().into();
+        moments.sort_by(f64::total_cmp);
+        for m in moments {
+            bounds::BODY_MOMENT.check(m).map_err(|reason| {
+                invalid(format!(
+                    "principal moment of inertia: {reason} (an f32 engine cannot hold it \
+                     faithfully)"
+                ))
+            })?;
+        }
     }
     Ok(())
 }

@@ -35,6 +35,9 @@ ROBOTS: tuple[str, ...] = tuple(_core.ROBOTS)
 #: The physics backends this build has, the default (``"rapier"``) first.
 BACKENDS: tuple[str, ...] = tuple(_core.backends())
 
+#: The reward terms, in the order the info and the records hold them (hyq-spec's table).
+REWARD_TERMS: tuple[str, ...] = tuple(_core.REWARD_TERMS)
+
 #: The registered id of each bundled robot other than the default: the same env with its
 #: ``robot``.
 ROBOT_IDS = {"anymal_c": "ANYmalC-v0"}
@@ -66,6 +69,7 @@ __all__ = [
     "INFO_SCHEMA",
     "MAX_EPISODE_STEPS",
     "OBSERVATION_TABLE",
+    "REWARD_TERMS",
     "ROBOTS",
     "ROBOT_IDS",
     "HyQEnv",

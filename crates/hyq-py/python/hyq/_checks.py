@@ -4,6 +4,8 @@ as for every bad action, for an action that is not an array of real numbers)."""
 
 from __future__ import annotations
 
+import os
+from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
@@ -40,6 +42,42 @@ def check_index(value: Any, count: int) -> int:
     if not 0 <= int(value) < count:
         raise IndexError(f"env index {value} out of range: there are {count} envs")
     return int(value)
+
+
+def check_path(name: str, value: Any) -> str | None:
+    """A file path (a string or an ``os.PathLike``), or None."""
+    if value is None:
+        return None
+    if isinstance(value, os.PathLike):
+        value = os.fspath(value)
+    if not isinstance(value, str):
+        raise TypeError(f"{name} = {value!r}: expected a path (a str or os.PathLike) or None")
+    return value
+
+
+def check_options(value: Any) -> Mapping[str, Any]:
+    """``reset(options=...)``: a mapping (``{"goal": [x, y, z]}``), or None for none."""
+    if value is None:
+        return {}
+    if not isinstance(value, Mapping):
+        raise TypeError(
+            f"reset options = {value!r}: expected a dict such as {{'goal': [x, y, z]}}, or None"
+        )
+    return value
+
+
+def as_real_array(name: str, value: Any) -> np.ndarray:
+    """`value` as a float64 array, refusing anything but real numbers (strings would be parsed,
+    a complex number would lose its imaginary part), with `name` in the message."""
+    if np.ma.isMaskedArray(value):
+        raise ValueError(f"{name} is a masked array, whose mask would be ignored: pass a plain array")
+    try:
+        array = np.asarray(value)
+    except (TypeError, ValueError) as e:
+        raise ValueError(f"{name} = {value!r}: expected real numbers ({e})") from None
+    if array.dtype.kind not in "biuf":
+        raise ValueError(f"{name} = {value!r} has dtype {array.dtype}: expected real numbers")
+    return array.astype(np.float64)
 
 
 def as_actions(value: Any, ndim: int, shape: tuple[int, ...]) -> np.ndarray:

@@ -10,7 +10,15 @@ import numpy as np
 from gymnasium import spaces
 
 from hyq import _core
-from hyq._checks import RENDER_SIDES, as_actions, check_count, check_flag
+from hyq._checks import (
+    RENDER_SIDES,
+    as_actions,
+    as_real_array,
+    check_count,
+    check_flag,
+    check_options,
+    check_path,
+)
 from hyq._config import config_pairs, split_options
 from hyq.observation import ObservationRow, observation_table
 
@@ -29,19 +37,18 @@ def check_render_mode(render_mode: str | None) -> None:
 
 
 def reset_goal(options: Mapping[str, Any] | None) -> list[float] | None:
-    """The goal in ``reset(options=...)``; any key but ``goal`` is refused."""
+    """The goal in ``reset(options=...)``; any key but ``goal`` is refused, and so is a goal
+    of anything but three real numbers (strings are not parsed, as in actions)."""
+    options = check_options(options)
     if not options:
         return None
-    unknown = sorted(set(options) - {"goal"})
+    unknown = sorted(str(k) for k in set(options) - {"goal"})
     if unknown:
         raise ValueError(f"reset options {unknown}: unknown (the only option is 'goal')")
     goal = options.get("goal")
     if goal is None:
         return None
-    try:
-        goal = np.asarray(goal, dtype=np.float64)
-    except (TypeError, ValueError) as e:
-        raise ValueError(f"reset option goal = {goal!r}: expected [x, y, z] in m ({e})") from None
+    goal = as_real_array("reset option goal", goal)
     if goal.shape != (3,):
         raise ValueError(f"reset option goal has shape {goal.shape}, expected (3,): [x, y, z] in m")
     return [float(v) for v in goal]
@@ -66,7 +73,7 @@ def core_options(env_options: Mapping[str, Any]) -> dict[str, Any]:
     height = env_options.get("render_height", _core.RENDER_HEIGHT_DEFAULT)
     return {
         "robot": check_choice("robot", env_options.get("robot"), _core.DEFAULT_ROBOT),
-        "backend": check_choice("backend", env_options.get("backend"), "rapier"),
+        "backend": check_choice("backend", env_options.get("backend"), _core.DEFAULT_BACKEND),
         "clip_observations": check_flag("clip_observations", clip),
         "render_width": check_count("render_width", width, *RENDER_SIDES),
         "render_height": check_count("render_height", height, *RENDER_SIDES),
@@ -111,9 +118,8 @@ class HyQEnv(gymnasium.Env):
     of ±``max_delta_rad`` from the current angle, ``action={"mode": "offset"}`` an offset of
     ±``max_offset_rad`` from the standing pose. A NaN or a wrong shape raises ``ValueError``.
 
-    **Reward and info**: the spec's reward; ``info`` holds every term (``r_b``, ``r_n``,
-    ``r_e``, ``r_reach``, ``m_yaw``, ``m_pitch``, ``m_height``, ``joint_penalty``,
-    ``fall_penalty``), every reason the episode ended (``reasons`` and one flag each), the
+    **Reward and info**: the spec's reward; ``info`` holds every term of
+    ``hyq.REWARD_TERMS``, every reason the episode ended (``reasons`` and one flag each), the
     distance to the goal, the attitude, the goal and the joint targets: every key of
     ``hyq.INFO_SCHEMA`` on every step, each with one type.
 
@@ -146,7 +152,7 @@ class HyQEnv(gymnasium.Env):
         self.render_mode = render_mode
         self._core = _core.Core(
             config_pairs(config),
-            config_file=env_options.get("config_file"),
+            config_file=check_path("config_file", env_options.get("config_file")),
             **core_options(env_options),
         )
         self.observation_space = spaces.Box(

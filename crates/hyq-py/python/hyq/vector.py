@@ -19,7 +19,15 @@ from gymnasium.vector.utils import batch_space
 
 from hyq import _core
 from hyq._config import config_pairs, split_options
-from hyq._checks import MAX_ENVS, MAX_THREADS, as_actions, check_count, check_index
+from hyq._checks import (
+    MAX_ENVS,
+    MAX_THREADS,
+    as_actions,
+    check_count,
+    check_index,
+    check_options,
+    check_path,
+)
 from hyq.env import check_render_mode, check_seed, core_options, reset_goal
 
 _MODES = {
@@ -79,7 +87,7 @@ class HyQVectorEnv(VectorEnv):
             config_pairs(config),
             num_envs,
             autoreset_mode=_MODES[mode],
-            config_file=env_options.get("config_file"),
+            config_file=check_path("config_file", env_options.get("config_file")),
             threads=threads,
             **core_options(env_options),
         )
@@ -122,7 +130,7 @@ class HyQVectorEnv(VectorEnv):
         None) per env, or None (each env continues its streams). ``options``: ``goal`` (every
         env reset gets this goal) and ``reset_mask`` (reset only these envs; the others report
         their current observation)."""
-        options = dict(options or {})
+        options = dict(check_options(options))
         mask = options.pop("reset_mask", None)
         goal = reset_goal(options)
         if mask is not None:

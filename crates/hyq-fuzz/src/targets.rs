@@ -1,0 +1,236 @@
+//! The loaders fuzzed, each fed through the path a user's file takes: written to disk and read
+//! by the loader's own capped reader.
+
+use std::io::Cursor;
+use std::path::Path;
+
+use hyq_env::{EnvConfig, MlpPolicy};
+use hyq_physics::bundled::{ANYMAL_C_PROFILE, ANYMAL_C_URDF, HYQ_PROFILE, HYQ_URDF};
+use rand_chacha::ChaCha8Rng;
+
+use crate::check;
+use crate::mutate::{self, Syntax};
+
+/// A loader of user files.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Target {
+    /// `--config FILE` (TOML) and `--set KEY=VALUE` overrides (an input starting `#set`).
+    Config,
+    /// A robot profile (TOML), beside the bundled URDF it names.
+    Profile,
+    /// A URDF, beside the bundled profile of its robot.
+    Urdf,
+    /// A trained policy (`--policy mlp:FILE`, safetensors).
+    Policy,
+    /// Step records (JSON lines) that `hyq plot` reads and plots.
+    Records,
+    /// A comparison ledger (`hyq compare --ledger FILE`, TOML).
+    Ledger,
+}
+
+/// A record of six steps from `hyq run`, the records target's seed.
+const RECORD_SEED: &str = include_str!("../seeds/run.jsonl");
+
+/// The committed trained policy, the policy target's seed.
+const POLICY_SEED: &[u8] = include_bytes!("../../../assets/policies/hyq_walk.safetensors");
+
+/// The built-in ledger, the ledger target's seed.
+const LEDGER_SEED: &str = include_str!("../../hyq-compare/ledger.toml");
+
+/// A configuration setting a key of every table, the config target's seed.
+const CONFIG_SEED: &str = include_str!("../seeds/config.toml");
+
+/// `--set` overrides (one `KEY=VALUE` a line after `#set`), the config target's other seed.
+const SET_SEED: &str = "#set\ntask.max_time_steps=5\nreset.spawn_xy_m=[1.5, -2]\n\
+                        goal.mode=fixed\ngoal.position=[4, 1, 0.6]\naction.mode=offset\n";
+
+impl Target {
+    /// Every target, in the order the runs take them.
+    pub const ALL: [Target; 6] = [
+        Target::Config,
+        Target::Profile,
+        Target::Urdf,
+        Target::Policy,
+        Target::Records,
+        Target::Ledger,
+    ];
+
+    /// The target's name (`cargo xtask fuzz NAME`, `corpus/NAME/`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Target::Config => "config",
+            Target::Profile => "profile",
+            Target::Urdf => "urdf",
+            Target::Policy => "policy",
+            Target::Records => "records",
+            Target::Ledger => "ledger",
+        }
+    }
+
+    /// The target named `name`, if any.
+    pub fn by_name(name: &str) -> Option<Target> {
+        Self::ALL.into_iter().find(|t| t.name() == name)
+    }
+
+    /// The valid files mutations start from.
+    pub fn seeds(self) -> Vec<Vec<u8>> {
+        let text = |s: &[&str]| s.iter().map(|t| t.as_bytes().to_vec()).collect();
+        match self {
+            Target::Config => text(&[CONFIG_SEED, SET_SEED, ""]),
+            Target::Profile => text(&[HYQ_PROFILE, ANYMAL_C_PROFILE]),
+            Target::Urdf => text(&[HYQ_URDF, ANYMAL_C_URDF]),
+            Target::Policy => vec![POLICY_SEED.to_vec()],
+            Target::Records => text(&[RECORD_SEED]),
+            Target::Ledger => text(&[LEDGER_SEED]),
+        }
+    }
+
+    /// A mutation of `seed` (see [`mutate`]).
+    pub fn mutate(self, seed: &[u8], rng: &mut ChaCha8Rng) -> Vec<u8> {
+        let text = String::from_utf8_lossy(seed);
+        match self {
+            Target::Config | Target::Profile | Target::Ledger => {
+                mutate::mutate_text(&text, Syntax::Toml, rng)
+            }
+            Target::Urdf => mutate::mutate_text(&text, Syntax::Xml, rng),
+            Target::Records => mutate::mutate_text(&text, Syntax::Jsonl, rng),
+            Target::Policy => mutate::mutate_safetensors(seed, rng),
+        }
+    }
+
+    /// Feeds `input` to the loader and checks the verdict; `Ok(true)` if it was accepted,
+    /// `Ok(false)` if refused with a good message, `Err` with what was wrong otherwise.
+    pub fn check(self, input: &[u8], scratch: &Path) -> Result<bool, String> {
+        match self {
+            Target::Config => config(input, scratch),
+            Target::Profile => robot(input, None, scratch),
+            Target::Urdf => robot(HYQ_PROFILE.as_bytes(), Some(input), scratch),
+            Target::Policy => policy(input, scratch),
+            Target::Records => records(input, scratch),
+            Target::Ledger => ledger(input, scratch),
+        }
+    }
+}
+
+/// A refusal: `Ok(false)` if its message is a good one.
+fn refused(message: &str) -> Result<bool, String> {
+    check::message(message).map(|()| false)
+}
+
+fn write(path: &Path, bytes: &[u8]) -> Result<(), String> {
+    std::fs::write(path, bytes).map_err(|e| format!("scratch file {}: {e}", path.display()))
+}
+
+fn config(input: &[u8], scratch: &Path) -> Result<bool, String> {
+    let loaded = match input.strip_prefix(b"#set\n") {
+        Some(rest) => {
+            let text = String::from_utf8_lossy(rest);
+            let pairs: Vec<(String, String)> = text
+                .lines()
+                .filter(|l| !l.is_empty())
+                .map(|l| match l.split_once('=') {
+                    Some((k, v)) => (k.to_owned(), v.to_owned()),
+                    None => (l.to_owned(), String::new()),
+                })
+                .collect();
+            EnvConfig::load(None, &pairs)
+        }
+        None => {
+            let path = scratch.join("config.toml");
+            write(&path, input)?;
+            EnvConfig::load(Some(&path), &[] as &[(&str, &str)])
+        }
+    };
+    match loaded {
+        Err(e) => refused(&e.to_string()),
+        Ok(config) => check::runs(hyq_physics::bundled::hyq(), config).map(|()| true),
+    }
+}
+
+/// A robot from its profile (`profile`) and URDF (`urdf`, else the bundled one the profile
+/// names) written to `scratch`.
+fn robot(profile: &[u8], urdf: Option<&[u8]>, scratch: &Path) -> Result<bool, String> {
+    // Both bundled URDFs sit beside the profile under their own names, so a mutated profile
+    // of either robot finds its own; a fuzzed URDF replaces HyQ's.
+    write(&scratch.join("anymal_c.urdf"), ANYMAL_C_URDF.as_bytes())?;
+    write(
+        &scratch.join("hyq.urdf"),
+        urdf.unwrap_or(HYQ_URDF.as_bytes()),
+    )?;
+    let profile = match urdf {
+        // A fuzzed ANYmal C URDF goes with ANYmal C's profile (its joints are upper case).
+        Some(u) if u.windows(6).any(|w| w == b"LF_HAA") => ANYMAL_C_PROFILE
+            .replace("anymal_c.urdf", "hyq.urdf")
+            .into_bytes(),
+        _ => profile.to_vec(),
+    };
+    let path = scratch.join("profile.toml");
+    write(&path, &profile)?;
+    match hyq_physics::resolve_robot(path.to_str().unwrap_or("profile.toml")) {
+        Err(e) => refused(&e.to_string()),
+        Ok(model) => check::model(&model).map(|()| true),
+    }
+}
+
+fn policy(input: &[u8], scratch: &Path) -> Result<bool, String> {
+    let path = scratch.join("policy.safetensors");
+    write(&path, input)?;
+    let mut policy = match MlpPolicy::from_file(&path) {
+        Err(e) => return refused(&e.to_string()),
+        Ok(p) => p,
+    };
+    let widths = policy.widths();
+    let (inputs, outputs) = (widths[0], widths[widths.len() - 1]);
+    let mut action = vec![0.0; outputs];
+    // Observations at the spec's table bounds (HyQ's, the policy's robot) and zeros.
+    let layout =
+        hyq_env::observation_layout_of(&hyq_physics::bundled::hyq()).map_err(|e| e.to_string())?;
+    let rows = layout.rows();
+    for pick in [
+        |_: f64, _: f64| 0.0,
+        |lo: f64, _: f64| lo,
+        |_: f64, hi: f64| hi,
+    ] {
+        let obs: Vec<f64> = (0..inputs)
+            .map(|i| rows.get(i).map_or(0.0, |r| pick(r.min, r.max)))
+            .collect();
+        policy.forward(&obs, &mut action);
+        if let Some(a) = action.iter().find(|a| !a.is_finite()) {
+            return Err(format!(
+                "an accepted policy's action is {a} for a finite observation"
+            ));
+        }
+    }
+    Ok(true)
+}
+
+fn records(input: &[u8], scratch: &Path) -> Result<bool, String> {
+    let read = match hyq_render::parse_jsonl(Cursor::new(input), "fuzz.jsonl") {
+        Err(e) => return refused(&e.to_string()),
+        Ok(r) => r,
+    };
+    let episodes = hyq_render::split_episodes(&read.records);
+    // Two episodes at most: each is two PNGs, and the plotting code is the same for every one.
+    for (i, episode) in episodes.iter().take(2).enumerate() {
+        let series = hyq_render::EpisodeSeries::from_records(episode);
+        let options = hyq_render::PlotOptions {
+            k_exp: Some(5.0),
+            ..hyq_render::PlotOptions::default()
+        };
+        if let Err(e) =
+            hyq_render::plot_episode(&series, &options, scratch.join("plots"), &format!("e{i}"))
+        {
+            return refused(&e.to_string());
+        }
+    }
+    Ok(!episodes.is_empty())
+}
+
+fn ledger(input: &[u8], scratch: &Path) -> Result<bool, String> {
+    let path = scratch.join("ledger.toml");
+    write(&path, input)?;
+    match hyq_compare::Ledger::from_file(&path) {
+        Err(e) => refused(&e.to_string()),
+        Ok(_) => Ok(true),
+    }
+}

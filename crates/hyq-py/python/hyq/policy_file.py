@@ -1,0 +1,307 @@
+"""Trained policies as files: the project's ``hyq-mlp-policy`` safetensors file (what ``hyq run
+--policy mlp:FILE`` replays in Rust) and its ONNX twin, for deployment anywhere ONNX runs.
+
+::
+
+    from hyq.policy_file import OnnxPolicy, read_policy, write_onnx
+
+    write_onnx("assets/policies/hyq_walk.safetensors", "hyq_walk.onnx")   # needs `onnx`
+    policy = OnnxPolicy("hyq_walk.onnx", robot="hyq")                     # needs `onnxruntime`
+    actions = policy(observations)          # float32 (N, 39) -> float32 (N, 12)
+
+The ONNX graph is built from the safetensors file alone (no PyTorch), operator for operator as
+the Rust forward pass computes (``crates/hyq-env/src/mlp.rs``): the observation normalised by
+the training statistics and clipped (in float64, as in Rust), the linear layers with the file's
+activation between them, the action clipped to the environment's action space. The layers run
+in float32 (the Rust pass runs them in f64 on the same f32 weights; the two agree within 1e-5,
+tested on every committed policy). Opset 17, input ``obs`` (batch, n), output ``actions`` (batch, m). Its
+metadata (``metadata_props``) names the robot, the observation rows and the joints in order,
+the action mode and scale, the environment it was trained in and the SHA-256 of the file it was
+made from; :func:`check_onnx_layout` refuses an ONNX file whose layout is not the robot's,
+naming what differs.
+
+Reading a policy file needs numpy only; building ONNX needs the ``onnx`` package and running it
+``onnxruntime`` (both on PyPI), imported when used.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import struct
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+#: The ``format`` metadata of a policy file (crates/hyq-env/src/mlp.rs).
+FORMAT = "hyq-mlp-policy"
+#: The ``format`` metadata of its ONNX twin.
+ONNX_FORMAT = "hyq-mlp-policy-onnx"
+#: The ONNX operator set the graph uses (every operator in it exists since 13).
+OPSET = 17
+#: The ONNX IR version written: the oldest that opset 17 allows, so older runtimes load it.
+IR_VERSION = 8
+
+_DTYPES = {"F32": np.float32, "F64": np.float64}
+_ACTIVATIONS = ("tanh", "relu", "elu")
+
+
+@dataclass
+class PolicyFile:
+    """A ``hyq-mlp-policy`` file's contents: the metadata as stored, the observation
+    statistics and the layers ((out, in) weights and (out,) biases, float32), input first."""
+
+    path: str
+    metadata: dict[str, str]
+    obs_mean: np.ndarray
+    obs_var: np.ndarray
+    layers: list[tuple[np.ndarray, np.ndarray]] = field(default_factory=list)
+    sha256: str = ""
+
+    @property
+    def robot(self) -> str:
+        return self.metadata["robot"]
+
+    @property
+    def observation(self) -> list[str]:
+        return json.loads(self.metadata["observation"])
+
+    @property
+    def action(self) -> list[str]:
+        return json.loads(self.metadata["action"])
+
+    @property
+    def activation(self) -> str:
+        return self.metadata["activation"]
+
+    @property
+    def obs_clip(self) -> float:
+        return float(self.metadata["obs_clip"])
+
+    @property
+    def obs_epsilon(self) -> float:
+        return float(self.metadata["obs_epsilon"])
+
+    @property
+    def env_config(self) -> dict[str, str]:
+        """The configuration it was trained in: dotted keys to TOML values."""
+        return json.loads(self.metadata["env_config"])
+
+
+def _refuse(path: Any, reason: str) -> ValueError:
+    return ValueError(f"{path}: {reason}")
+
+
+def read_policy(path: str | Path) -> PolicyFile:
+    """Reads a ``hyq-mlp-policy`` safetensors file (numpy only). A file that is not one, or
+    whose shapes do not chain, is a ``ValueError`` naming the file and what is wrong (the Rust
+    reader checks the rest: finiteness, the action mode's scale)."""
+    data = Path(path).read_bytes()
+    if len(data) < 8:
+        raise _refuse(path, "not a safetensors policy file (shorter than its 8-byte header length)")
+    (n,) = struct.unpack("<Q", data[:8])
+    try:
+        header = json.loads(data[8 : 8 + n])
+    except (ValueError, UnicodeDecodeError) as e:
+        raise _refuse(path, f"not a safetensors policy file (its header is not JSON: {e})") from None
+    if not isinstance(header, dict):
+        raise _refuse(path, "not a safetensors policy file (its header is not a JSON object)")
+    metadata = header.pop("__metadata__", None) or {}
+    if metadata.get("format") != FORMAT:
+        raise _refuse(path, f"metadata `format` is {metadata.get('format')!r}, expected {FORMAT!r}")
+    for key in ("robot", "observation", "action", "activation", "obs_clip", "obs_epsilon", "env_config"):
+        if key not in metadata:
+            raise _refuse(path, f"metadata has no `{key}` entry (not a `{FORMAT}` file)")
+    if metadata["activation"] not in _ACTIVATIONS:
+        raise _refuse(path, f"unknown activation {metadata['activation']!r} (expected tanh, relu or elu)")
+    body = data[8 + n :]
+
+    def tensor(name: str, dtype: str) -> np.ndarray:
+        info = header.get(name)
+        if info is None:
+            raise _refuse(path, f"has no tensor `{name}`")
+        if info.get("dtype") != dtype:
+            raise _refuse(path, f"tensor `{name}` is {info.get('dtype')}, expected {dtype}")
+        begin, end = info["data_offsets"]
+        values = np.frombuffer(body[begin:end], dtype=np.dtype(_DTYPES[dtype]).newbyteorder("<"))
+        return values.reshape(info["shape"]).astype(_DTYPES[dtype])
+
+    policy = PolicyFile(
+        path=str(path),
+        metadata=dict(metadata),
+        obs_mean=tensor("obs_mean", "F64"),
+        obs_var=tensor("obs_var", "F64"),
+        sha256=hashlib.sha256(data).hexdigest(),
+    )
+    inputs = len(policy.observation)
+    if policy.obs_mean.shape != (inputs,) or policy.obs_var.shape != (inputs,):
+        raise _refuse(path, f"the observation statistics are not one per observation row ({inputs})")
+    while f"layers.{len(policy.layers)}.weight" in header:
+        k = len(policy.layers)
+        weight, bias = tensor(f"layers.{k}.weight", "F32"), tensor(f"layers.{k}.bias", "F32")
+        if weight.ndim != 2 or weight.shape[1] != inputs or bias.shape != (weight.shape[0],):
+            raise _refuse(path, f"layer {k} has weight {weight.shape} and bias {bias.shape}, "
+                                f"expected (_, {inputs}) and (_,)")
+        policy.layers.append((weight, bias))
+        inputs = weight.shape[0]
+    if not policy.layers:
+        raise _refuse(path, "has no tensor `layers.0.weight`")
+    if inputs != len(policy.action):
+        raise _refuse(path, f"the last layer has {inputs} outputs, the metadata's action layout "
+                            f"{len(policy.action)}")
+    return policy
+
+
+def action_bounds(policy: PolicyFile) -> tuple[np.ndarray, np.ndarray]:
+    """The action space the Rust forward pass clips to: [-1, 1] per joint, or the joint limits
+    (radians) in the `absolute` mode, taken from the robot's environment."""
+    from hyq.env import HyQEnv
+
+    mode = policy.metadata.get("action_mode", "normalized")
+    env = HyQEnv(robot=policy.robot, action={"mode": mode})
+    try:
+        return (np.asarray(env.action_space.low, dtype=np.float32),
+                np.asarray(env.action_space.high, dtype=np.float32))
+    finally:
+        env.close()
+
+
+def to_onnx(policy: PolicyFile, low: np.ndarray, high: np.ndarray):  # noqa: ANN201 - onnx.ModelProto
+    """The policy as an ONNX model (see the module docs); `low` and `high` are the action
+    space's bounds."""
+    import onnx
+    from onnx import TensorProto, helper, numpy_helper
+
+    n_obs, n_act = len(policy.observation), len(policy.action)
+    std = np.sqrt(policy.obs_var + policy.obs_epsilon)
+    # The normalisation runs in float64 on the float64 statistics, as the Rust pass does, so
+    # the first layer sees the same float32 inputs to the bit.
+    inits = [
+        numpy_helper.from_array(policy.obs_mean.astype(np.float64), "obs_mean"),
+        numpy_helper.from_array(std.astype(np.float64), "obs_std"),
+        numpy_helper.from_array(np.array(-policy.obs_clip, dtype=np.float64), "obs_clip_low"),
+        numpy_helper.from_array(np.array(policy.obs_clip, dtype=np.float64), "obs_clip_high"),
+        numpy_helper.from_array(np.asarray(low, dtype=np.float32), "action_low"),
+        numpy_helper.from_array(np.asarray(high, dtype=np.float32), "action_high"),
+    ]
+    nodes = [
+        helper.make_node("Cast", ["obs"], ["obs64"], to=TensorProto.DOUBLE),
+        helper.make_node("Sub", ["obs64", "obs_mean"], ["centred"]),
+        helper.make_node("Div", ["centred", "obs_std"], ["scaled"]),
+        helper.make_node("Clip", ["scaled", "obs_clip_low", "obs_clip_high"], ["clipped"]),
+        helper.make_node("Cast", ["clipped"], ["h0"], to=TensorProto.FLOAT),
+    ]
+    activation = {"tanh": "Tanh", "relu": "Relu", "elu": "Elu"}[policy.activation]
+    last = len(policy.layers) - 1
+    for k, (weight, bias) in enumerate(policy.layers):
+        inits += [numpy_helper.from_array(weight, f"layers.{k}.weight"),
+                  numpy_helper.from_array(bias, f"layers.{k}.bias")]
+        out = "raw_actions" if k == last else f"z{k}"
+        nodes.append(helper.make_node("Gemm", [f"h{k}", f"layers.{k}.weight", f"layers.{k}.bias"],
+                                      [out], transB=1))
+        if k != last:
+            extra = {"alpha": 1.0} if activation == "Elu" else {}
+            nodes.append(helper.make_node(activation, [out], [f"h{k + 1}"], **extra))
+    nodes += [
+        helper.make_node("Min", ["raw_actions", "action_high"], ["below_high"]),
+        helper.make_node("Max", ["below_high", "action_low"], ["actions"]),
+    ]
+    graph = helper.make_graph(
+        nodes,
+        f"{policy.robot}_policy",
+        [helper.make_tensor_value_info("obs", TensorProto.FLOAT, ["batch", n_obs])],
+        [helper.make_tensor_value_info("actions", TensorProto.FLOAT, ["batch", n_act])],
+        inits,
+    )
+    model = helper.make_model(graph, opset_imports=[helper.make_opsetid("", OPSET)],
+                              producer_name="hyq.policy_file")
+    model.ir_version = IR_VERSION
+    props = {k: v for k, v in policy.metadata.items() if k not in ("format", "format_version")}
+    props.update({"format": ONNX_FORMAT, "format_version": "1",
+                  "source": Path(policy.path).name, "source_sha256": policy.sha256})
+    helper.set_model_props(model, props)
+    onnx.checker.check_model(model, full_check=True)
+    return model
+
+
+def write_onnx(policy_path: str | Path, onnx_path: str | Path) -> Path:
+    """Writes the ONNX twin of a policy file; returns its path."""
+    import onnx
+
+    policy = read_policy(policy_path)
+    model = to_onnx(policy, *action_bounds(policy))
+    onnx_path = Path(onnx_path)
+    onnx_path.parent.mkdir(parents=True, exist_ok=True)
+    onnx.save_model(model, str(onnx_path))
+    return onnx_path
+
+
+def _mismatch(what: str, trained: list[str], env: list[str]) -> str | None:
+    if len(trained) != len(env):
+        return f"trained on {len(trained)} {what} values, the environment has {len(env)}"
+    for i, (t, e) in enumerate(zip(trained, env)):
+        if t != e:
+            return f"{what} value {i} was {t!r} in training, the environment's is {e!r}"
+    return None
+
+
+def check_onnx_layout(model: Any, robot: str, path: Any = "ONNX policy") -> dict[str, str]:
+    """Checks that an ONNX policy (an ``onnx.ModelProto`` or an onnxruntime session) is one of
+    these files and fits `robot`'s environment: the robot's name, the observation rows and the
+    joints, in order, and the graph's input and output widths. Returns its metadata; raises
+    ``ValueError`` naming the file and the first difference."""
+    from hyq.env import HyQEnv
+
+    if hasattr(model, "get_modelmeta"):
+        props = dict(model.get_modelmeta().custom_metadata_map)
+        widths = (model.get_inputs()[0].shape[-1], model.get_outputs()[0].shape[-1])
+    else:
+        props = {p.key: p.value for p in model.metadata_props}
+        dims = lambda v: v.type.tensor_type.shape.dim[-1].dim_value  # noqa: E731
+        widths = (dims(model.graph.input[0]), dims(model.graph.output[0]))
+    if props.get("format") != ONNX_FORMAT:
+        raise _refuse(path, f"metadata `format` is {props.get('format')!r}, expected {ONNX_FORMAT!r} "
+                            "(written by hyq.policy_file.write_onnx)")
+    for key in ("robot", "observation", "action"):
+        if key not in props:
+            raise _refuse(path, f"metadata has no `{key}` entry")
+    env = HyQEnv(robot=robot)
+    try:
+        if props["robot"] != env.robot:
+            raise _refuse(path, f"trained for robot {props['robot']!r}, the environment runs {env.robot!r}")
+        for what, trained, names in (("observation", props["observation"], env.observation_names),
+                                     ("action", props["action"], env.joint_names)):
+            reason = _mismatch(what, json.loads(trained), list(names))
+            if reason is not None:
+                raise _refuse(path, reason)
+        expected = (len(env.observation_names), len(env.joint_names))
+    finally:
+        env.close()
+    if tuple(widths) != expected:
+        raise _refuse(path, f"the graph maps {widths[0]} inputs to {widths[1]} outputs, the "
+                            f"environment has {expected[0]} observation values and {expected[1]} actions")
+    return props
+
+
+class OnnxPolicy:
+    """An ONNX policy run by onnxruntime, checked against `robot`'s layout when loaded
+    (:func:`check_onnx_layout`). Calling it maps float32 observations (n,) or (batch, n) to
+    actions of the same batch shape."""
+
+    def __init__(self, path: str | Path, robot: str = "hyq") -> None:
+        import onnxruntime
+
+        options = onnxruntime.SessionOptions()
+        # One thread: the same arithmetic on every run, and no pool competing with the envs.
+        options.intra_op_num_threads = 1
+        options.inter_op_num_threads = 1
+        self.session = onnxruntime.InferenceSession(str(path), options, providers=["CPUExecutionProvider"])
+        self.metadata = check_onnx_layout(self.session, robot, path)
+
+    def __call__(self, obs: np.ndarray) -> np.ndarray:
+        x = np.asarray(obs, dtype=np.float32)
+        single = x.ndim == 1
+        out = self.session.run(["actions"], {"obs": x[None, :] if single else x})[0]
+        return out[0] if single else out

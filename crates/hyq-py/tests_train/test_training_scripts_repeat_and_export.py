@@ -1,0 +1,148 @@
+"""The training examples run end to end on a tiny budget: the same seed gives the same run to
+the bit, the export writes a policy file and its ONNX twin whose actions are the trainer's own
+deterministic actions (within 1e-5), and the exporter refuses a run without a model or a model
+of another robot in one line."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+import torch
+
+from conftest import EXAMPLES
+from hyq.policy_file import OnnxPolicy, read_policy
+
+ENV = json.dumps({"max_time_steps": 40})
+SB3 = ["--backend", "rapier", "--steps", "1024", "--envs", "4", "--checkpoint-every", "512",
+       "--ppo", json.dumps({"n_steps": 128, "batch_size": 256}), "--env", ENV]
+RSL = ["--backend", "rapier", "--iterations", "2", "--checkpoint-every", "1", "--envs", "4",
+       "--cfg", json.dumps({"num_steps_per_env": 32}), "--env", ENV]
+
+
+def script(name: str, *args: object) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, str(EXAMPLES / name), *map(str, args)],
+                          capture_output=True, text=True)
+
+
+def train(name: str, args: list[str], out: Path) -> Path:
+    done = script(name, *args, "--out", out)
+    assert done.returncode == 0, done.stderr[-3000:]
+    return out
+
+
+def observations(n: int = 64) -> np.ndarray:
+    import hyq
+
+    env = hyq.HyQEnv(action={"mode": "offset"})
+    obs, _ = env.reset(seed=5)
+    rows = []
+    rng = np.random.default_rng(0)
+    for _ in range(n):
+        rows.append(obs)
+        obs, *_ = env.step(rng.uniform(-0.3, 0.3, 12).astype(np.float32))
+    return np.array(rows, dtype=np.float32)
+
+
+@pytest.fixture(scope="module")
+def sb3_runs(tmp_path_factory) -> tuple[Path, Path]:
+    root = tmp_path_factory.mktemp("sb3")
+    return train("train_sb3_ppo.py", SB3, root / "a"), train("train_sb3_ppo.py", SB3, root / "b")
+
+
+@pytest.fixture(scope="module")
+def rsl_runs(tmp_path_factory) -> tuple[Path, Path]:
+    root = tmp_path_factory.mktemp("rsl")
+    return train("train_rsl_rl.py", RSL, root / "a"), train("train_rsl_rl.py", RSL, root / "b")
+
+
+def test_sb3_runs_repeat_to_the_bit(sb3_runs) -> None:
+    a, b = sb3_runs
+    assert (a / "evals.csv").read_text() == (b / "evals.csv").read_text()
+    from stable_baselines3 import PPO
+
+    pa, pb = (PPO.load(r / "model.zip", device="cpu").policy.state_dict() for r in (a, b))
+    assert all(torch.equal(pa[k], pb[k]) for k in pa)
+
+
+def test_rsl_rl_runs_repeat_to_the_bit(rsl_runs) -> None:
+    a, b = rsl_runs
+    assert (a / "evals.csv").read_text() == (b / "evals.csv").read_text()
+    ma, mb = (torch.load(sorted(r.glob("model_*.pt"))[-1], weights_only=False)["actor_state_dict"]
+              for r in (a, b))
+    assert all(torch.equal(ma[k], mb[k]) for k in ma)
+
+
+def test_the_sb3_export_and_its_onnx_twin_act_as_sb3(sb3_runs, tmp_path) -> None:
+    from stable_baselines3 import PPO
+    from stable_baselines3.common.vec_env import VecNormalize
+    import pickle
+
+    run = sb3_runs[0]
+    out = tmp_path / "sb3.safetensors"
+    done = script("export_policy.py", "--run", run, "--out", out, "--onnx")
+    assert done.returncode == 0, done.stderr
+    assert read_policy(out).robot == "hyq"
+    model = PPO.load(run / "model.zip", device="cpu")
+    with open(run / "vecnormalize.pkl", "rb") as f:
+        norm: VecNormalize = pickle.load(f)
+    obs = observations()
+    theirs, _ = model.predict(norm.normalize_obs(obs), deterministic=True)
+    ours = OnnxPolicy(out.with_suffix(".onnx"), robot="hyq")(obs)
+    assert np.max(np.abs(ours - np.clip(theirs, -1, 1))) <= 1e-5
+
+
+def test_the_rsl_rl_export_and_its_onnx_twin_act_as_rsl_rl(rsl_runs, tmp_path) -> None:
+    run = rsl_runs[0]
+    out = tmp_path / "rsl.safetensors"
+    done = script("export_policy.py", "--run", run, "--out", out, "--onnx")
+    assert done.returncode == 0, done.stderr
+    from rsl_rl.models import MLPModel
+    from tensordict import TensorDict
+
+    config = json.loads((run / "config.json").read_text())
+    obs = observations()
+    group = TensorDict({"policy": torch.as_tensor(obs)}, batch_size=[len(obs)])
+    actor_cfg = {k: v for k, v in config["rsl_rl"]["actor"].items() if k != "class_name"}
+    actor = MLPModel(group, config["rsl_rl"]["obs_groups"], "actor", 12, **actor_cfg)
+    saved = torch.load(sorted(run.glob("model_*.pt"), key=lambda p: int(p.stem[6:]))[-1], weights_only=False)
+    actor.load_state_dict(saved["actor_state_dict"])
+    actor.eval()
+    with torch.inference_mode():
+        theirs = actor(group).numpy()
+    ours = OnnxPolicy(out.with_suffix(".onnx"), robot="hyq")(obs)
+    assert np.max(np.abs(ours - np.clip(theirs, -1, 1))) <= 1e-5
+
+
+def one_line_error(done: subprocess.CompletedProcess) -> str:
+    assert done.returncode == 2, done.stderr
+    lines = done.stderr.strip().splitlines()
+    assert len(lines) == 1, done.stderr
+    return lines[0]
+
+
+def test_a_run_without_a_model_is_refused_in_one_line(tmp_path, sb3_runs) -> None:
+    run = tmp_path / "empty"
+    run.mkdir()
+    (run / "config.json").write_text((sb3_runs[0] / "config.json").read_text())
+    line = one_line_error(script("export_policy.py", "--run", run, "--out", tmp_path / "x.safetensors"))
+    assert "model.zip: no model file" in line
+
+
+@pytest.mark.parametrize("which", ["sb3", "rsl"])
+def test_another_robots_model_is_refused_in_one_line(which, tmp_path, sb3_runs, rsl_runs) -> None:
+    source = (sb3_runs if which == "sb3" else rsl_runs)[0]
+    run = tmp_path / "run"
+    run.mkdir()
+    for f in source.iterdir():
+        if f.is_file():
+            (run / f.name).write_bytes(f.read_bytes())
+    config = json.loads((run / "config.json").read_text())
+    config["robot"] = "anymal_c"
+    (run / "config.json").write_text(json.dumps(config))
+    line = one_line_error(script("export_policy.py", "--run", run, "--out", tmp_path / "x.safetensors"))
+    assert "'hyq'" in line and "'anymal_c'" in line

@@ -1,0 +1,318 @@
+"""What the training examples share: the environments they train in (the recipes), the
+deterministic evaluation, the learning curve and the run's timing and load.
+
+Imported by examples/train_sb3_ppo.py and examples/train_rsl_rl.py (run them as scripts from
+anywhere: Python puts this directory on the import path). Needs numpy and the `hyq` package;
+matplotlib only to draw a curve.
+
+A recipe is the environment a policy trains in, as the package's keyword arguments, with the
+robot and the engine it trains on. Every key is a spec user variable or one of the project's
+own tables; docs/training.md has the experiments behind each value.
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import os
+import subprocess
+import time
+from pathlib import Path
+from typing import Any, Callable
+
+import numpy as np
+
+import hyq
+from hyq.vector import HyQVectorEnv
+
+#: The walk: the spec's task (the goal 5 m ahead, the default 1 mm reach cube) with shaping
+#: from its user variables and the project's `offset` action mode.
+WALK_ENV: dict[str, Any] = {
+    # Spec §4.2's normalised reward on top of the default exponential one (k_exp = 5): r_e
+    # pays almost nothing in the first metres (0.2 per metre at the start), r_n pays
+    # k_norm / K per metre from the first step.
+    "norm_rew_scaling": 10.0,
+    # Spec §5.4 and §5.3: a fall or a joint at its limit ends the episode; without a penalty
+    # that end costs only the progress not made, which a still-learning walker barely has.
+    "fall_penalty": 5.0,
+    "reach_bounds_penalty": 5.0,
+    # The project's offset mode (spec §7.1): a zero action holds the standing pose and a
+    # target stays within 0.5 rad of it.
+    "action": {"mode": "offset", "max_offset_rad": 0.5},
+    # The evaluation's reset noise, so the policy is trained on the starts it is judged on.
+    "reset": {"joint_noise_rad": 0.05, "yaw_noise_deg": 5.0},
+}
+
+#: The reach: the walk with a 10 cm reach cube (spec §6.1: the trunk centre within 5 cm of the
+#: goal on x, y and z) and a bonus for entering it (§4.4). The bonus is larger than everything
+#: else an episode can earn (r_n's k_norm = 10 plus r_e's (e^5 − 1)/5 ≈ 29.5), so walking
+#: through the cube beats walking near it; and reaching ends the episode, so the policy no
+#: longer pays back r_n and r_e by walking past the goal.
+REACH_ENV: dict[str, Any] = {
+    **WALK_ENV,
+    "accepted_error": 0.1,
+    "reach_target_bonus_reward": 50.0,
+}
+
+#: name -> (environment, robot, backend). MuJoCo steps about 3x faster than rapier (the
+#: README's speed table), and the env is most of a training run's time on 2 cores, so the
+#: recipes train there; the policy file runs on every engine (docs/training.md).
+RECIPES: dict[str, dict[str, Any]] = {
+    "walk": {"env": WALK_ENV, "robot": "hyq", "backend": "mujoco"},
+    "reach": {"env": REACH_ENV, "robot": "hyq", "backend": "mujoco"},
+    "anymal_walk": {"env": WALK_ENV, "robot": "anymal_c", "backend": "mujoco"},
+}
+
+#: The checkpoints' evaluation: EVAL_EPISODES episodes, env i seeded EVAL_SEED + i, with the
+#: recipe's reset noise; the deterministic policy. These seeds choose the best checkpoint, so the
+#: figures the docs report come from other episodes: `hyq compare --policy --seed 1000`
+#: (seed 1000 and its continued streams).
+EVAL_EPISODES = 20
+EVAL_SEED = 2000
+
+
+def check_backend(backend: str) -> None:
+    """Exits with one line when the package was built without `backend`."""
+    if backend not in hyq.BACKENDS:
+        raise SystemExit(
+            f"error: --backend {backend}: this build of the hyq package has {list(hyq.BACKENDS)}; "
+            f"build it with `maturin develop --release --features {backend}` (after `cargo xtask "
+            f"setup mujoco` for MuJoCo) or pass --backend rapier"
+        )
+
+
+def merge(base: dict[str, Any], changes: dict[str, Any]) -> dict[str, Any]:
+    """`base` with `changes` applied; a table given as a dict is merged key by key, so
+    `{"reset": {"yaw_noise_deg": 0}}` keeps the other reset keys."""
+    out = dict(base)
+    for key, value in changes.items():
+        if isinstance(value, dict) and isinstance(out.get(key), dict):
+            out[key] = {**out[key], **value}
+        else:
+            out[key] = value
+    return out
+
+
+def distance_walked(info: dict[str, Any]) -> float:
+    """K - D^T: how much closer to the goal the trunk ended than it started (m)."""
+    goal = np.asarray(info["goal"], dtype=np.float64)
+    start = np.asarray(info["initial_position"], dtype=np.float64)
+    return float(np.linalg.norm(goal - start) - info["distance_to_goal"])
+
+
+def evaluate(
+    act: Callable[[np.ndarray], np.ndarray],
+    env: dict[str, Any],
+    robot: str,
+    backend: str,
+) -> dict[str, Any]:
+    """The deterministic policy `act` (a batch of float32 observations to a batch of actions)
+    on EVAL_EPISODES episodes: env i seeded EVAL_SEED + i, its first episode counts."""
+    venv = HyQVectorEnv(num_envs=EVAL_EPISODES, robot=robot, backend=backend,
+                        autoreset_mode="SameStep", **env)
+    obs, _ = venv.reset(seed=EVAL_SEED)
+    episodes: list[dict[str, Any] | None] = [None] * EVAL_EPISODES
+    returns = np.zeros(EVAL_EPISODES)
+    while any(e is None for e in episodes):
+        obs, rewards, terminated, truncated, _ = venv.step(act(obs))
+        for i in range(EVAL_EPISODES):
+            if episodes[i] is None:
+                returns[i] += rewards[i]
+                if terminated[i] or truncated[i]:
+                    info = venv.final_info(i)
+                    episodes[i] = {
+                        "return": float(returns[i]),
+                        "distance_m": distance_walked(info),
+                        "steps": int(info["t"]),
+                        # The reasons that held, joined by "+" ("reached", "joint_limit+fell").
+                        "reasons": info["reasons"].split("+"),
+                    }
+    venv.close()
+    done = [e for e in episodes if e is not None]
+    return {
+        "episodes": done,
+        "mean_return": float(np.mean([e["return"] for e in done])),
+        "mean_distance_m": float(np.mean([e["distance_m"] for e in done])),
+        "fall_rate": float(np.mean(["fell" in e["reasons"] for e in done])),
+        "joint_limit_rate": float(np.mean(["joint_limit" in e["reasons"] for e in done])),
+        "reach_rate": float(np.mean(["reached" in e["reasons"] for e in done])),
+    }
+
+
+def eval_summary(result: dict[str, Any]) -> str:
+    """One line of an evaluation's means."""
+    return (
+        f"return {result['mean_return']:.2f}, distance {result['mean_distance_m']:.2f} m, "
+        f"fell {result['fall_rate']:.0%}, joint limit {result['joint_limit_rate']:.0%}, "
+        f"reached {result['reach_rate']:.0%}"
+    )
+
+
+def git_commit() -> str:
+    """The commit of the checkout the script runs from ("unknown" outside git)."""
+    try:
+        return subprocess.run(
+            ["git", "rev-parse", "HEAD"], capture_output=True, text=True, check=True,
+            cwd=Path(__file__).resolve().parent,
+        ).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return "unknown"
+
+
+def load_average() -> list[float]:
+    """The 1, 5 and 15 minute load averages (what `uptime` prints)."""
+    return [round(x, 2) for x in os.getloadavg()]
+
+
+class Clock:
+    """The run's wall time, the part of it spent stepping the training envs (`env_s`, summed
+    by whoever steps them) and the part spent in the checkpoints' evaluations (`eval_s`), with
+    the load average at the start and the end: a figure taken while other work shares the
+    cores is not the recipe's own."""
+
+    def __init__(self) -> None:
+        self.start = time.monotonic()
+        self.load_start = load_average()
+        self.env_s = 0.0
+        self.eval_s = 0.0
+
+    def summary(self, env_steps: int) -> dict[str, Any]:
+        wall = time.monotonic() - self.start
+        return {
+            "wall_s": wall,
+            "env_steps": env_steps,
+            "env_steps_per_s": env_steps / wall,
+            "env_stepping_s": self.env_s,
+            "evaluation_s": self.eval_s,
+            "learning_and_rest_s": wall - self.env_s - self.eval_s,
+            "load_average_start": self.load_start,
+            "load_average_end": load_average(),
+            "cpu_count": os.cpu_count(),
+        }
+
+
+def timing_line(t: dict[str, Any]) -> str:
+    """One line of a run's timing."""
+    return (
+        f"{t['env_steps']} env steps in {t['wall_s'] / 60:.2f} min ({t['env_steps_per_s']:.0f}/s): "
+        f"env stepping {t['env_stepping_s']:.0f} s, checkpoint evaluations {t['evaluation_s']:.0f} s, "
+        f"learning and the rest "
+        f"{t['learning_and_rest_s']:.0f} s; load average {t['load_average_start']} at the start, "
+        f"{t['load_average_end']} at the end"
+    )
+
+
+class CurveFile:
+    """Rows of a CSV file, flushed as they come, kept for the plot."""
+
+    def __init__(self, path: Path, fields: list[str]) -> None:
+        self.fields = fields
+        self.rows: list[dict[str, float]] = []
+        self.file = open(path, "w", newline="")
+        self.writer = csv.DictWriter(self.file, fieldnames=fields)
+        self.writer.writeheader()
+
+    def add(self, row: dict[str, float]) -> None:
+        self.writer.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in row.items()})
+        self.file.flush()
+        self.rows.append(row)
+
+    def close(self) -> None:
+        self.file.close()
+
+
+#: The columns of progress.csv (the training episodes) and evals.csv (the deterministic
+#: evaluations).
+PROGRESS_FIELDS = [
+    "env_steps", "episodes", "mean_return", "mean_distance_m", "fall_rate",
+    "joint_limit_rate", "reach_rate", "mean_length", "env_steps_per_s",
+]
+EVAL_FIELDS = ["env_steps", "mean_return", "mean_distance_m", "fall_rate", "joint_limit_rate", "reach_rate"]
+
+
+class EpisodeLog:
+    """The training episodes' final facts, pooled until a curve row is written."""
+
+    def __init__(self, min_episodes: int) -> None:
+        self.min_episodes = min_episodes
+        self.pending: list[dict[str, float]] = []
+
+    def add(self, ret: float, length: float, info: dict[str, Any]) -> None:
+        self.pending.append({
+            "return": ret,
+            "length": length,
+            "distance": distance_walked(info),
+            "fell": float(info["fell"]),
+            "joint_limit": float(info["joint_limit"]),
+            "reached": float(info["reached"]),
+        })
+
+    def row(self, env_steps: int, elapsed_s: float) -> dict[str, float] | None:
+        """A progress row of the pooled episodes (and forget them), or None while fewer than
+        `min_episodes` ended."""
+        if len(self.pending) < self.min_episodes:
+            return None
+        mean = lambda key: float(np.mean([e[key] for e in self.pending]))  # noqa: E731
+        row = {
+            "env_steps": env_steps,
+            "episodes": len(self.pending),
+            "mean_return": mean("return"),
+            "mean_distance_m": mean("distance"),
+            "fall_rate": mean("fell"),
+            "joint_limit_rate": mean("joint_limit"),
+            "reach_rate": mean("reached"),
+            "mean_length": mean("length"),
+            "env_steps_per_s": env_steps / elapsed_s,
+        }
+        self.pending.clear()
+        return row
+
+
+def plot_curve(rows: list[dict[str, float]], evals: list[dict[str, float]], path: Path, title: str) -> None:
+    """The learning curve as a 2x2 PNG (matplotlib, no display): the training episodes
+    (stochastic policy) as lines, the deterministic evaluations as points."""
+    if not rows and not evals:
+        return
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    x = np.array([r["env_steps"] for r in rows]) / 1e6
+    col = lambda key: np.array([r[key] for r in rows])  # noqa: E731
+    ex = np.array([r["env_steps"] for r in evals]) / 1e6
+    ecol = lambda key: np.array([r[key] for r in evals])  # noqa: E731
+    fig, axes = plt.subplots(2, 2, figsize=(10, 6.5), sharex=True)
+    if rows:
+        axes[0, 0].plot(x, col("mean_return"), label="training episodes")
+        axes[0, 1].plot(x, col("mean_distance_m"))
+        axes[1, 0].plot(x, col("fall_rate"), label="fell", color="C0")
+        axes[1, 0].plot(x, col("joint_limit_rate"), label="joint limit", color="C1")
+        axes[1, 0].plot(x, col("reach_rate"), label="reached", color="C2")
+        axes[1, 1].plot(x, col("mean_length") / 100.0)
+    if evals:
+        axes[0, 0].plot(ex, ecol("mean_return"), "o", color="C3", label="deterministic, 20 eval episodes")
+        axes[0, 1].plot(ex, ecol("mean_distance_m"), "o", color="C3")
+        axes[1, 0].plot(ex, ecol("fall_rate"), "o", color="C0")
+        axes[1, 0].plot(ex, ecol("joint_limit_rate"), "o", color="C1")
+        axes[1, 0].plot(ex, ecol("reach_rate"), "s", color="C2")
+    axes[0, 0].set_ylabel("mean episode return")
+    axes[0, 0].legend(loc="best")
+    axes[0, 1].set_ylabel("distance walked toward the goal (m)")
+    axes[1, 0].set_ylabel("fraction of episodes")
+    axes[1, 0].set_ylim(-0.02, 1.02)
+    if rows:
+        axes[1, 0].legend(loc="best")
+    axes[1, 1].set_ylabel("mean episode length (s)")
+    for ax in axes[1]:
+        ax.set_xlabel("env steps (millions)")
+    for ax in axes.flat:
+        ax.grid(alpha=0.3)
+    fig.suptitle(title)
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
+def write_json(path: Path, data: Any) -> None:
+    path.write_text(json.dumps(data, indent=2) + "\n")

@@ -1,0 +1,227 @@
+"""Train a PPO policy on HyQ-v0 with rsl_rl's OnPolicyRunner (not run in CI: it needs PyTorch).
+
+    target/train-venv/bin/pip install -r examples/requirements-train.txt   # rsl-rl-lib 5.5.1 too
+    target/train-venv/bin/python examples/train_rsl_rl.py --recipe walk --out runs/rsl-walk
+
+rsl_rl (the learner of legged_gym, Isaac Lab, Genesis and mjlab) over the Rust vector env
+through hyq.rsl_rl.HyQRslRlVecEnv: observations as torch tensors, `time_outs` in the extras so
+PPO bootstraps the time limit, the episodes' distance walked, reach, fall and joint-limit rates
+in rsl_rl's logger (tensorboard files in OUT). The recipe's environment, robot and engine are
+examples/recipes.py's, shared with examples/train_sb3_ppo.py; rsl_rl's settings are TRAIN_CFG
+here (rsl_rl's own defaults but where the comment says why). Every part can be changed from the
+command line (--robot, --backend, --env, --cfg, --iterations, --seed). Same seed and
+--torch-threads: the same run, bit for bit. It writes into OUT:
+
+    model_<iteration>.pt       rsl_rl's checkpoints (every --checkpoint-every iterations and the last)
+    progress.csv, evals.csv,   the learning curve, as train_sb3_ppo.py writes it
+    progress.png
+    eval.json                  the final policy on the 20 evaluation episodes, and the run's timing
+    config.json                every setting of the run
+
+Export the policy for the Rust replay and as ONNX with examples/export_policy.py --run OUT.
+"""
+
+from __future__ import annotations
+
+import argparse
+import copy
+import json
+import random
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import torch
+from rsl_rl.runners import OnPolicyRunner
+
+import recipes
+from hyq.rsl_rl import HyQRslRlVecEnv
+
+#: rsl_rl's configuration (rsl-rl-lib 5.5.1 names): its defaults, but a rollout of 256 steps
+#: per env (16 envs here, not thousands on a GPU, so each iteration still sees 4096 steps and
+#: the time limit of 1000), a smaller network, and an initial action noise of 0.15 (rsl_rl's
+#: 1.0 would swing the joints across their whole offset range; SB3's recipe starts at 0.14
+#: for the same reason, docs/training.md).
+TRAIN_CFG: dict[str, Any] = {
+    "num_steps_per_env": 256,
+    "save_interval": 50,
+    "obs_groups": {"actor": ["policy"], "critic": ["policy"]},
+    "logger": "tensorboard",
+    "check_for_nan": True,
+    "actor": {
+        "class_name": "MLPModel",
+        "hidden_dims": [128, 128],
+        "activation": "elu",
+        "obs_normalization": True,
+        "distribution_cfg": {"class_name": "GaussianDistribution", "init_std": 0.15, "std_type": "scalar"},
+    },
+    "critic": {
+        "class_name": "MLPModel",
+        "hidden_dims": [128, 128],
+        "activation": "elu",
+        "obs_normalization": True,
+    },
+    "algorithm": {
+        "class_name": "PPO",
+        "num_learning_epochs": 5,
+        "num_mini_batches": 4,
+        "clip_param": 0.2,
+        "gamma": 0.99,
+        "lam": 0.95,
+        "value_loss_coef": 1.0,
+        "entropy_coef": 0.0,
+        "learning_rate": 1e-3,
+        "max_grad_norm": 1.0,
+        "schedule": "adaptive",
+        "desired_kl": 0.01,
+        "use_clipped_value_loss": True,
+    },
+}
+#: Each recipe's training iterations and checkpoint interval (docs/training.md).
+RECIPE_ITERATIONS: dict[str, tuple[int, int]] = {
+    "walk": (60, 20),
+    "reach": (250, 50),
+    "anymal_walk": (80, 20),
+}
+
+
+class TimedEnv(HyQRslRlVecEnv):
+    """The adapter, adding the time spent in each step to `clock.env_s` and writing the
+    training episodes' curve (`progress`)."""
+
+    def __init__(self, clock: recipes.Clock, episodes: recipes.EpisodeLog,
+                 progress: recipes.CurveFile, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self.clock = clock
+        self.episodes = episodes
+        self.progress = progress
+        self.steps = 0
+
+    def step(self, actions: torch.Tensor):  # noqa: ANN201 - rsl_rl's signature
+        start = time.monotonic()
+        out = super().step(actions)
+        self.clock.env_s += time.monotonic() - start
+        self.steps += self.num_envs
+        for _, info, ret, length in self.ended:
+            self.episodes.add(ret, float(length), info)
+        row = self.episodes.row(self.steps, time.monotonic() - self.clock.start)
+        if row is not None:
+            self.progress.add(row)
+        return out
+
+
+class Runner(OnPolicyRunner):
+    """OnPolicyRunner whose checkpoints name the robot and its observation rows (what
+    examples/export_policy.py checks a model against)."""
+
+    def save(self, path: str, infos: dict | None = None) -> None:
+        env = self.env
+        super().save(path, {**(infos or {}), "robot": env.cfg["robot"],
+                            "observation": env.observation_names})
+
+
+def parse_args() -> argparse.Namespace:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--out", type=Path, required=True, help="output directory")
+    parser.add_argument("--recipe", choices=sorted(recipes.RECIPES), default="walk",
+                        help="the environment, robot and engine (examples/recipes.py; default: walk)")
+    parser.add_argument("--robot", help="the robot (default: the recipe's)")
+    parser.add_argument("--backend", help="the engine (default: the recipe's)")
+    parser.add_argument("--iterations", type=int, help="learning iterations (default: the recipe's)")
+    parser.add_argument("--envs", type=int, default=16, help="parallel envs (default: 16)")
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--torch-threads", type=int, default=1,
+                        help="PyTorch's CPU threads (default: 1; part of what makes a run repeat)")
+    parser.add_argument("--checkpoint-every", type=int,
+                        help="iterations between checkpoints and evaluations (default: the recipe's)")
+    parser.add_argument("--curve-episodes", type=int, default=32, help="least episodes per curve row")
+    parser.add_argument("--env", type=json.loads, default={},
+                        help='JSON object of environment keys to change, e.g. \'{"fall_penalty": 0}\'')
+    parser.add_argument("--cfg", type=json.loads, default={},
+                        help='JSON object merged into rsl_rl\'s configuration, e.g. \'{"algorithm": {"entropy_coef": 0.005}}\'')
+    return parser.parse_args()
+
+
+def evaluate(runner: OnPolicyRunner, run: dict[str, Any]) -> dict[str, Any]:
+    """The deterministic policy (the Gaussian's mean) on the evaluation episodes."""
+    policy = runner.alg.get_policy()
+    runner.alg.eval_mode()
+
+    def act(obs: np.ndarray) -> np.ndarray:
+        with torch.inference_mode():
+            group = {"policy": torch.as_tensor(obs)}
+            return policy(group).numpy()
+
+    try:
+        return recipes.evaluate(act, run["env"], run["robot"], run["backend"])
+    finally:
+        runner.alg.train_mode()
+
+
+def main() -> None:
+    args = parse_args()
+    recipe = recipes.RECIPES[args.recipe]
+    iterations, every = RECIPE_ITERATIONS[args.recipe]
+    iterations = args.iterations or iterations
+    every = args.checkpoint_every or every
+    run = {
+        "recipe": args.recipe,
+        "robot": args.robot or recipe["robot"],
+        "backend": args.backend or recipe["backend"],
+        "env": recipes.merge(recipe["env"], args.env),
+    }
+    recipes.check_backend(run["backend"])
+    cfg = copy.deepcopy(TRAIN_CFG)
+    for key, value in args.cfg.items():
+        cfg[key] = {**cfg[key], **value} if isinstance(value, dict) and isinstance(cfg.get(key), dict) else value
+    cfg["save_interval"] = every
+    args.out.mkdir(parents=True, exist_ok=True)
+    config = {
+        **run, "trainer": "rsl_rl", "rsl_rl": cfg, "iterations": iterations, "envs": args.envs,
+        "steps": iterations * cfg["num_steps_per_env"] * args.envs, "seed": args.seed,
+        "torch_threads": args.torch_threads, "commit": recipes.git_commit(),
+        "command": " ".join(sys.argv),
+    }
+    recipes.write_json(args.out / "config.json", config)
+
+    torch.set_num_threads(args.torch_threads)
+    torch.manual_seed(args.seed)
+    np.random.seed(args.seed)
+    random.seed(args.seed)
+    clock = recipes.Clock()
+    episodes = recipes.EpisodeLog(args.curve_episodes)
+    progress = recipes.CurveFile(args.out / "progress.csv", recipes.PROGRESS_FIELDS)
+    env = TimedEnv(clock, episodes, progress, num_envs=args.envs, seed=args.seed, robot=run["robot"],
+                   backend=run["backend"], **run["env"])
+    runner = Runner(env, copy.deepcopy(cfg), log_dir=str(args.out), device="cpu")
+    evals = recipes.CurveFile(args.out / "evals.csv", recipes.EVAL_FIELDS)
+    per_iteration = cfg["num_steps_per_env"] * args.envs
+    title = (f"PPO (rsl_rl) on {run['robot']}, {run['backend']}: "
+             f"examples/train_rsl_rl.py --recipe {args.recipe}")
+    done = 0
+    while done < iterations:
+        # learn() in chunks of `every` iterations, with an evaluation after each.
+        chunk = min(every, iterations - done)
+        runner.learn(num_learning_iterations=chunk)
+        done += chunk
+        steps = done * per_iteration
+        start = time.monotonic()
+        result = evaluate(runner, run)
+        clock.eval_s += time.monotonic() - start
+        evals.add({"env_steps": steps, **{k: result[k] for k in recipes.EVAL_FIELDS[1:]}})
+        print(f"[{steps} env steps] deterministic eval: {recipes.eval_summary(result)}", flush=True)
+        recipes.plot_curve(progress.rows, evals.rows, args.out / "progress.png", title)
+    timing = clock.summary(done * per_iteration)
+    progress.close()
+    evals.close()
+    env.close()
+    result["timing"] = timing
+    recipes.write_json(args.out / "eval.json", result)
+    print(recipes.timing_line(timing))
+    print(f"eval over {recipes.EVAL_EPISODES} episodes: {recipes.eval_summary(result)}")
+
+
+if __name__ == "__main__":
+    main()
