@@ -431,41 +431,6 @@ fn records_and_plots() {
     assert!(Path::new(&good).is_file());
 }
 
-#[test]
-fn randomization_keys_and_values() {
-    bad_set(
-        &["randomize.ground_friction=[1.0, 0.5]"],
-        &["randomize.ground_friction", "[1.0, 0.5]", "lo <= hi"],
-    );
-    bad_set(
-        &["randomize.kp_scale=[0, 1]"],
-        &["randomize.kp_scale", "lo > 0"],
-    );
-    bad_set(
-        &["randomize.link_mass_scale=[nan, 1]"],
-        &["randomize.link_mass_scale", "finite"],
-    );
-    bad_set(
-        &["randomize.actuator_delay_substeps=[0, 11]"],
-        &["randomize.actuator_delay_substeps", "longer than an env step"],
-    );
-    bad_set(
-        &["randomize.obs_noise.joint_speed=-1"],
-        &["randomize.obs_noise.joint_speed", "-1"],
-    );
-    bad_set(
-        &["randomize.push_interval_s=[2, 4]"],
-        &["randomize.push_interval_s", "speed"],
-    );
-    bad_set(&["randomize.bogus=1"], &["bogus"]);
-    bad_set(&["randomize.preset=gym"], &["gym"]);
-    // Known only against the robot: HyQ's trunk cannot lose 100 kg.
-    bad_set(
-        &["randomize.trunk_added_mass_kg=[-100, 0]"],
-        &["randomize.trunk_added_mass_kg", "positive"],
-    );
-}
-
 /// A copy of the bundled HyQ (profile and URDF) in scratch directory `name`, with `profile` and
 /// `urdf` edits (exact text, each present) applied; returns the profile's path.
 fn robot(name: &str, profile: (&str, &str), urdf: (&str, &str)) -> String {

@@ -112,7 +112,13 @@ fn every_registered_table_is_written_read_and_checked() {
     let written: toml::Table =
         toml::from_str(&EnvConfig::default().to_toml_string()).unwrap_or_else(|e| panic!("{e}"));
     let mut tables: Vec<&str> = written.keys().map(String::as_str).collect();
-    let mut registered = EnvConfig::TABLES.to_vec();
+    // `[randomize]` is all off by default and then not written (so the spec's environment's
+    // written configuration is unchanged); every other table is written in full.
+    let mut registered: Vec<&str> = EnvConfig::TABLES
+        .iter()
+        .copied()
+        .filter(|t| *t != "randomize")
+        .collect();
     tables.sort_unstable();
     registered.sort_unstable();
     assert_eq!(tables, registered);
