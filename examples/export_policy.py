@@ -145,8 +145,10 @@ def metadata_of(actor: dict[str, Any], config: dict[str, Any], robot: str, names
     action = env_kwargs.get("action", {})
     mode = action.get("mode", "normalized")
     # What the policy needs of its environment: every task and action key it trained with. The
-    # reset distribution is the user's evaluation condition and is only recorded.
-    applied = {k: v for k, v in config_pairs(env_kwargs) if not k.startswith("reset.")}
+    # reset distribution and the randomisation are training or evaluation conditions, only
+    # recorded (training_env_config).
+    applied = {k: v for k, v in config_pairs(env_kwargs)
+               if not k.startswith(("reset.", "randomize."))}
     metadata = {
         "format": "hyq-mlp-policy",
         "format_version": "1",

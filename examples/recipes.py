@@ -54,6 +54,32 @@ REACH_ENV: dict[str, Any] = {
     "reach_target_bonus_reward": 50.0,
 }
 
+#: The walk with randomised dynamics, actuator, observation noise and pushes ([randomize],
+#: docs/robustness.md), each range from an anchor where one has it: the policy must walk on
+#: ground, masses, gains and delays it was not tuned to, and keep walking when pushed, so that
+#: it transfers to the engines it did not train on (docs/robustness.md has the evaluation).
+WALK_RANDOMIZED_ENV: dict[str, Any] = {
+    **WALK_ENV,
+    "randomize": {
+        # legged_gym's friction range: the committed walker's travel falls with friction.
+        "ground_friction": [0.5, 1.25],
+        # Isaac Lab's base-mass range (±5 kg; 6 % of HyQ's 87 kg) and its centre-of-mass shift.
+        "trunk_added_mass_kg": [-5.0, 5.0],
+        "trunk_com_offset_m": [[-0.05, 0.05], [-0.05, 0.05], [-0.01, 0.01]],
+        # MuJoCo Playground's link-mass factor.
+        "link_mass_scale": [0.9, 1.1],
+        # Gains ±10 % and a delay of up to 2 ms (2 sub-steps): HyQ's hydraulic valves lag.
+        "kp_scale": [0.9, 1.1],
+        "kd_scale": [0.9, 1.1],
+        "actuator_delay_substeps": [0, 2],
+        # legged_gym's joint-angle noise; a light joint-speed noise.
+        "obs_noise": {"joint_angle": 0.01, "joint_speed": 0.1},
+        # The pushes the policy is judged under: up to 0.5 m/s every 2-4 s.
+        "push_interval_s": [2.0, 4.0],
+        "push_velocity_xy_mps": [0.0, 0.5],
+    },
+}
+
 #: name -> (environment, robot, backend). MuJoCo steps about 3x faster than rapier (the
 #: README's speed table), and the env is most of a training run's time on 2 cores, so the
 #: recipes train there; the policy file runs on every engine (docs/training.md).
@@ -61,6 +87,7 @@ RECIPES: dict[str, dict[str, Any]] = {
     "walk": {"env": WALK_ENV, "robot": "hyq", "backend": "mujoco"},
     "reach": {"env": REACH_ENV, "robot": "hyq", "backend": "mujoco"},
     "anymal_walk": {"env": WALK_ENV, "robot": "anymal_c", "backend": "mujoco"},
+    "walk_randomized": {"env": WALK_RANDOMIZED_ENV, "robot": "hyq", "backend": "mujoco"},
 }
 
 #: The checkpoints' evaluation: EVAL_EPISODES episodes, env i seeded EVAL_SEED + i, with the

@@ -84,6 +84,7 @@ RECIPE_ITERATIONS: dict[str, tuple[int, int]] = {
     "walk": (60, 20),
     "reach": (250, 50),
     "anymal_walk": (80, 20),
+    "walk_randomized": (64, 32),
 }
 
 

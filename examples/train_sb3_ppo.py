@@ -76,6 +76,7 @@ RECIPE_STEPS: dict[str, tuple[int, int]] = {
     "walk": (200_000, 100_000),
     "reach": (600_000, 100_000),
     "anymal_walk": (200_000, 100_000),
+    "walk_randomized": (400_000, 100_000),
 }
 #: Each recipe's changes to RECIPE_PPO. The reach: a learning rate falling linearly to 0 over the
 #: budget ("lr_schedule"), since at a constant 3e-4 the deterministic policy reached the goal in

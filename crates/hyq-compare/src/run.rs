@@ -142,7 +142,6 @@ pub fn run_episode<B: Backend>(
     mut next: impl FnMut(&Env<B>, &mut [f64]) -> bool,
 ) -> Result<Trajectory, CompareError> {
     let n = env.action_space().len();
-    let layout = env.observation_layout().clone();
     let model = env.model().clone();
     let tracked: Vec<String> = model.tracked().iter().map(|t| t.name.clone()).collect();
     let options = ResetOptions {
@@ -178,10 +177,9 @@ pub fn run_episode<B: Backend>(
         traj.positions.push([p.x, p.y, p.z]);
         traj.orientations.push(trunk.pose.rotation);
         traj.joint_angles.extend_from_slice(env.joint_angles());
-        let obs = env.observation();
-        traj.contacts
-            .extend(obs[layout.foot_contacts()].iter().map(|c| *c > 0.5));
-        traj.contacts.push(obs[layout.trunk_contact()] > 0.5);
+        // The simulated contacts (feet, then the trunk), not the observed flags, which
+        // observation noise may flip.
+        traj.contacts.extend_from_slice(env.contacts());
         traj.states.push(env.backend().state());
     };
     record(&mut traj, env);

@@ -3,8 +3,8 @@
 //! contact flags. Two workloads: standing still on four feet (settled for 1 s first), and
 //! random joint targets redrawn every 10 sub-steps (feet landing and lifting, joints at their
 //! limits), the cost of `set_state` (which installs a fresh collision detector), and of a
-//! randomised episode's reset (`set_dynamics` with other masses, damping and friction, then
-//! `set_state`). The workloads are hyq-physics' `SubstepWorkloads`, which the MuJoCo
+//! randomised episode's reset (`reset_with_dynamics`: other masses, damping and friction with
+//! the spawn state). The workloads are hyq-physics' `SubstepWorkloads`, which the MuJoCo
 //! backend's bench times too.
 //!
 //! Run: `cargo bench -p hyq-dart --bench step`.

@@ -32,7 +32,7 @@ use std::time::{Duration, Instant};
 
 use hyq_physics::na::{Point3, Vector3};
 use hyq_physics::{
-    Actuator, Backend, PdScratch, PhysicsError, RobotModel, RobotState, TrunkState,
+    Actuator, Backend, PdScratch, PhysicsError, RobotModel, RobotState, TargetDelay, TrunkState,
     apply_pd_to_valid_targets,
 };
 use hyq_spec::distance::{MIN_START_GOAL_DISTANCE, StartGoalDistance};
@@ -53,6 +53,7 @@ use crate::divergence::Divergence;
 use crate::goal::{GoalSampler, sample_reset_state};
 use crate::info::{Reason, Reasons, StepInfo};
 use crate::terrain::Ground;
+use crate::randomize::{EpisodeDraw, Randomizer, check_for_robot};
 
 /// Why the environment refused a call. Every variant names what was wrong.
 #[derive(Debug, Error)]
@@ -192,6 +193,20 @@ struct Episode {
     done: bool,
 }
 
+/// What `[randomize]` adds to an environment: the draws, the actuator the episode's scales
+/// apply to, the actuator's delay, and the observation as the policy sees it.
+#[derive(Clone, Debug)]
+struct Robustness {
+    randomizer: Randomizer,
+    /// The configured actuator, which each episode's scales multiply.
+    base_actuator: Actuator,
+    delay: TargetDelay,
+    /// Whether observation noise is on (else the policy sees the true observation).
+    noisy: bool,
+    /// The observation with its noise, when `noisy`.
+    seen: Vec<f64>,
+}
+
 /// The HyQ walk-to-goal environment on backend `B` (see the crate docs for the env card).
 pub struct Env<B: Backend> {
     backend: B,
@@ -234,6 +249,8 @@ pub struct Env<B: Backend> {
     obs_next: Vec<f64>,
     obs_f32: Vec<f32>,
     info: StepInfo,
+    /// `[randomize]`'s state, when any option is on.
+    robustness: Option<Box<Robustness>>,
 
     timing_on: bool,
     timing: StepTiming,
@@ -345,6 +362,31 @@ pub fn observation_layout_for(
         &config.observation,
         &robot.trunk().name,
     ))
+
+/// The `[randomize]` state of an environment of `model` with `config` and its configured
+/// `actuator`, or `None` when nothing is randomised; errors if the ranges do not fit the robot.
+fn robustness(
+    model: &RobotModel,
+    config: &EnvConfig,
+    actuator: &Actuator,
+) -> Result<Option<Box<Robustness>>, ConfigError> {
+    if config.randomize.is_off() {
+        return Ok(None);
+    }
+    check_for_robot(model, &config.randomize)?;
+    let randomizer = Randomizer::new(
+        &config.randomize,
+        DEFAULT_SEED,
+        model,
+        &config.physics.params,
+    );
+    Ok(Some(Box::new(Robustness {
+        noisy: randomizer.noisy(),
+        randomizer,
+        base_actuator: actuator.clone(),
+        delay: TargetDelay::new(model.num_joints()),
+        seen: vec![0.0; observation_layout_for(model, config)?.len()],
+    })))
 }
 
 impl<B: Backend> Env<B> {
@@ -381,6 +423,7 @@ impl<B: Backend> Env<B> {
         // every reset.
         goals.check(&config.task)?;
         crate::goal::check_spawn_fits(&model, &config.reset)?;
+        let robustness = robustness(&model, &config, &actuator)?;
         let mut backend = B::build(model.clone(), &config.physics.params, &options)?;
         backend.set_terrain(ground.terrain())?;
         let extras = config.observation.groups();
@@ -426,6 +469,7 @@ impl<B: Backend> Env<B> {
                 joint_targets: vec![0.0; n],
                 action_clipped: false,
             },
+            robustness,
             timing_on: false,
             timing: StepTiming::default(),
             backend,
@@ -482,7 +526,9 @@ impl<B: Backend> Env<B> {
         // the environment as it was.
         let requested_rules = episode_rules(&self.config.task, requested, goal)?;
         self.backend.set_terrain(ground.terrain())?;
-        self.backend.set_state(&state)?;
+        if !self.begin_varied_episode(seed, &state)? {
+            self.backend.set_state(&state)?;
+        }
 
         self.seeded |= seed.is_some();
         [self.goal_rng, self.noise_rng, self.terrain_rng] = rngs;
@@ -507,7 +553,10 @@ impl<B: Backend> Env<B> {
             })?;
         std::mem::swap(&mut self.obs, &mut self.obs_next);
         self.contacts.fill(false);
-        self.fill_f32();
+        if let Some(r) = self.robustness.as_deref_mut() {
+            r.delay.reset(&self.state.q);
+        }
+        self.observe();
 
         let attitude = roll_pitch_yaw(&self.state.trunk.pose.rotation);
         let d0 = (goal - initial).norm();
@@ -533,7 +582,7 @@ impl<B: Backend> Env<B> {
             done: false,
         });
         Ok(Reset {
-            observation: &self.obs,
+            observation: self.seen(),
             observation_f32: &self.obs_f32,
             info: &self.info,
         })
@@ -582,7 +631,7 @@ impl<B: Backend> Env<B> {
             self.timing.steps += 1;
         }
         Ok(Step {
-            observation: &self.obs,
+            observation: self.seen(),
             observation_f32: &self.obs_f32,
             reward: self.info.reward.total,
             terminated: self.info.reasons.terminated(),
@@ -622,14 +671,26 @@ impl<B: Backend> Env<B> {
         Ok((ground, state, goal))
     }
 
-    /// Runs the sub-steps with the step's joint targets, latching contacts.
+    /// Runs the sub-steps with the step's joint targets (as the actuator's delay serves them),
+    /// after the step's push if one is due, latching contacts.
     fn run_substeps(&mut self, watch: &mut Stopwatch) -> Result<(), Divergence> {
         self.latching.fill(false);
-        for _ in 0..self.config.control.sim_steps_per_env_step {
+        if let Some(r) = self.robustness.as_deref_mut() {
+            // t was counted already: this step starts (t − 1) env steps after reset.
+            let start = (self.info.t - 1) as f64 * self.env_dt;
+            if let Some(dv) = r.randomizer.push_due(start) {
+                self.backend.push_trunk(&dv)?;
+            }
+        }
+        for s in 0..self.config.control.sim_steps_per_env_step {
+            let targets = match self.robustness.as_deref() {
+                Some(r) => r.delay.seen(s, &self.info.joint_targets),
+                None => &self.info.joint_targets,
+            };
             apply_pd_to_valid_targets(
                 &mut self.backend,
                 &self.actuator,
-                &self.info.joint_targets,
+                targets,
                 &mut self.scratch,
             )?;
             watch.lap(&mut self.timing.actuator);
@@ -639,6 +700,9 @@ impl<B: Backend> Env<B> {
                 *latched |= *now;
             }
             watch.lap(&mut self.timing.physics);
+        }
+        if let Some(r) = self.robustness.as_deref_mut() {
+            r.delay.end_step(&self.info.joint_targets);
         }
         Ok(())
     }
@@ -705,7 +769,7 @@ impl<B: Backend> Env<B> {
         }
         std::mem::swap(&mut self.obs, &mut self.obs_next);
         std::mem::swap(&mut self.contacts, &mut self.latching);
-        self.fill_f32();
+        self.observe();
         watch.lap(&mut self.timing.observation);
         Ok(outcome)
     }
@@ -795,10 +859,67 @@ impl<B: Backend> Env<B> {
         Ok(())
     }
 
-    fn fill_f32(&mut self) {
-        for (out, v) in self.obs_f32.iter_mut().zip(&self.obs) {
+    /// Makes the observation the policy sees from the true one in `obs`: with its noise when
+    /// observation noise is on (into `Robustness::seen`), and its f32 copy.
+    fn observe(&mut self) {
+        let seen = match self.robustness.as_deref_mut() {
+            Some(r) if r.noisy => {
+                r.randomizer.observe(&self.layout, &self.obs, &mut r.seen);
+                &r.seen
+            }
+            _ => &self.obs,
+        };
+        for (out, v) in self.obs_f32.iter_mut().zip(seen) {
             *out = *v as f32;
         }
+    }
+
+    /// The observation the policy sees (f64): the true one, or with its noise.
+    fn seen(&self) -> &[f64] {
+        match self.robustness.as_deref() {
+            Some(r) if r.noisy => &r.seen,
+            _ => &self.obs,
+        }
+    }
+
+    /// Starts the varied episode `[randomize]` draws, if any option is on: `seed` restarts its
+    /// streams; the drawn dynamics go to the backend with the episode's first `state` (one
+    /// state change), the drawn scales to the actuator, the drawn delay to the delay line.
+    /// Returns whether the robot was placed (else the caller places it). On error the draws
+    /// are as they were.
+    fn begin_varied_episode(
+        &mut self,
+        seed: Option<u64>,
+        state: &RobotState,
+    ) -> Result<bool, EnvError> {
+        let Some(r) = self.robustness.as_deref_mut() else {
+            return Ok(false);
+        };
+        let before = r.randomizer.clone();
+        if let Some(s) = seed {
+            r.randomizer.reseed(s);
+        }
+        let params = &self.config.physics.params;
+        r.randomizer.begin_episode(&self.model, params);
+        let draw = r.randomizer.draw();
+        let outcome = (|| {
+            self.actuator
+                .scale_from(&r.base_actuator, &draw.actuator_scales())?;
+            r.delay.set_substeps(
+                draw.actuator_delay_substeps,
+                self.config.control.sim_steps_per_env_step,
+            )?;
+            if !r.randomizer.config().varies_dynamics() {
+                return Ok(false);
+            }
+            let dynamics = draw.dynamics_draw().dynamics(&self.model)?;
+            self.backend.reset_with_dynamics(&dynamics, state)?;
+            Ok(true)
+        })();
+        if outcome.is_err() {
+            r.randomizer = before;
+        }
+        outcome
     }
 
     /// What a [`crate::policy::Policy`] needs to choose the next action.
@@ -806,16 +927,38 @@ impl<B: Backend> Env<B> {
         crate::policy::PolicyInput {
             t: self.info.t,
             env_dt: self.env_dt,
-            observation: &self.obs,
+            observation: self.seen(),
             joint_angles: &self.state.q,
             standing: self.model.standing_pose(),
             space: &self.space,
         }
     }
 
-    /// The current observation (f64, §3 order): the last reset's or step's.
+    /// The current observation (f64, §3 order): the last reset's or step's, as the policy
+    /// sees it (with its noise when `randomize.obs_noise` is on).
     pub fn observation(&self) -> &[f64] {
+        self.seen()
+    }
+
+    /// The current observation without its noise: what the simulated state gives, what the
+    /// rules use (the same as [`Env::observation`] when observation noise is off).
+    pub fn true_observation(&self) -> &[f64] {
         &self.obs
+    }
+
+    /// This episode's drawn variations, when `[randomize]` is on.
+    pub fn episode_draw(&self) -> Option<&EpisodeDraw> {
+        self.robustness.as_deref().map(|r| r.randomizer.draw())
+    }
+
+    /// The velocity (m/s, world) the last step's push added to the trunk (zeros when it had
+    /// none), and the pushes so far this episode, when pushes are on.
+    pub fn push(&self) -> Option<([f64; 3], u64)> {
+        let r = self.robustness.as_deref()?;
+        r.randomizer
+            .config()
+            .pushes()
+            .then(|| (r.randomizer.pushed(), r.randomizer.pushes()))
     }
 
     /// The current observation rounded to f32.

@@ -48,6 +48,7 @@
 //! | [`policy`] | [`Stand`], [`RandomPolicy`], [`Trot`] |
 //! | [`mlp`] | [`MlpPolicy`]: a trained policy read from a safetensors file, run in plain Rust |
 //! | [`observation`] | the observation's rows beyond the spec's (`observation.extra`): height scan, goal vector, trunk velocity |
+//! | [`randomize`] | `[randomize]`: varied dynamics, actuator and delay, observation noise, pushes |
 //! | [`vec_env`] | [`VecEnv`]: N envs on rayon into flat buffers, autoreset modes |
 //! | [`record`] | [`StepRecord`]: the per-step JSONL schema |
 //! | [`terrain`] | [`terrain::Ground`]: the ground of each episode, the robot put down on it, the goal over it, the curriculum |
@@ -67,12 +68,14 @@ pub mod info;
 pub mod mlp;
 pub mod observation;
 pub mod policy;
+pub mod randomize;
 pub mod record;
 pub mod terrain;
 pub mod testing;
 pub mod vec_env;
 
 pub use action::{ActionError, ActionScalar, ActionSpace};
+pub use config::RandomizeConfig;
 pub use config::{
     ActionConfig, ActionMode, ConfigError, ControlConfig, EXP_REW_SCALING_MAX, EnvConfig, Gains,
     GoalConfig, GoalMode, JOINT_NOISE_MAX_RAD, LoadError, ObservationConfig, ObservationExtra,
@@ -88,6 +91,7 @@ pub use hyq_spec::TermSums;
 pub use info::{INFO_KEYS, InfoKey, InfoValue, Reason, Reasons, StepInfo, VectorLen};
 pub use mlp::{MlpError, MlpMetadata, MlpPolicy};
 pub use policy::{Policy, PolicyInput, RandomPolicy, Stand, Trot, TrotParams};
+pub use randomize::{EpisodeDraw, Preset};
 pub use record::{RECORD_KEYS, RecordKey, StepRecord};
 pub use vec_env::{AutoReset, MAX_ENVS, MAX_THREADS, VecEnv, VecEnvError, VecStepOut};
 

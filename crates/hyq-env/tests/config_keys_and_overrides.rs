@@ -107,11 +107,11 @@ fn a_full_file_reads_every_table() {
 
 /// A table is registered once, by its row in `EnvConfig`: the list of tables, the tables of the
 /// written-out configuration and the tables whose keys are checked are the same. The optional
-/// tables (`[terrain]`, `[observation]`) are written when they hold anything but their defaults,
+/// tables (`[terrain]`, `[observation]`, `[randomize]`) are written when they hold anything but their defaults,
 /// so the default configuration is written as it was before they existed.
 #[test]
 fn every_registered_table_is_written_read_and_checked() {
-    const OPTIONAL: [&str; 2] = ["observation", "terrain"];
+    const OPTIONAL: [&str; 3] = ["observation", "randomize", "terrain"];
     let tables_of = |c: &EnvConfig| -> Vec<String> {
         let written: toml::Table =
             toml::from_str(&c.to_toml_string()).unwrap_or_else(|e| panic!("{e}"));
@@ -125,6 +125,7 @@ fn every_registered_table_is_written_read_and_checked() {
     all.set_all(&[
         ("terrain.kind", "\"rough\""),
         ("observation.extra", "[\"goal_vector\"]"),
+        ("randomize.ground_friction", "[0.5, 1.25]"),
     ])
     .unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(tables_of(&all), registered);

@@ -4,8 +4,8 @@
 //! random joint targets redrawn every 10 sub-steps (feet landing and lifting, joints at their
 //! limits; reset to the spawn state when the trunk touches the ground, as an episode would
 //! end), the cost of `set_state` (which resets all of MuJoCo's data), and of a randomised
-//! episode's reset (`set_dynamics` with other masses, damping and friction, then
-//! `set_state`). The workloads are hyq-physics' `SubstepWorkloads`, which the DART backend's
+//! episode's reset (`reset_with_dynamics`: other masses, damping and friction with the
+//! spawn state). The workloads are hyq-physics' `SubstepWorkloads`, which the DART backend's
 //! bench times too.
 //!
 //! Run: `cargo bench -p hyq-mujoco --bench step`.

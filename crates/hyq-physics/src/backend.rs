@@ -313,6 +313,23 @@ pub trait Backend: Sized + Send + 'static {
         Ok(())
     }
 
+    /// Validates `dynamics` and `state`, then gives the world those dynamics and puts it into
+    /// that state ([`Backend::apply_dynamics`], [`Backend::apply_state`]): a randomised
+    /// episode's reset in one state change, where [`Backend::set_dynamics`] followed by
+    /// [`Backend::set_state`] would make two (a DART state change installs a fresh collision
+    /// detector, the larger part of its reset).
+    fn reset_with_dynamics(
+        &mut self,
+        dynamics: &Dynamics,
+        state: &RobotState,
+    ) -> Result<(), PhysicsError> {
+        dynamics.validate(self.model())?;
+        state.validate(self.model())?;
+        self.apply_dynamics(dynamics);
+        self.apply_state(state);
+        Ok(())
+    }
+
     /// Adds `dv` (m/s, world frame, finite) to the trunk's linear velocity now (see
     /// [`Backend::apply_trunk_velocity_change`]).
     fn push_trunk(&mut self, dv: &Vector3<f64>) -> Result<(), PhysicsError> {

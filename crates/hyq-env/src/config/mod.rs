@@ -35,6 +35,9 @@
 //!
 //! [observation]   # rows beyond the spec's (see ObservationConfig)
 //! extra = []
+//!
+//! [randomize]     # robustness options, all off by default (see RandomizeConfig)
+//! ground_friction = [0.5, 1.25]
 //! ```
 //!
 //! Every table and every key is optional: a missing one takes its default. Unknown keys are
@@ -56,6 +59,7 @@ mod messages;
 mod observation;
 mod parse;
 mod physics;
+mod randomize;
 mod reset;
 mod task;
 mod terrain;
@@ -69,6 +73,10 @@ pub use messages::{ConfigError, LoadError};
 pub use observation::{MAX_SCAN_POINTS, MAX_SCAN_REACH_M, ObservationConfig, ObservationExtra};
 pub use parse::CONFIG_FILE_MAX_BYTES;
 pub use physics::{ENGINE_TABLES, PhysicsConfig};
+pub use randomize::{
+    COM_OFFSET_MAX_M, FRICTION_MAX, NOISE_MAX, NoiseDistribution, ObsNoiseConfig,
+    PUSH_SPEED_MAX_MPS, RandomizeConfig, Range, SCALE_MAX,
+};
 pub use reset::{JOINT_NOISE_MAX_RAD, ResetConfig};
 pub(crate) use terrain::keyed as terrain_error;
 pub use terrain::{
@@ -139,6 +147,10 @@ env_config! {
         /// spec's 39 rows for HyQ, and the table is not written)
         #[serde(skip_serializing_if = "ObservationConfig::is_default")]
         observation: ObservationConfig,
+        /// Robustness: dynamics, actuator and delay drawn per episode, observation noise,
+        /// pushes ([`crate::randomize`]). (default: all off, and the table is not written)
+        #[serde(skip_serializing_if = "RandomizeConfig::is_off")]
+        randomize: RandomizeConfig,
     }
 }
 

@@ -408,16 +408,15 @@ impl<B: Backend> SubstepWorkloads<B> {
         set(&mut self.reset_world, &self.spawn);
     }
 
-    /// A randomised episode's reset: `set_dynamics` with other varied dynamics than last time
-    /// (every body's mass, the trunk's centre of mass, damping, friction), then `set_state` to
-    /// the spawn state.
+    /// A randomised episode's reset: `reset_with_dynamics` with other varied dynamics than
+    /// last time (every body's mass, the trunk's centre of mass, damping, friction) and the
+    /// spawn state, as an environment's reset makes it.
     pub fn randomized_reset(&mut self) {
         let d = &self.varied[self.next_varied];
         self.next_varied = 1 - self.next_varied;
         self.reset_world
-            .set_dynamics(d)
+            .reset_with_dynamics(d, &self.spawn)
             .unwrap_or_else(|e| panic!("{} refused varied dynamics: {e}", B::NAME));
-        set(&mut self.reset_world, &self.spawn);
     }
 }
 

@@ -123,7 +123,8 @@ pub fn added_trunk_mass_lowers_the_standing_height<B: Backend>(
 /// body's mass properties as given (relative 1e-5: rapier's f32), so tensors did follow their
 /// masses. And the dynamics depend only on the last values given: a world given other
 /// dynamics first, or given the model's own back, runs bit for bit as a world given only
-/// the last ones.
+/// the last ones; and `reset_with_dynamics` (dynamics and state in one change) is
+/// `set_dynamics` then `set_state`, bit for bit.
 pub fn in_place_dynamics_match_a_world_built_with_them<B: Backend>(
     robot: &Robot,
     options: &B::Options,
@@ -164,6 +165,16 @@ pub fn in_place_dynamics_match_a_world_built_with_them<B: Backend>(
     assert!(
         worst <= 1e-6,
         "in-place dynamics drift {worst} from a built world"
+    );
+
+    let mut at_once: B = build_default(robot, options);
+    at_once
+        .reset_with_dynamics(&dynamics, &model.spawn_state())
+        .expect("valid dynamics and state");
+    assert!(
+        super::fixtures::random_pd_trajectory(&mut at_once, 9, 300) == a,
+        "{}: reset_with_dynamics differs from set_dynamics and set_state",
+        B::NAME
     );
 
     let mut history: B = build_default(robot, options);
