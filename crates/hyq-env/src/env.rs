@@ -52,8 +52,8 @@ use crate::config::{ConfigError, EnvConfig, ObservationExtra, in_world, outside_
 use crate::divergence::Divergence;
 use crate::goal::{GoalSampler, sample_reset_state};
 use crate::info::{Reason, Reasons, StepInfo};
-use crate::terrain::Ground;
 use crate::randomize::{EpisodeDraw, Randomizer, check_for_robot};
+use crate::terrain::Ground;
 
 /// Why the environment refused a call. Every variant names what was wrong.
 #[derive(Debug, Error)]
@@ -362,6 +362,7 @@ pub fn observation_layout_for(
         &config.observation,
         &robot.trunk().name,
     ))
+}
 
 /// The `[randomize]` state of an environment of `model` with `config` and its configured
 /// `actuator`, or `None` when nothing is randomised; errors if the ranges do not fit the robot.
