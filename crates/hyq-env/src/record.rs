@@ -60,7 +60,7 @@ pub const RECORD_KEYS: [RecordKey; 17] = [
     RecordKey {
         name: "obs",
         kind: "{obs} numbers",
-        meaning: "the observation after the step, §3 order",
+        meaning: "the observation after the step: the §3 rows, then any observation.extra rows",
         optional: false,
     },
     RecordKey {

@@ -257,7 +257,7 @@ fn check_stairs(s: &Stairs, spacing: [f64; 2]) -> Result<(), TerrainError> {
         return Err(TerrainError::invalid(
             "step_height_m",
             format!(
-                "{} must be > 0 (use climb down for descending stairs)",
+                "{} must be > 0 (stairs that go down: stairs = \"down\")",
                 s.step_height
             ),
         ));
