@@ -43,8 +43,8 @@ fn rllib_venv(root: &Path) -> PathBuf {
         .unwrap_or_else(|| root.join("target").join("rllib-venv"))
 }
 
-/// Runs `command`, echoing it; fails on a non-zero exit.
-fn run(command: &mut Command, what: &str) -> Result<(), String> {
+/// Runs `command`, echoing it; fails on a non-zero exit (the training stage uses it too).
+pub(crate) fn run(command: &mut Command, what: &str) -> Result<(), String> {
     println!("\n$ {what}");
     let status = command
         .status()

@@ -11,25 +11,13 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+use crate::rllib::run;
 use crate::stages::{pytest_passed_count, venv_command, venv_python};
 
 fn train_venv(root: &Path) -> PathBuf {
     std::env::var_os("HYQ_TRAIN_VENV")
         .map(PathBuf::from)
         .unwrap_or_else(|| root.join("target").join("train-venv"))
-}
-
-/// Runs `command`, echoing it; fails on a non-zero exit.
-fn run(command: &mut Command, what: &str) -> Result<(), String> {
-    println!("\n$ {what}");
-    let status = command
-        .status()
-        .map_err(|e| format!("cannot run {what}: {e}"))?;
-    if status.success() {
-        Ok(())
-    } else {
-        Err(format!("`{what}` failed ({status})"))
-    }
 }
 
 /// The stage: builds the venv if needed, installs the package into it and runs pytest on
