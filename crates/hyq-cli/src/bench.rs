@@ -316,18 +316,7 @@ pub fn bench_vec<B: Backend>(
     let mut left = steps;
     while left > 0 {
         let block = left.min(BLOCK as u64) as usize;
-        // As in the single-env pass, the random policy reads only the action space.
-        {
-            let input = vec.env(0).policy_input();
-            for step_actions in actions.chunks_exact_mut(n * act_len).take(block) {
-                for (policy, action) in policies
-                    .iter_mut()
-                    .zip(step_actions.chunks_exact_mut(act_len))
-                {
-                    policy.act(&input, action);
-                }
-            }
-        }
+        draw_actions(vec, &mut policies, &mut actions, block);
         let cpu0 = cpu_now()?;
         let wall0 = Instant::now();
         for step_actions in actions.chunks_exact(n * act_len).take(block) {
@@ -381,6 +370,30 @@ pub fn bench_vec<B: Backend>(
         env_steps_per_s_cpu: rate(cpu.as_secs_f64()),
         resets,
     })
+}
+
+/// The random actions of the next `block` vector steps into `actions` (step by step, env by
+/// env), outside the timed part. As in the single-env pass, the random policy reads only the
+/// action space.
+fn draw_actions<B: Backend>(
+    vec: &VecEnv<B>,
+    policies: &mut [RandomPolicy],
+    actions: &mut [f64],
+    block: usize,
+) {
+    let act_len = vec.action_len();
+    let input = vec.env(0).policy_input();
+    for step_actions in actions
+        .chunks_exact_mut(policies.len() * act_len)
+        .take(block)
+    {
+        for (policy, action) in policies
+            .iter_mut()
+            .zip(step_actions.chunks_exact_mut(act_len))
+        {
+            policy.act(&input, action);
+        }
+    }
 }
 
 fn print_vec_report(r: &VecBenchReport, json: bool) -> Result<(), Failure> {

@@ -105,7 +105,7 @@ fn extras_are_the_height_scan_goal_vector_and_trunk_velocity_in_the_trunk_frame(
         env.step(&action).unwrap_or_else(|e| panic!("{e}"));
     }
     let obs = env.observation().to_vec();
-    let trunk = env.state().trunk.clone();
+    let trunk = env.state().trunk;
     let c = trunk.pose.translation.vector;
     let to_trunk = trunk.pose.rotation.inverse();
     // The heading frame is the trunk's yaw now (it settles within a degree of the 30° given).

@@ -67,7 +67,8 @@ pub fn load(name: &str) -> Result<RobotModel, ModelError> {
 
 /// Bundled robot `name`, parsed once per process and shared; `None` if there is no such robot.
 pub fn by_name(name: &str) -> Option<Arc<RobotModel>> {
-    static MODELS: [OnceLock<Arc<RobotModel>>; NAMES.len()] = [OnceLock::new(), OnceLock::new()];
+    static MODELS: [OnceLock<Arc<RobotModel>>; NAMES.len()] =
+        [const { OnceLock::new() }; NAMES.len()];
     let i = NAMES.iter().position(|n| *n == name)?;
     Some(
         MODELS[i]

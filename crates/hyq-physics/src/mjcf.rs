@@ -431,8 +431,8 @@ impl MujocoOptions {
     }
 }
 
-/// Escapes text for an XML attribute value in double quotes.
-fn attr(text: &str) -> String {
+/// Escapes text for an XML attribute value in double quotes (the URDF writer's too).
+pub(crate) fn attr(text: &str) -> String {
     let mut out = String::with_capacity(text.len());
     for c in text.chars() {
         match c {
@@ -447,8 +447,8 @@ fn attr(text: &str) -> String {
     out
 }
 
-/// Numbers separated by spaces, each in shortest round-trip form.
-fn nums(values: &[f64]) -> String {
+/// Numbers separated by spaces, each in shortest round-trip form (the URDF writer's too).
+pub(crate) fn nums(values: &[f64]) -> String {
     let mut out = String::new();
     for (i, v) in values.iter().enumerate() {
         if i > 0 {
@@ -751,30 +751,12 @@ fn write_body(
         full_inertia(&link.inertia)
     );
     for (k, collision) in link.collisions.iter().enumerate() {
-        let (kind, size) = match collision.shape {
-            Shape::Box { half_extents } => (
-                "box",
-                nums(&[half_extents.x, half_extents.y, half_extents.z]),
-            ),
-            Shape::Sphere { radius } => ("sphere", nums(&[radius])),
-            Shape::Capsule {
-                radius,
-                half_length,
-            } => ("capsule", nums(&[radius, half_length])),
-            Shape::Cylinder {
-                radius,
-                half_length,
-            } => ("cylinder", nums(&[radius, half_length])),
-            // `Shape` is non-exhaustive: a shape added to the model later must be mapped
-            // here before MuJoCo can simulate it.
-            #[allow(unreachable_patterns)]
-            ref other => {
-                return Err(MjcfError::Unsupported(format!(
-                    "link {}: collision shape {other:?}",
-                    link.name
-                )));
-            }
-        };
+        let (kind, size) = geom_type_size(&collision.shape).ok_or_else(|| {
+            MjcfError::Unsupported(format!(
+                "link {}: collision shape {:?}",
+                link.name, collision.shape
+            ))
+        })?;
         let _ = writeln!(
             x,
             "{inner}<geom name=\"{}\" type=\"{kind}\" size=\"{size}\" {}/>",
@@ -783,6 +765,30 @@ fn write_body(
         );
     }
     Ok(())
+}
+
+/// A geom's MuJoCo `type` and `size` for `shape` (half sizes, as MuJoCo takes them), or `None`
+/// for a shape MuJoCo is not given.
+fn geom_type_size(shape: &Shape) -> Option<(&'static str, String)> {
+    Some(match *shape {
+        Shape::Box { half_extents } => (
+            "box",
+            nums(&[half_extents.x, half_extents.y, half_extents.z]),
+        ),
+        Shape::Sphere { radius } => ("sphere", nums(&[radius])),
+        Shape::Capsule {
+            radius,
+            half_length,
+        } => ("capsule", nums(&[radius, half_length])),
+        Shape::Cylinder {
+            radius,
+            half_length,
+        } => ("cylinder", nums(&[radius, half_length])),
+        // `Shape` is non-exhaustive: a shape added to the model later must be mapped here
+        // before MuJoCo can simulate it.
+        #[allow(unreachable_patterns)]
+        _ => return None,
+    })
 }
 
 /// The actuators of `options.actuators`, one per joint.

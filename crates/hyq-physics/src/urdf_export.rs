@@ -24,7 +24,8 @@ use std::fmt::Write as _;
 
 use nalgebra::{Isometry3, Rotation3, UnitQuaternion, Vector3};
 
-use crate::model::{RobotModel, Shape};
+use crate::mjcf::{attr, nums};
+use crate::model::{Joint, Link, RobotModel, Shape};
 
 /// How a capsule shape is written: URDF's schema has no capsule element.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -64,35 +65,6 @@ pub enum UrdfExportError {
     Unsupported(String),
 }
 
-/// Escapes text for an XML attribute value in double quotes.
-fn attr(text: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    for c in text.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            '\'' => out.push_str("&apos;"),
-            c => out.push(c),
-        }
-    }
-    out
-}
-
-/// Numbers separated by spaces, each in shortest round-trip form.
-fn nums(values: &[f64]) -> String {
-    let mut out = String::new();
-    for (i, v) in values.iter().enumerate() {
-        if i > 0 {
-            out.push(' ');
-        }
-        // Writing to a String cannot fail.
-        let _ = write!(out, "{v}");
-    }
-    out
-}
-
 /// URDF `rpy` (R = Rz(yaw) Ry(pitch) Rx(roll)) of a rotation, accurate near pitch = ±π/2
 /// too, where HyQ's hip frames sit: yaw first from the first column, then pitch and roll from
 /// what remains once that yaw is taken out (`Rz(−yaw) R = Ry(pitch) Rx(roll)`), whose entries
@@ -129,101 +101,118 @@ pub fn to_urdf(model: &RobotModel, options: &UrdfOptions) -> Result<String, Urdf
         attr(model.name())
     );
     for link in model.links() {
-        let _ = writeln!(x, "  <link name=\"{}\">", attr(&link.name));
-        let c = link.com;
-        let i = link.inertia;
-        let _ = writeln!(
-            x,
-            "    <inertial>\n      <origin xyz=\"{}\" rpy=\"0 0 0\"/>\n      <mass value=\"{}\"/>\n      \
-             <inertia ixx=\"{}\" ixy=\"{}\" ixz=\"{}\" iyy=\"{}\" iyz=\"{}\" izz=\"{}\"/>\n    </inertial>",
-            nums(&[c.x, c.y, c.z]),
-            nums(&[link.mass]),
-            nums(&[i[(0, 0)]]),
-            nums(&[i[(0, 1)]]),
-            nums(&[i[(0, 2)]]),
-            nums(&[i[(1, 1)]]),
-            nums(&[i[(1, 2)]]),
-            nums(&[i[(2, 2)]]),
-        );
-        for collision in &link.collisions {
-            let geometry = match collision.shape {
-                Shape::Box { half_extents } => format!(
-                    "<box size=\"{}\"/>",
-                    nums(&[
-                        2.0 * half_extents.x,
-                        2.0 * half_extents.y,
-                        2.0 * half_extents.z
-                    ])
-                ),
-                Shape::Sphere { radius } => format!("<sphere radius=\"{}\"/>", nums(&[radius])),
-                Shape::Cylinder {
-                    radius,
-                    half_length,
-                } => format!(
-                    "<cylinder radius=\"{}\" length=\"{}\"/>",
-                    nums(&[radius]),
-                    nums(&[2.0 * half_length])
-                ),
-                Shape::Capsule {
-                    radius,
-                    half_length,
-                } => match options.capsules {
-                    CapsuleAs::Capsule => format!(
-                        "<capsule radius=\"{}\" length=\"{}\"/>",
-                        nums(&[radius]),
-                        nums(&[2.0 * half_length])
-                    ),
-                    CapsuleAs::Cylinder => format!(
-                        "<cylinder radius=\"{}\" length=\"{}\"/>",
-                        nums(&[radius]),
-                        nums(&[2.0 * (half_length + radius)])
-                    ),
-                },
-                // `Shape` is non-exhaustive: a shape added to the model later must be mapped
-                // here before it can be written.
-                #[allow(unreachable_patterns)]
-                ref other => {
-                    return Err(UrdfExportError::Unsupported(format!(
-                        "link {}: collision shape {other:?}",
-                        link.name
-                    )));
-                }
-            };
-            let name = match &collision.name {
-                Some(name) => format!(" name=\"{}\"", attr(name)),
-                None => String::new(),
-            };
-            let _ = writeln!(
-                x,
-                "    <collision{name}>\n      {}\n      <geometry>{geometry}</geometry>\n    </collision>",
-                origin(&collision.origin)
-            );
-        }
-        x.push_str("  </link>\n");
+        write_link(&mut x, link, options)?;
     }
     for joint in model.joints() {
-        let links = model.links();
-        let a = joint.axis;
-        let _ = writeln!(
-            x,
-            "  <joint name=\"{}\" type=\"revolute\">\n    <parent link=\"{}\"/>\n    \
-             <child link=\"{}\"/>\n    {}\n    <axis xyz=\"{}\"/>\n    \
-             <limit lower=\"{}\" upper=\"{}\" effort=\"{}\" velocity=\"{}\"/>\n    \
-             <dynamics damping=\"{}\" friction=\"0\"/>\n  </joint>",
-            attr(&joint.urdf_name),
-            attr(&links[joint.parent].name),
-            attr(&links[joint.child].name),
-            origin(&joint.origin),
-            nums(&[a.x, a.y, a.z]),
-            nums(&[joint.lower]),
-            nums(&[joint.upper]),
-            nums(&[joint.effort]),
-            nums(&[joint.velocity]),
-            nums(&[joint.damping]),
-        );
+        write_joint(&mut x, model, joint);
     }
     x.push_str("</robot>\n");
     Ok(x)
+}
+
+/// Writes one `<link>`: its inertial and each collision shape.
+fn write_link(x: &mut String, link: &Link, options: &UrdfOptions) -> Result<(), UrdfExportError> {
+    let _ = writeln!(x, "  <link name=\"{}\">", attr(&link.name));
+    let c = link.com;
+    let i = link.inertia;
+    let _ = writeln!(
+        x,
+        "    <inertial>\n      <origin xyz=\"{}\" rpy=\"0 0 0\"/>\n      <mass value=\"{}\"/>\n      \
+         <inertia ixx=\"{}\" ixy=\"{}\" ixz=\"{}\" iyy=\"{}\" iyz=\"{}\" izz=\"{}\"/>\n    </inertial>",
+        nums(&[c.x, c.y, c.z]),
+        nums(&[link.mass]),
+        nums(&[i[(0, 0)]]),
+        nums(&[i[(0, 1)]]),
+        nums(&[i[(0, 2)]]),
+        nums(&[i[(1, 1)]]),
+        nums(&[i[(1, 2)]]),
+        nums(&[i[(2, 2)]]),
+    );
+    for collision in &link.collisions {
+        let geometry = geometry(&collision.shape, options).ok_or_else(|| {
+            UrdfExportError::Unsupported(format!(
+                "link {}: collision shape {:?}",
+                link.name, collision.shape
+            ))
+        })?;
+        let name = match &collision.name {
+            Some(name) => format!(" name=\"{}\"", attr(name)),
+            None => String::new(),
+        };
+        let _ = writeln!(
+            x,
+            "    <collision{name}>\n      {}\n      <geometry>{geometry}</geometry>\n    </collision>",
+            origin(&collision.origin)
+        );
+    }
+    x.push_str("  </link>\n");
+    Ok(())
+}
+
+/// The `<geometry>` element of `shape` (a capsule as `options` says), or `None` for a shape
+/// URDF cannot hold.
+fn geometry(shape: &Shape, options: &UrdfOptions) -> Option<String> {
+    Some(match *shape {
+        Shape::Box { half_extents } => format!(
+            "<box size=\"{}\"/>",
+            nums(&[
+                2.0 * half_extents.x,
+                2.0 * half_extents.y,
+                2.0 * half_extents.z
+            ])
+        ),
+        Shape::Sphere { radius } => format!("<sphere radius=\"{}\"/>", nums(&[radius])),
+        Shape::Cylinder {
+            radius,
+            half_length,
+        } => format!(
+            "<cylinder radius=\"{}\" length=\"{}\"/>",
+            nums(&[radius]),
+            nums(&[2.0 * half_length])
+        ),
+        Shape::Capsule {
+            radius,
+            half_length,
+        } => match options.capsules {
+            CapsuleAs::Capsule => format!(
+                "<capsule radius=\"{}\" length=\"{}\"/>",
+                nums(&[radius]),
+                nums(&[2.0 * half_length])
+            ),
+            CapsuleAs::Cylinder => format!(
+                "<cylinder radius=\"{}\" length=\"{}\"/>",
+                nums(&[radius]),
+                nums(&[2.0 * (half_length + radius)])
+            ),
+        },
+        // `Shape` is non-exhaustive: a shape added to the model later must be mapped here
+        // before it can be written.
+        #[allow(unreachable_patterns)]
+        _ => return None,
+    })
+}
+
+/// Writes one revolute `<joint>` of `model`.
+fn write_joint(x: &mut String, model: &RobotModel, joint: &Joint) {
+    let links = model.links();
+    let a = joint.axis;
+    let _ = writeln!(
+        x,
+        "  <joint name=\"{}\" type=\"revolute\">\n    <parent link=\"{}\"/>\n    \
+         <child link=\"{}\"/>\n    {}\n    <axis xyz=\"{}\"/>\n    \
+         <limit lower=\"{}\" upper=\"{}\" effort=\"{}\" velocity=\"{}\"/>\n    \
+         <dynamics damping=\"{}\" friction=\"0\"/>\n  </joint>",
+        attr(&joint.urdf_name),
+        attr(&links[joint.parent].name),
+        attr(&links[joint.child].name),
+        origin(&joint.origin),
+        nums(&[a.x, a.y, a.z]),
+        nums(&[joint.lower]),
+        nums(&[joint.upper]),
+        nums(&[joint.effort]),
+        nums(&[joint.velocity]),
+        nums(&[joint.damping]),
+    );
 }
 
 #[cfg(test)]

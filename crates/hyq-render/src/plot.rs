@@ -357,15 +357,40 @@ fn reward_panels<'a>(
     t: &[f64],
     cumulative: &'a [Vec<f64>],
 ) -> [Panel<'a>; 4] {
-    let column = |term: &RewardTerm| series.term(term.name).unwrap_or_default();
+    [
+        rewards_panel(series),
+        multipliers_panel(series),
+        step_reward_panel(series, t),
+        cumulative_panel(cumulative),
+    ]
+}
+
+/// The column of `term` in `series` (empty if the series lacks it).
+fn column<'a>(series: &'a EpisodeSeries, term: &RewardTerm) -> &'a [f64] {
+    series.term(term.name).unwrap_or_default()
+}
+
+/// The first panel: each reward term per step.
+fn rewards_panel(series: &EpisodeSeries) -> Panel<'_> {
     let rewards = coloured(TermKind::Reward, &REWARD_COLOURS)
         .map(|(term, colour)| Line {
             label: term.name.to_owned(),
             colour,
-            ys: column(term),
+            ys: column(series, term),
             width: 2,
         })
         .collect();
+    Panel {
+        caption: "Reward terms per step (§4)",
+        lines: rewards,
+        y_desc: "reward",
+        y_range: None,
+        markers: Vec::new(),
+    }
+}
+
+/// The second panel: each multiplier per step.
+fn multipliers_panel(series: &EpisodeSeries) -> Panel<'_> {
     // The multipliers are often all 1 at once: the first is drawn widest, so that the lines
     // drawn over it leave it visible.
     let multipliers = coloured(TermKind::Multiplier, &MULTIPLIER_COLOURS)
@@ -373,21 +398,50 @@ fn reward_panels<'a>(
         .map(|(i, (term, colour))| Line {
             label: term.name.to_owned(),
             colour,
-            ys: column(term),
+            ys: column(series, term),
             width: if i == 0 { 3 } else { 2 },
         })
         .collect();
+    Panel {
+        caption: "Penalty multipliers (§5.1, §5.2)",
+        lines: multipliers,
+        y_desc: "multiplier",
+        y_range: Some((-0.05, 1.12)),
+        markers: Vec::new(),
+    }
+}
+
+/// The third panel: the step reward, and each penalty as markers at the steps (times `t`)
+/// where it was paid.
+fn step_reward_panel<'a>(series: &'a EpisodeSeries, t: &[f64]) -> Panel<'a> {
     let penalties = coloured(TermKind::Penalty, &PENALTY_COLOURS)
         .map(|(term, colour)| {
             let points = t
                 .iter()
-                .zip(column(term))
+                .zip(column(series, term))
                 .filter(|(_, p)| **p != 0.0)
                 .map(|(&x, &p)| (x, -p))
                 .collect();
             (format!("− {}", term.name), colour, points)
         })
         .collect();
+    Panel {
+        caption: "Step reward and fixed penalties (§5.3, §5.4)",
+        lines: vec![Line {
+            label: "r (step reward)".to_owned(),
+            colour: INK,
+            ys: &series.reward,
+            width: 2,
+        }],
+        y_desc: "reward",
+        y_range: None,
+        markers: penalties,
+    }
+}
+
+/// The fourth panel: the return so far and each reward term's sum (`cumulative` as
+/// [`reward_panels`] takes it).
+fn cumulative_panel(cumulative: &[Vec<f64>]) -> Panel<'_> {
     let (sum_of_rewards, sums_of_terms) = cumulative.split_first().unzip();
     let sums = std::iter::once(Line {
         label: "Σ r (return)".to_owned(),
@@ -409,41 +463,13 @@ fn reward_panels<'a>(
             }),
     )
     .collect();
-    [
-        Panel {
-            caption: "Reward terms per step (§4)",
-            lines: rewards,
-            y_desc: "reward",
-            y_range: None,
-            markers: Vec::new(),
-        },
-        Panel {
-            caption: "Penalty multipliers (§5.1, §5.2)",
-            lines: multipliers,
-            y_desc: "multiplier",
-            y_range: Some((-0.05, 1.12)),
-            markers: Vec::new(),
-        },
-        Panel {
-            caption: "Step reward and fixed penalties (§5.3, §5.4)",
-            lines: vec![Line {
-                label: "r (step reward)".to_owned(),
-                colour: INK,
-                ys: &series.reward,
-                width: 2,
-            }],
-            y_desc: "reward",
-            y_range: None,
-            markers: penalties,
-        },
-        Panel {
-            caption: "Cumulative reward",
-            lines: sums,
-            y_desc: "cumulative reward",
-            y_range: None,
-            markers: Vec::new(),
-        },
-    ]
+    Panel {
+        caption: "Cumulative reward",
+        lines: sums,
+        y_desc: "cumulative reward",
+        y_range: None,
+        markers: Vec::new(),
+    }
 }
 
 /// Σ r, then Σ of each reward term, per step (the cumulative panel's lines).

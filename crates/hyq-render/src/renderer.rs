@@ -946,6 +946,12 @@ impl Renderer {
         }
         // One dot per foot, orange when in contact, with the foot's name from the profile.
         let baseline = margin + pad + TEXT_PX - 1.0 + labels.len() as f32 * LINE_PX;
+        self.draw_feet(x0, baseline, contacts, &label_paint);
+    }
+
+    /// The overlay's last row from `x0` on `baseline`: a dot per foot, filled when the foot
+    /// touched the ground (`contacts`), and its name.
+    fn draw_feet(&mut self, x0: f32, baseline: f32, contacts: &[bool], label_paint: &Paint) {
         let mut x = x0;
         for (f, name) in self.foot_names.iter().enumerate() {
             let (cx, cy, r) = (x + 5.0, baseline - 4.5, 4.5);
@@ -970,7 +976,7 @@ impl Renderer {
                 TEXT_PX - 1.0,
                 x + 13.0,
                 baseline,
-                &label_paint,
+                label_paint,
             );
             x += 44.0;
         }

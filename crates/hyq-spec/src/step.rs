@@ -159,22 +159,6 @@ pub struct RewardBreakdown {
 }
 
 impl RewardBreakdown {
-    /// The breakdown where no reward is given (after reset, on a diverged step): every term at
-    /// its kind's neutral value ([`TermKind::neutral`]: rewards and penalties 0, multipliers 1),
-    /// total 0.
-    pub const NEUTRAL: RewardBreakdown = RewardBreakdown {
-        r_b: 0.0,
-        r_n: 0.0,
-        r_e: 0.0,
-        r_reach: 0.0,
-        m_yaw: 1.0,
-        m_pitch: 1.0,
-        m_height: 1.0,
-        joint_penalty: 0.0,
-        fall_penalty: 0.0,
-        total: 0.0,
-    };
-
     /// (r_b + r_n + r_e + r_reach) · m_yaw · m_pitch · m_height − joint_penalty − fall_penalty:
     /// the rewards summed, then multiplied by each multiplier, then each penalty subtracted,
     /// left to right in the order of [`crate::terms::REWARD_TERMS`] (so eq. (1)'s sum is

@@ -94,91 +94,100 @@ impl RewardTerm {
 /// The number of reward terms.
 pub const NUM_REWARD_TERMS: usize = 9;
 
-/// Every reward term, in the order they are reported: the rewards (§4), the multipliers (§5.1,
-/// §5.2), the penalties (§5.3, §5.4).
-pub const REWARD_TERMS: [RewardTerm; NUM_REWARD_TERMS] = [
-    RewardTerm {
-        name: "r_b",
-        kind: TermKind::Reward,
+/// Writes [`REWARD_TERMS`] and [`RewardBreakdown::NEUTRAL`] from one list of rows, each a
+/// field of [`RewardBreakdown`] with its kind, section, sum name and opt-in switch: the row's
+/// name, value and place are its field's, and the neutral breakdown puts every term at its
+/// kind's [`TermKind::neutral`]. A field without a row, or a row without a field, does not
+/// compile (`NEUTRAL` names every field).
+macro_rules! reward_terms {
+    ($($field:ident {
+        kind: $kind:ident,
+        section: $section:literal,
+        sum_name: $sum:expr,
+        opt_in: $opt:expr,
+    },)*) => {
+        /// Every reward term, in the order they are reported: the rewards (§4), the multipliers
+        /// (§5.1, §5.2), the penalties (§5.3, §5.4).
+        pub const REWARD_TERMS: [RewardTerm; NUM_REWARD_TERMS] = [$(
+            RewardTerm {
+                name: stringify!($field),
+                kind: TermKind::$kind,
+                section: $section,
+                sum_name: $sum,
+                opt_in: $opt,
+                get: |b| b.$field,
+                get_mut: |b| &mut b.$field,
+            },
+        )*];
+
+        impl RewardBreakdown {
+            /// The breakdown where no reward is given (after reset, on a diverged step): every
+            /// term at its kind's neutral value ([`TermKind::neutral`]: rewards and penalties 0,
+            /// multipliers 1), total 0.
+            pub const NEUTRAL: RewardBreakdown = RewardBreakdown {
+                $($field: TermKind::$kind.neutral(),)*
+                total: 0.0,
+            };
+        }
+    };
+}
+
+reward_terms! {
+    r_b {
+        kind: Reward,
         section: "§4.1",
         sum_name: None,
         opt_in: None,
-        get: |b| b.r_b,
-        get_mut: |b| &mut b.r_b,
     },
-    RewardTerm {
-        name: "r_n",
-        kind: TermKind::Reward,
+    r_n {
+        kind: Reward,
         section: "§4.2",
         sum_name: Some("R_n"),
         opt_in: None,
-        get: |b| b.r_n,
-        get_mut: |b| &mut b.r_n,
     },
-    RewardTerm {
-        name: "r_e",
-        kind: TermKind::Reward,
+    r_e {
+        kind: Reward,
         section: "§4.3",
         sum_name: Some("R_e(D_n)"),
         opt_in: None,
-        get: |b| b.r_e,
-        get_mut: |b| &mut b.r_e,
     },
-    RewardTerm {
-        name: "r_reach",
-        kind: TermKind::Reward,
+    r_reach {
+        kind: Reward,
         section: "§4.4",
         sum_name: None,
         opt_in: None,
-        get: |b| b.r_reach,
-        get_mut: |b| &mut b.r_reach,
     },
-    RewardTerm {
-        name: "m_yaw",
-        kind: TermKind::Multiplier,
+    m_yaw {
+        kind: Multiplier,
         section: "§5.1.1",
         sum_name: None,
         opt_in: None,
-        get: |b| b.m_yaw,
-        get_mut: |b| &mut b.m_yaw,
     },
-    RewardTerm {
-        name: "m_pitch",
-        kind: TermKind::Multiplier,
+    m_pitch {
+        kind: Multiplier,
         section: "§5.1.2",
         sum_name: None,
         opt_in: None,
-        get: |b| b.m_pitch,
-        get_mut: |b| &mut b.m_pitch,
     },
-    RewardTerm {
-        name: "m_height",
-        kind: TermKind::Multiplier,
+    m_height {
+        kind: Multiplier,
         section: "§5.2",
         sum_name: None,
         opt_in: Some(|task| task.height_penalty.is_some()),
-        get: |b| b.m_height,
-        get_mut: |b| &mut b.m_height,
     },
-    RewardTerm {
-        name: "joint_penalty",
-        kind: TermKind::Penalty,
+    joint_penalty {
+        kind: Penalty,
         section: "§5.3",
         sum_name: None,
         opt_in: None,
-        get: |b| b.joint_penalty,
-        get_mut: |b| &mut b.joint_penalty,
     },
-    RewardTerm {
-        name: "fall_penalty",
-        kind: TermKind::Penalty,
+    fall_penalty {
+        kind: Penalty,
         section: "§5.4",
         sum_name: None,
         opt_in: None,
-        get: |b| b.fall_penalty,
-        get_mut: |b| &mut b.fall_penalty,
     },
-];
+}
 
 /// The terms' names, in the table's order.
 pub const TERM_NAMES: [&str; NUM_REWARD_TERMS] = {

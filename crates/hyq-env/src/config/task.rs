@@ -8,25 +8,27 @@ use super::{ConfigError, EnvConfig, Table};
 
 impl Table for TaskConfig {
     fn validate(&self, _: &EnvConfig) -> Result<(), ConfigError> {
+        use hyq_spec::ConfigError as E;
         TaskConfig::validate(self).map_err(|e| match e {
-            hyq_spec::ConfigError::Real {
+            E::Real {
                 field,
                 value,
                 expected,
-            } => invalid(
-                &format!("task.{field}"),
-                value,
-                &format!("must be {expected}"),
-            ),
-            hyq_spec::ConfigError::Integer {
+            } => task_invalid(field, value, expected),
+            E::Integer {
                 field,
                 value,
                 expected,
-            } => invalid(
-                &format!("task.{field}"),
-                value,
-                &format!("must be {expected}"),
-            ),
+            } => task_invalid(field, value, expected),
         })
     }
+}
+
+/// hyq-spec's refusal of `field`'s `value` as the error of key `task.<field>`.
+fn task_invalid(field: &str, value: impl std::fmt::Debug, expected: &str) -> ConfigError {
+    invalid(
+        &format!("task.{field}"),
+        value,
+        &format!("must be {expected}"),
+    )
 }

@@ -260,13 +260,41 @@ pub fn lifted_foot_reports_no_contact<B: Backend>(robot: &Robot, options: &B::Op
     let model = Arc::clone(b.model());
     let lifted = 0;
     let foot = &model.tracked()[lifted];
-    // The last joint on the lifted foot's chain (e.g. the knee) raises it.
+    let state = with_foot_lifted(&model, lifted, 5e-3);
+    set(&mut b, &state);
+    let act = Actuator::new(&model);
+    let mut scratch = PdScratch::new(model.num_joints());
+    let targets = state.q.clone();
+    // 10 ms: the robot settles by well under the 4 mm left above the contact distance.
+    for n in 1..=10 {
+        step_pd(&mut b, &act, &targets, &mut scratch);
+        let flags = read_contacts(&b);
+        assert!(
+            !flags[lifted],
+            "step {n}: foot {} reported in contact {:.2} mm above the ground",
+            foot.name,
+            1e3 * clearances(&b)[lifted]
+        );
+        for t in (0..model.num_feet()).filter(|&t| t != lifted) {
+            assert!(
+                flags[t],
+                "step {n}: foot {} on the ground not in contact",
+                model.tracked()[t].name
+            );
+        }
+    }
+}
+
+/// The spawn state with tracked foot `lifted` raised `lift` m above the other feet, which stand
+/// exactly on the ground: the last joint on the foot's chain (e.g. the knee) is turned by a
+/// secant search, and must stay within its limits.
+fn with_foot_lifted(model: &RobotModel, lifted: usize, lift: f64) -> RobotState {
+    let foot = &model.tracked()[lifted];
     let joint = model.links()[foot.link]
         .parent_joint
         .expect("a foot hangs from a joint");
     let mut state = model.spawn_state();
-    // Height of the lifted foot above the lowest of the other feet, minus the 5 mm wanted.
-    let lift = 5e-3;
+    // Height of the lifted foot above the lowest of the other feet, minus the height wanted.
     let heights = |s: &RobotState| -> Vec<f64> {
         let mut poses = vec![Isometry3::identity(); model.num_links()];
         model
@@ -312,26 +340,5 @@ pub fn lifted_foot_reports_no_contact<B: Backend>(robot: &Robot, options: &B::Op
         (foot_height - lift).abs() < 1e-6,
         "foot placed at {foot_height} m"
     );
-    set(&mut b, &state);
-    let act = Actuator::new(&model);
-    let mut scratch = PdScratch::new(model.num_joints());
-    let targets = state.q.clone();
-    // 10 ms: the robot settles by well under the 4 mm left above the contact distance.
-    for n in 1..=10 {
-        step_pd(&mut b, &act, &targets, &mut scratch);
-        let flags = read_contacts(&b);
-        assert!(
-            !flags[lifted],
-            "step {n}: foot {} reported in contact {:.2} mm above the ground",
-            foot.name,
-            1e3 * clearances(&b)[lifted]
-        );
-        for t in (0..model.num_feet()).filter(|&t| t != lifted) {
-            assert!(
-                flags[t],
-                "step {n}: foot {} on the ground not in contact",
-                model.tracked()[t].name
-            );
-        }
-    }
+    state
 }

@@ -98,32 +98,9 @@ pub fn joint_limits_hold_under_full_torque<B: Backend>(robot: &Robot, options: &
                 for (i, tau) in scratch.torques().iter().enumerate() {
                     saturated[i] |= tau.abs() >= model.joints()[i].effort;
                 }
-                let q = read_q(&b);
-                for (i, j) in model.joints().iter().enumerate() {
-                    let over = (j.lower - q[i]).max(q[i] - j.upper).max(0.0);
-                    worst_overshoot = worst_overshoot.max(over);
-                    assert!(
-                        over <= 0.1,
-                        "joint {} at {} rad, {over} rad past its range [{}, {}] (in the air: {in_air})",
-                        j.name,
-                        q[i],
-                        j.lower,
-                        j.upper
-                    );
-                    closest[i][0] = closest[i][0].min((q[i] - j.lower).abs());
-                    closest[i][1] = closest[i][1].min((q[i] - j.upper).abs());
-                }
-                let fk = fk_poses(&b);
-                let engine = engine_poses(&b);
-                for (l, (a, e)) in fk.iter().zip(&engine).enumerate() {
-                    let sep = (a.translation.vector - e.translation.vector).norm();
-                    worst_separation = worst_separation.max(sep);
-                    assert!(
-                        sep <= 1e-3,
-                        "body {} is {sep} m away from where its joints put it (in the air: {in_air})",
-                        model.links()[l].name
-                    );
-                }
+                let over = check_within_range(&b, &model, in_air, &mut closest);
+                worst_overshoot = worst_overshoot.max(over);
+                worst_separation = worst_separation.max(check_joined(&b, &model, in_air));
             }
             if in_air {
                 let q = read_q(&b);
@@ -165,6 +142,51 @@ pub fn joint_limits_hold_under_full_torque<B: Backend>(robot: &Robot, options: &
         "{}: worst limit overshoot {worst_overshoot:.4} rad, worst joint separation {worst_separation:.2e} m",
         B::NAME
     );
+}
+
+/// Checks that every joint of `b` is within 0.1 rad of its range and records in `closest` its
+/// closest approach to its [lower, upper] limits; returns the largest overshoot.
+fn check_within_range<B: Backend>(
+    b: &B,
+    model: &RobotModel,
+    in_air: bool,
+    closest: &mut [[f64; 2]],
+) -> f64 {
+    let q = read_q(b);
+    let mut worst: f64 = 0.0;
+    for (i, j) in model.joints().iter().enumerate() {
+        let over = (j.lower - q[i]).max(q[i] - j.upper).max(0.0);
+        worst = worst.max(over);
+        assert!(
+            over <= 0.1,
+            "joint {} at {} rad, {over} rad past its range [{}, {}] (in the air: {in_air})",
+            j.name,
+            q[i],
+            j.lower,
+            j.upper
+        );
+        closest[i][0] = closest[i][0].min((q[i] - j.lower).abs());
+        closest[i][1] = closest[i][1].min((q[i] - j.upper).abs());
+    }
+    worst
+}
+
+/// Checks that no joint of `b` came apart: every body within 1 mm of where the forward
+/// kinematics of its trunk pose and joint angles put it; returns the largest distance.
+fn check_joined<B: Backend>(b: &B, model: &RobotModel, in_air: bool) -> f64 {
+    let fk = fk_poses(b);
+    let engine = engine_poses(b);
+    let mut worst: f64 = 0.0;
+    for (l, (a, e)) in fk.iter().zip(&engine).enumerate() {
+        let sep = (a.translation.vector - e.translation.vector).norm();
+        worst = worst.max(sep);
+        assert!(
+            sep <= 1e-3,
+            "body {} is {sep} m away from where its joints put it (in the air: {in_air})",
+            model.links()[l].name
+        );
+    }
+    worst
 }
 
 /// The actuator's velocity-limit rule keeps joint speeds near their URDF limits in the

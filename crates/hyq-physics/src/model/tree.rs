@@ -74,25 +74,7 @@ pub(super) fn walk(
                 reason: format!("link {:?} is reached twice", link.name),
             });
         }
-        let (body, in_body) = match target {
-            Target::Lump(body, in_body) => (body, in_body),
-            Target::New {
-                parent,
-                joint,
-                origin,
-            } => {
-                bodies.push(BodyBuild {
-                    name: link.name.clone(),
-                    parent,
-                    urdf_joint: joint,
-                    joint_origin: origin,
-                    mass: MassProperties::zero(),
-                    collisions: Vec::new(),
-                    lumped: Vec::new(),
-                });
-                (bodies.len() - 1, Isometry3::identity())
-            }
-        };
+        let (body, in_body) = place(&mut bodies, link, target);
         add_link_to_body(&mut bodies[body], link, &in_body)?;
         placements.insert(link.name.clone(), body);
 
@@ -104,31 +86,7 @@ pub(super) fn walk(
         for &ji in children.iter().rev() {
             let joint = &robot.joints[ji];
             let child = index.link_by_name[joint.child.link.as_str()];
-            check_pose(&joint.origin).map_err(|reason| ModelError::InvalidJoint {
-                joint: joint.name.clone(),
-                reason,
-            })?;
-            let origin = in_body * urdf_pose(&joint.origin);
-            let target = match joint.joint_type {
-                urdf_rs::JointType::Fixed => {
-                    bodies[body].lumped.push(joint.child.link.clone());
-                    Target::Lump(body, origin)
-                }
-                ref kind if is_movable(kind) => Target::New {
-                    parent: Some(body),
-                    joint: Some(ji),
-                    origin,
-                },
-                ref other => {
-                    return Err(ModelError::InvalidJoint {
-                        joint: joint.name.clone(),
-                        reason: format!(
-                            "type {other:?} is not supported (revolute, continuous and fixed \
-                             joints only); make it fixed, or revolute with limits, in the URDF"
-                        ),
-                    });
-                }
-            };
+            let target = child_target(joint, ji, &mut bodies[body], body, &in_body)?;
             stack.push((child, target));
         }
     }
@@ -146,6 +104,69 @@ pub(super) fn walk(
         });
     }
     Ok(Tree { bodies, placements })
+}
+
+/// The body `link` goes into and its pose in that body's frame: for [`Target::New`] a new body,
+/// numbered next, with the link at its origin.
+fn place(
+    bodies: &mut Vec<BodyBuild>,
+    link: &urdf_rs::Link,
+    target: Target,
+) -> (usize, Isometry3<f64>) {
+    match target {
+        Target::Lump(body, in_body) => (body, in_body),
+        Target::New {
+            parent,
+            joint,
+            origin,
+        } => {
+            bodies.push(BodyBuild {
+                name: link.name.clone(),
+                parent,
+                urdf_joint: joint,
+                joint_origin: origin,
+                mass: MassProperties::zero(),
+                collisions: Vec::new(),
+                lumped: Vec::new(),
+            });
+            (bodies.len() - 1, Isometry3::identity())
+        }
+    }
+}
+
+/// Where URDF joint `joint` (number `ji`) puts its child link, whose parent link sits at
+/// `in_body` in `parent` (body number `body`): lumped into `parent` for a fixed joint (which
+/// `parent` records), a new body for a movable one; any other joint type is refused.
+fn child_target(
+    joint: &urdf_rs::Joint,
+    ji: usize,
+    parent: &mut BodyBuild,
+    body: usize,
+    in_body: &Isometry3<f64>,
+) -> Result<Target, ModelError> {
+    check_pose(&joint.origin).map_err(|reason| ModelError::InvalidJoint {
+        joint: joint.name.clone(),
+        reason,
+    })?;
+    let origin = in_body * urdf_pose(&joint.origin);
+    match joint.joint_type {
+        urdf_rs::JointType::Fixed => {
+            parent.lumped.push(joint.child.link.clone());
+            Ok(Target::Lump(body, origin))
+        }
+        ref kind if is_movable(kind) => Ok(Target::New {
+            parent: Some(body),
+            joint: Some(ji),
+            origin,
+        }),
+        ref other => Err(ModelError::InvalidJoint {
+            joint: joint.name.clone(),
+            reason: format!(
+                "type {other:?} is not supported (revolute, continuous and fixed \
+                 joints only); make it fixed, or revolute with limits, in the URDF"
+            ),
+        }),
+    }
 }
 
 /// Checks that every body has a usable mass: positive, with a physically valid, invertible
