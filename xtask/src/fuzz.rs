@@ -1,9 +1,9 @@
 //! `cargo xtask fuzz [--seconds N] [--cases N] [--seed S] [TARGET...]`: the fuzz targets of
-//! `crates/hyq-fuzz` (configuration, robot profile, URDF, policy, step records, ledger) run in
-//! a release build for N seconds each (default 60), or N cases, from seed S (default: the
-//! time). An input that fails is saved to `crates/hyq-fuzz/corpus/<target>/`, where the crate's
-//! tests replay it from then on. `cargo xtask test` runs the same targets briefly (a fixed
-//! seed and case count, in hyq-fuzz's tests).
+//! `crates/hyq-fuzz` (configuration, robot profile, URDF, policy, step records, ledger, terrain
+//! height file) run in a release build for N seconds each (default 60), or N cases, from seed S
+//! (default: the time). An input that fails is saved to `crates/hyq-fuzz/corpus/<target>/`,
+//! where the crate's tests replay it from then on. `cargo xtask test` runs the same targets
+//! briefly (a fixed seed and case count, in hyq-fuzz's tests).
 
 use crate::stages::{run_cargo, workspace_root};
 

@@ -55,6 +55,21 @@ fn the_shipped_ledger_is_complete_and_every_entry_has_a_reason() {
         let (_, source) = ledger.tolerance("hyq", ["rapier", "dart"], s, Metric::OneStepQd);
         assert!(matches!(source, ToleranceSource::Known { .. }), "{s}");
     }
+    // Every ground but flat has its measured entries for every pair in every scenario: the
+    // one-step velocities differ on every ground (contacts at every state sampled).
+    for terrain in ["rough", "slope", "stairs", "heightfield"] {
+        for pair in [["rapier", "dart"], ["rapier", "mujoco"], ["dart", "mujoco"]] {
+            for s in Scenario::ALL {
+                let (tolerance, source) =
+                    ledger.tolerance_on("hyq", pair, s, terrain, Metric::OneStepQd);
+                assert!(
+                    matches!(source, ToleranceSource::Known { .. })
+                        && tolerance > ledger.default[&Metric::OneStepQd],
+                    "{terrain} {pair:?} {s}: {source:?}"
+                );
+            }
+        }
+    }
 }
 
 #[test]

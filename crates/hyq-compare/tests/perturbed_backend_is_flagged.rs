@@ -1,7 +1,8 @@
 //! Invariant: the comparator catches a wrong engine. rapier against a rapier whose gravity is
 //! 10 % too strong (−10.791 m/s²) must be flagged, both against the strict defaults (any engine
 //! pair without known divergences) and against the shipped rapier-vs-DART tolerances: the ledger's
-//! known divergences are not so loose that a 10 % gravity error hides inside them.
+//! known divergences are not so loose that a 10 % gravity error hides inside them. On terrain
+//! the entries measured on that ground judge it, not the flat ground's.
 
 #![allow(clippy::unwrap_used)]
 
@@ -67,4 +68,47 @@ fn ten_percent_more_gravity_is_flagged_even_by_the_rapier_dart_tolerances() {
     // rapier and DART stand 0.15 mm apart (tolerance 0.5 mm); 10 % more gravity sinks rapier
     // by about 1 mm.
     assert!(flagged.contains(&"standing_height_diff_m"), "{flagged:?}");
+}
+
+#[test]
+fn a_comparison_on_rough_ground_is_judged_by_the_rough_grounds_entries() {
+    // The shipped ledger's defaults, with one metric given a strict flat-ground entry and a wide
+    // rough-ground entry for this pair: on rough ground the second must judge it.
+    let defaults = hyq_compare::ledger::BUILT_IN
+        .split("[[known]]")
+        .next()
+        .unwrap();
+    let entry = |terrain: &str, tolerance: f64| {
+        format!(
+            "\n[[known]]\nrobot = \"hyq\"\nbackends = [\"rapier\", \"rapier\"]\nscenario = \
+             \"stand\"\nmetric = \"standing_height_diff_m\"\nterrain = \"{terrain}\"\ntolerance \
+             = {tolerance}\nreason = \"measured on {terrain} ground\"\n"
+        )
+    };
+    let text = format!("{defaults}{}{}", entry("flat", 0.0), entry("rough", 0.01));
+    let ledger = Ledger::parse(&text, "per-ground").unwrap();
+    let mut spec = common::spec(
+        Scenario::Stand,
+        0.2,
+        2,
+        &[("physics.gravity", PERTURBED_GRAVITY)],
+    );
+    spec.overrides = vec![("terrain.kind".into(), "\"rough\"".into())];
+    let r = common::run::<RapierBackend, RapierBackend>(&spec, "rapier (g +10 %)", &ledger);
+    let check = r
+        .checks
+        .iter()
+        .find(|c| c.metric.name() == "standing_height_diff_m")
+        .unwrap();
+    // 10 % more gravity sinks the robot by about 1 mm: beyond the flat entry, within the
+    // rough one, which is the one read.
+    assert!(check.value > 5e-4, "{check:?}");
+    assert_eq!(check.tolerance, 0.01, "{check:?}");
+    assert!(check.within, "{check:?}");
+    match &check.source {
+        hyq_compare::ToleranceSource::Known { reason, .. } => {
+            assert_eq!(reason, "measured on rough ground");
+        }
+        other => panic!("the tolerance came from {other:?}"),
+    }
 }

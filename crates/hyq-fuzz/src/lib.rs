@@ -1,6 +1,6 @@
 //! Fuzzing every loader of a user's file: the configuration (TOML and `--set` overrides), the
-//! robot profile, the URDF, the trained policy (safetensors), the step records `hyq plot` reads
-//! and the comparison ledger.
+//! robot profile, the URDF, the trained policy (safetensors), the step records `hyq plot` reads,
+//! the comparison ledger and a terrain's height file (`.npy` or PNG).
 //!
 //! Each [`Target`] takes its seed files (the bundled and committed ones), mutates them
 //! ([`mutate`]: awkward numbers, odd strings, deleted, repeated and deeply nested parts, cut

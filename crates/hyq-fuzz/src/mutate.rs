@@ -351,6 +351,142 @@ fn poke_float(bytes: &[u8], rng: &mut ChaCha8Rng) -> Vec<u8> {
     out
 }
 
+/// A height file (`.npy` or PNG) with a few edits: a `.npy` header's dtype, shape or order
+/// replaced (its length kept right, or not), a value set to NaN, ±inf or a huge one, a PNG's
+/// size, bit depth or colour type rewritten (with a valid checksum, so the decoder reads it),
+/// bytes inserted, or the file cut short.
+pub fn mutate_height_file(seed: &[u8], rng: &mut ChaCha8Rng) -> Vec<u8> {
+    let mut bytes = seed.to_vec();
+    for _ in 0..rng.random_range(1..=3) {
+        bytes = match rng.random_range(0..6u32) {
+            0 | 1 if bytes.starts_with(b"\x93NUMPY") => npy_header(&bytes, rng),
+            0 | 1 => png_header(&bytes, rng),
+            2 | 3 => poke_f64(&bytes, rng),
+            4 => insert_bytes(&bytes, rng),
+            _ => truncate(&bytes, rng),
+        };
+    }
+    bytes
+}
+
+/// A version-1 `.npy` file with one header field replaced by an awkward value.
+fn npy_header(bytes: &[u8], rng: &mut ChaCha8Rng) -> Vec<u8> {
+    const FIELDS: [(&str, &[&str]); 3] = [
+        (
+            "'descr': ",
+            &[
+                "'<f4'", "'>f8'", "'|u1'", "'<i8'", "'<f2'", "'|b1'", "'<U8'", "'<c16'", "'<f'",
+                "'x'",
+            ],
+        ),
+        (
+            "'shape': ",
+            &[
+                "(3, 4)",
+                "(0, 4)",
+                "(1048577, 1)",
+                "(1024, 1025)",
+                "(7,)",
+                "(2, 2, 2)",
+                "(18446744073709551615, 2)",
+                "(-1, 2)",
+                "()",
+                "(9, 7",
+            ],
+        ),
+        ("'fortran_order': ", &["True", "False", "1", "None"]),
+    ];
+    let Some(len) = bytes
+        .get(8..10)
+        .map(|b| usize::from(u16::from_le_bytes([b[0], b[1]])))
+    else {
+        return bytes.to_vec();
+    };
+    let Some(header) = bytes
+        .get(10..10 + len)
+        .and_then(|h| std::str::from_utf8(h).ok())
+    else {
+        return bytes.to_vec();
+    };
+    let (tag, values) = FIELDS[rng.random_range(0..FIELDS.len())];
+    let Some(start) = header.find(tag).map(|i| i + tag.len()) else {
+        return bytes.to_vec();
+    };
+    let end = header[start..]
+        .find(", '")
+        .or_else(|| header[start..].find(", }"))
+        .map_or(header.len(), |i| start + i);
+    let value = values[rng.random_range(0..values.len())];
+    let new = format!("{}{value}{}", &header[..start], &header[end..]);
+    // Usually the length field follows the new header, so the parser reads it.
+    let new_len = if rng.random_bool(0.9) { new.len() } else { len };
+    let mut out = bytes[..8].to_vec();
+    out.extend_from_slice(&u16::try_from(new_len).unwrap_or(u16::MAX).to_le_bytes());
+    out.extend_from_slice(new.as_bytes());
+    out.extend_from_slice(&bytes[10 + len..]);
+    out
+}
+
+/// A PNG whose header chunk (IHDR) has its width, height, bit depth or colour type replaced,
+/// its checksum recomputed.
+fn png_header(bytes: &[u8], rng: &mut ChaCha8Rng) -> Vec<u8> {
+    // The signature (8), the chunk's length (4) and type (4), 13 bytes of data, its CRC (4).
+    if bytes.len() < 33 || &bytes[12..16] != b"IHDR" {
+        return bytes.to_vec();
+    }
+    let mut out = bytes.to_vec();
+    match rng.random_range(0..4u32) {
+        0 | 1 => {
+            let at = 16 + 4 * rng.random_range(0..2usize);
+            let size: u32 = [0, 1, 2, 1025, 1 << 20, 0x7fff_ffff, u32::MAX][rng.random_range(0..7)];
+            out[at..at + 4].copy_from_slice(&size.to_be_bytes());
+        }
+        2 => out[24] = [1, 2, 4, 8, 16, 3, 0][rng.random_range(0..7)],
+        _ => out[25] = [0, 2, 3, 4, 6, 1, 7][rng.random_range(0..7)],
+    }
+    let crc = crc32(&out[12..29]);
+    out[29..33].copy_from_slice(&crc.to_be_bytes());
+    out
+}
+
+/// The CRC-32 of PNG chunks (ISO 3309, reflected polynomial 0xEDB88320).
+fn crc32(bytes: &[u8]) -> u32 {
+    let mut crc = u32::MAX;
+    for &b in bytes {
+        crc ^= u32::from(b);
+        for _ in 0..8 {
+            crc = if crc & 1 == 1 {
+                (crc >> 1) ^ 0xEDB8_8320
+            } else {
+                crc >> 1
+            };
+        }
+    }
+    !crc
+}
+
+/// A file with one 8-byte slot past its first 64 bytes (a `.npy` file's values) set to an
+/// awkward float64.
+fn poke_f64(bytes: &[u8], rng: &mut ChaCha8Rng) -> Vec<u8> {
+    let mut out = bytes.to_vec();
+    if out.len() < 72 {
+        return out;
+    }
+    let at = 64 + 8 * rng.random_range(0..(out.len() - 64) / 8);
+    let value: f64 = [
+        f64::NAN,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::MAX,
+        1e300,
+        5e-324,
+        101.0,
+        -0.0,
+    ][rng.random_range(0..8)];
+    out[at..at + 8].copy_from_slice(&value.to_le_bytes());
+    out
+}
+
 /// A ChaCha8 stream for case `case` of a run seeded with `seed`.
 pub fn case_rng(seed: u64, case: u64) -> ChaCha8Rng {
     use rand::SeedableRng;
@@ -367,6 +503,12 @@ mod tests {
     fn numbers_are_found_but_not_inside_names() {
         let spans = number_spans(b"lf_haa2 = -1.5e3, x = 4\n");
         assert_eq!(spans, vec![(10, 16), (22, 23)]);
+    }
+
+    #[test]
+    fn png_checksums_are_the_standards() {
+        // The CRC of an IEND chunk's type, as every PNG file ends with it.
+        assert_eq!(crc32(b"IEND"), 0xAE42_6082);
     }
 
     #[test]

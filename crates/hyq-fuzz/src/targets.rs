@@ -26,6 +26,8 @@ pub enum Target {
     Records,
     /// A comparison ledger (`hyq compare --ledger FILE`, TOML).
     Ledger,
+    /// A terrain's height file (`terrain.file`, NumPy `.npy` or PNG).
+    Heights,
 }
 
 /// A record of six steps from `hyq run`, the records target's seed.
@@ -37,6 +39,15 @@ const POLICY_SEED: &[u8] = include_bytes!("../../../assets/policies/hyq_walk.saf
 /// The built-in ledger, the ledger target's seed.
 const LEDGER_SEED: &str = include_str!("../../hyq-compare/ledger.toml");
 
+/// Height files, the heights target's seeds: float64 in C order, big-endian int16 in Fortran
+/// order, 8- and 16-bit grayscale PNGs.
+const HEIGHT_SEEDS: [&[u8]; 4] = [
+    include_bytes!("../seeds/heights.npy"),
+    include_bytes!("../seeds/heights_i2.npy"),
+    include_bytes!("../seeds/heights.png"),
+    include_bytes!("../seeds/heights16.png"),
+];
+
 /// A configuration setting a key of every table, the config target's seed.
 const CONFIG_SEED: &str = include_str!("../seeds/config.toml");
 
@@ -46,13 +57,14 @@ const SET_SEED: &str = "#set\ntask.max_time_steps=5\nreset.spawn_xy_m=[1.5, -2]\
 
 impl Target {
     /// Every target, in the order the runs take them.
-    pub const ALL: [Target; 6] = [
+    pub const ALL: [Target; 7] = [
         Target::Config,
         Target::Profile,
         Target::Urdf,
         Target::Policy,
         Target::Records,
         Target::Ledger,
+        Target::Heights,
     ];
 
     /// The target's name (`cargo xtask fuzz NAME`, `corpus/NAME/`).
@@ -64,6 +76,7 @@ impl Target {
             Target::Policy => "policy",
             Target::Records => "records",
             Target::Ledger => "ledger",
+            Target::Heights => "heights",
         }
     }
 
@@ -82,6 +95,7 @@ impl Target {
             Target::Policy => vec![POLICY_SEED.to_vec()],
             Target::Records => text(&[RECORD_SEED]),
             Target::Ledger => text(&[LEDGER_SEED]),
+            Target::Heights => HEIGHT_SEEDS.iter().map(|s| s.to_vec()).collect(),
         }
     }
 
@@ -95,6 +109,7 @@ impl Target {
             Target::Urdf => mutate::mutate_text(&text, Syntax::Xml, rng),
             Target::Records => mutate::mutate_text(&text, Syntax::Jsonl, rng),
             Target::Policy => mutate::mutate_safetensors(seed, rng),
+            Target::Heights => mutate::mutate_height_file(seed, rng),
         }
     }
 
@@ -108,6 +123,7 @@ impl Target {
             Target::Policy => policy(input, scratch),
             Target::Records => records(input, scratch),
             Target::Ledger => ledger(input, scratch),
+            Target::Heights => heights(input, scratch),
         }
     }
 }
@@ -233,4 +249,47 @@ fn ledger(input: &[u8], scratch: &Path) -> Result<bool, String> {
         Err(e) => refused(&e.to_string()),
         Ok(_) => Ok(true),
     }
+}
+
+/// A height file read as `terrain.file` (named `.png` when it starts as a PNG does, `.npy`
+/// otherwise), laid over 4 × 3 m: refused in one line, or a grid of finite heights on which an
+/// environment is built (or refused in one line, if the robot cannot be put down on it) and
+/// runs.
+fn heights(input: &[u8], scratch: &Path) -> Result<bool, String> {
+    let extension = if input.starts_with(b"\x89PNG") {
+        "png"
+    } else {
+        "npy"
+    };
+    let path = scratch.join(format!("heights.{extension}"));
+    write(&path, input)?;
+    let placement = hyq_physics::terrain::file::Placement {
+        center: [0.0, 0.0],
+        size: [4.0, 3.0],
+        vertical_scale: 1.0,
+    };
+    let grid = match hyq_physics::terrain::file::read(&path, &placement) {
+        Err(e) => return refused(&e.to_string()),
+        Ok(grid) => grid,
+    };
+    for h in grid.heights() {
+        check::finite("a height", *h)?;
+    }
+    for (x, y) in [(0.0, 0.0), (-2.0, -1.5), (2.0, 1.5), (0.3, -0.7)] {
+        check::finite("the surface's height", grid.height_at(x, y))?;
+    }
+    let mut config = EnvConfig::default();
+    let file = format!("{:?}", path.display().to_string());
+    let set = [
+        ("terrain.kind", "\"heightfield\""),
+        ("terrain.file", file.as_str()),
+        ("terrain.size_m", "[4.0, 3.0]"),
+        ("task.max_time_steps", "5"),
+    ];
+    if let Err(e) = config.set_all(&set) {
+        return Err(format!(
+            "the heights target's own configuration is refused: {e}"
+        ));
+    }
+    check::runs(hyq_physics::bundled::hyq(), config).map(|()| true)
 }

@@ -62,6 +62,11 @@ fn comparison_ledgers() {
 }
 
 #[test]
+fn terrain_height_files() {
+    survives(Target::Heights, 150);
+}
+
+#[test]
 fn every_kept_input_is_refused_well_or_accepted_sound() {
     let scratch = tempfile::tempdir().expect("scratch directory");
     let mut replayed = 0;

@@ -72,8 +72,24 @@ pub const RECORDS: FileKind = FileKind {
     max_line_bytes: MIB,
 };
 
+/// A terrain's height file (`terrain.file`, `.npy` or PNG): a grid at the cap of
+/// [`crate::terrain::MAX_GRID_POINTS`] heights in `f64`, plus 64 KiB for a header.
+pub const HEIGHT_FILE: FileKind = FileKind {
+    what: "height file",
+    max_bytes: 8 * crate::terrain::MAX_GRID_POINTS as u64 + 65_536,
+    max_line_bytes: 8 * crate::terrain::MAX_GRID_POINTS as u64 + 65_536,
+};
+
 /// Every kind of user file, as the README's "Bad input" table lists them.
-pub const KINDS: [&FileKind; 6] = [&CONFIG, &ROBOT_PROFILE, &URDF, &POLICY, &LEDGER, &RECORDS];
+pub const KINDS: [&FileKind; 7] = [
+    &CONFIG,
+    &ROBOT_PROFILE,
+    &URDF,
+    &POLICY,
+    &LEDGER,
+    &RECORDS,
+    &HEIGHT_FILE,
+];
 
 /// A size in bytes as the messages give it: `8 MiB`, `4096 MiB`, `512 bytes`.
 pub fn size_text(bytes: u64) -> String {

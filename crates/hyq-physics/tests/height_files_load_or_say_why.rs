@@ -322,6 +322,18 @@ fn unusable_files_are_refused_naming_the_file_and_the_fault() {
             path.display()
         );
     }
+    // A header holding control bytes (as a cut or garbled file does) is quoted escaped, in one
+    // printable line.
+    let garbled = write(
+        d,
+        "garbled.npy",
+        &npy("<f8", false, "(9, \u{1}\u{1b}[31m\0\0)", &[]),
+    );
+    let text = refused(&garbled, &p);
+    assert!(
+        text.contains("is not numbers") && !text.chars().any(char::is_control),
+        "{text:?}"
+    );
     let ok = write(d, "ok.npy", &npy("<f8", false, "(2, 2)", &f8(&[0.0; 4])));
     for scale in [0.0, -1.0, f64::NAN] {
         let text = refused(&ok, &placement(scale));

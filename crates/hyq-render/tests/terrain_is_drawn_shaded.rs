@@ -97,3 +97,42 @@ fn a_height_field_is_drawn_with_its_relief() {
         "only {changed} of {total} pixels changed"
     );
 }
+
+/// A field of one cell 16 m across (2 × 2 heights), flat, `below` metres under the camera's
+/// eye, around the robot at the origin.
+fn plateau(eye_z: f64, below: f64) -> Terrain {
+    let heights = vec![eye_z - below; 4];
+    Terrain::field(hyq_physics::HeightGrid::new([0.0, 0.0], [16.0, 16.0], 2, 2, heights).unwrap())
+}
+
+/// A tall field whose one cell holds the camera, its surface 5 cm under the eye: the cell
+/// crosses the near plane, and its part just past it projects to tens of thousands of pixels.
+/// It is clipped at the near plane and cut to the rasteriser's range, not dropped: the bottom
+/// row of the frame, where the view meets the surface 6.6 cm in front of the eye, is drawn as
+/// the same surface seen from 0.5 m above, not left as the ground plane beneath.
+#[test]
+fn a_tall_field_just_past_the_near_plane_is_drawn_clipped() {
+    let (trunk, _) = standing_at(0.0, 0.0);
+    let eye = renderer().camera(&trunk, None).eye();
+    let near = frame_on(Some(&plateau(eye.z, 0.05)), 0.0);
+    let far = frame_on(Some(&plateau(eye.z, 0.5)), 0.0);
+    let under = frame_on(Some(&plateau(eye.z, 50.0)), 0.0);
+    if let Ok(dir) = std::env::var("HYQ_RENDER_TERRAIN_OUT") {
+        for (name, f) in [("near", &near), ("far", &far), ("under", &under)] {
+            hyq_render::write_png(format!("{dir}/plateau-{name}.png"), f).unwrap();
+        }
+    }
+    let bottom = |f: &Frame| -> Vec<_> { (0..f.width).map(|x| f.pixel(x, f.height - 1)).collect() };
+    let (near, far, under) = (bottom(&near), bottom(&far), bottom(&under));
+    let same = near.iter().zip(&far).filter(|(a, b)| a == b).count();
+    let as_under = near.iter().zip(&under).filter(|(a, b)| a == b).count();
+    assert!(
+        same * 10 >= near.len() * 9,
+        "{same} of {} bottom pixels are the surface's",
+        near.len()
+    );
+    assert!(
+        as_under * 10 < near.len(),
+        "{as_under} bottom pixels show what lies beneath the surface"
+    );
+}

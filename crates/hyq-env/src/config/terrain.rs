@@ -24,7 +24,9 @@ pub const MAX_LEVELS: u32 = 100;
 ///
 /// Every generated terrain is one grid of `size_m` at `resolution_m` centred on `center_m`;
 /// its relief is anchored at the spawn point (`reset.spawn_xy_m`): a slope passes through
-/// height 0 there and stairs start `start_m` ahead of it. Keys of another kind are ignored.
+/// height 0 there and stairs start `start_m` ahead of it. A key of another kind is refused
+/// unless it holds its default (as a written-out configuration holds it), as `[goal]`'s keys
+/// of another mode are: it would otherwise be silently ignored.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct TerrainConfig {
@@ -142,6 +144,16 @@ pub enum StairsClimb {
     Down,
 }
 
+impl StairsClimb {
+    /// The direction as written in TOML.
+    pub const fn as_str(self) -> &'static str {
+        match self {
+            StairsClimb::Up => "up",
+            StairsClimb::Down => "down",
+        }
+    }
+}
+
 /// Where rough ground's random heights come from; see [`TerrainConfig::seed`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum TerrainSeed {
@@ -233,6 +245,7 @@ impl TerrainConfig {
 /// within ±[`MAX_SLOPE_DEG`], a file for `"heightfield"`, the curriculum's levels and kinds.
 impl Table for TerrainConfig {
     fn validate(&self, config: &EnvConfig) -> Result<(), ConfigError> {
+        keys_match_kind(self)?;
         if self.kind == TerrainKind::Flat {
             return Ok(());
         }
@@ -285,13 +298,6 @@ impl Table for TerrainConfig {
                 ));
             }
         }
-        if self.curriculum && matches!(self.kind, TerrainKind::Heightfield) {
-            return Err(invalid(
-                "terrain.curriculum",
-                true,
-                "needs a generated kind (rough, slope or stairs): a file has no difficulty to scale",
-            ));
-        }
         if !(1..=MAX_LEVELS).contains(&self.levels) {
             return Err(invalid(
                 "terrain.levels",
@@ -304,6 +310,98 @@ impl Table for TerrainConfig {
             Some(relief) => generate::check(&extent, &relief).map(|_| ()).map_err(keyed),
             None => Ok(()),
         }
+    }
+}
+
+/// The kinds that read each key other than `kind`, in the order of the table.
+const KIND_KEYS: [(&str, &[TerrainKind]); 16] = {
+    use TerrainKind::{Heightfield, Rough, Slope, Stairs};
+    const GENERATED: &[TerrainKind] = &[Rough, Slope, Stairs];
+    [
+        ("amplitude_m", &[Rough]),
+        ("feature_m", &[Rough]),
+        ("slope_deg", &[Slope]),
+        ("direction_deg", &[Slope, Stairs]),
+        ("step_height_m", &[Stairs]),
+        ("step_depth_m", &[Stairs]),
+        ("stairs", &[Stairs]),
+        ("start_m", &[Stairs]),
+        ("file", &[Heightfield]),
+        ("vertical_scale", &[Heightfield]),
+        ("size_m", &[Rough, Slope, Stairs, Heightfield]),
+        ("center_m", &[Rough, Slope, Stairs, Heightfield]),
+        ("resolution_m", GENERATED),
+        ("seed", &[Rough]),
+        ("curriculum", GENERATED),
+        ("levels", GENERATED),
+    ]
+};
+
+/// `Some(value as written)` when `value` is not `default`.
+fn differs<T: PartialEq + fmt::Debug>(value: &T, default: &T) -> Option<String> {
+    (value != default).then(|| format!("{value:?}"))
+}
+
+/// The value of `t`'s key `key` (one of [`KIND_KEYS`]) if it is not its default.
+fn changed(t: &TerrainConfig, key: &str) -> Option<String> {
+    let d = TerrainConfig::default();
+    match key {
+        "amplitude_m" => differs(&t.amplitude_m, &d.amplitude_m),
+        "feature_m" => differs(&t.feature_m, &d.feature_m),
+        "slope_deg" => differs(&t.slope_deg, &d.slope_deg),
+        "direction_deg" => differs(&t.direction_deg, &d.direction_deg),
+        "step_height_m" => differs(&t.step_height_m, &d.step_height_m),
+        "step_depth_m" => differs(&t.step_depth_m, &d.step_depth_m),
+        "stairs" => (t.stairs != d.stairs).then(|| format!("\"{}\"", t.stairs.as_str())),
+        "file" => t
+            .file
+            .as_ref()
+            .map(|f| format!("{:?}", f.display().to_string())),
+        "vertical_scale" => differs(&t.vertical_scale, &d.vertical_scale),
+        "size_m" => differs(&t.size_m, &d.size_m),
+        "center_m" => t.center_m.map(|c| format!("{c:?}")),
+        "resolution_m" => differs(&t.resolution_m, &d.resolution_m),
+        "seed" => (t.seed != d.seed).then(|| seed_text(t.seed)),
+        "curriculum" => differs(&t.curriculum, &d.curriculum),
+        "levels" => differs(&t.levels, &d.levels),
+        "start_m" => differs(&t.start_m, &d.start_m),
+        _ => None,
+    }
+}
+
+/// A key of another kind would be silently ignored: it is an error, unless it holds its
+/// default (a written-out configuration holds every key). The first such key, in the order of
+/// the table, is named with its value and the kinds that read it.
+fn keys_match_kind(t: &TerrainConfig) -> Result<(), ConfigError> {
+    for (key, kinds) in KIND_KEYS {
+        if kinds.contains(&t.kind) {
+            continue;
+        }
+        if let Some(value) = changed(t, key) {
+            let kinds: Vec<String> = kinds
+                .iter()
+                .map(|k| format!("\"{}\"", k.as_str()))
+                .collect();
+            return Err(ConfigError::Invalid {
+                key: format!("terrain.{key}"),
+                value,
+                expected: format!(
+                    "is only read when terrain.kind = {}, and the kind is \"{}\": set \
+                     terrain.kind, or remove the key",
+                    kinds.join(" or "),
+                    t.kind.as_str()
+                ),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// A terrain seed as written in TOML.
+fn seed_text(seed: TerrainSeed) -> String {
+    match seed {
+        TerrainSeed::Fixed(n) => n.to_string(),
+        TerrainSeed::Episode => "\"episode\"".into(),
     }
 }
 

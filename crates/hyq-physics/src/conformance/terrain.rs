@@ -429,6 +429,19 @@ struct Drift {
     trunk: f64,
 }
 
+/// Each tracked body's first shape's centre with the bodies at `poses`: a foot sphere's centre
+/// moves only if the foot slides or rolls.
+fn shape_centres(model: &RobotModel, poses: &[Isometry3<f64>]) -> Vec<Vector3<f64>> {
+    model
+        .tracked()
+        .iter()
+        .map(|t| {
+            let origin = model.links()[t.link].collisions[t.shapes[0]].origin;
+            (poses[t.link] * origin).translation.vector
+        })
+        .collect()
+}
+
 /// Holds the standing pose for 4 s from `start` on `terrain` and checks the last 2 s: every
 /// foot in contact at every step, the trunk never, no foot sliding more than 1 mm sideways
 /// and the trunk moving no more than 3 mm (its legs settle under the PD law). Returns both.
@@ -473,16 +486,7 @@ fn stands<B: Backend>(
             );
         }
         b.link_poses(&mut poses);
-        // Each tracked body's first shape's centre: a foot sphere's centre moves only if the
-        // foot slides or rolls.
-        let points: Vec<Vector3<f64>> = model
-            .tracked()
-            .iter()
-            .map(|t| {
-                let origin = model.links()[t.link].collisions[t.shapes[0]].origin;
-                (poses[t.link] * origin).translation.vector
-            })
-            .collect();
+        let points = shape_centres(&model, &poses);
         let first = reference.get_or_insert_with(|| points.clone());
         for (t, (p, q)) in points.iter().zip(first.iter()).enumerate() {
             let d = p - q;

@@ -21,8 +21,9 @@ use std::path::Path;
 
 use super::{HeightGrid, MAX_GRID_POINTS, TerrainError};
 
-/// The largest height file read (bytes): a grid at the cap in `f64` plus room for a header.
-pub const MAX_FILE_BYTES: u64 = 8 * MAX_GRID_POINTS as u64 + 65_536;
+/// The largest height file read (bytes): a grid at the cap in `f64` plus room for a header
+/// ([`crate::input::HEIGHT_FILE`]).
+pub const MAX_FILE_BYTES: u64 = crate::input::HEIGHT_FILE.max_bytes;
 
 /// Where a file's grid lies and how its values scale.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -85,20 +86,28 @@ pub fn read(path: &Path, placement: &Placement) -> Result<HeightGrid, TerrainErr
     })
 }
 
-/// The file's bytes, refusing a file over [`MAX_FILE_BYTES`] before reading it.
+/// The file's bytes, through the capped reader every user file goes through
+/// ([`crate::input::read_bytes`]): a file over [`MAX_FILE_BYTES`] is refused from its size
+/// before it is read, and one that grows past the cap while it is read stops one byte past it.
+/// Only a regular file is opened: opening a FIFO would wait for a writer forever.
 fn read_capped(path: &Path) -> Result<Vec<u8>, String> {
     let meta = std::fs::metadata(path).map_err(|e| format!("cannot read it: {e}"))?;
     if !meta.is_file() {
         return Err("is not a file".into());
     }
+    let too_large = |bytes: String| {
+        format!(
+            "{bytes} is too large (the cap is {MAX_FILE_BYTES} bytes, a grid of \
+             {MAX_GRID_POINTS} heights)"
+        )
+    };
     if meta.len() > MAX_FILE_BYTES {
-        return Err(format!(
-            "{} bytes is too large (the cap is {MAX_FILE_BYTES} bytes, a grid of \
-             {MAX_GRID_POINTS} heights)",
-            meta.len()
-        ));
+        return Err(too_large(format!("{} bytes", meta.len())));
     }
-    std::fs::read(path).map_err(|e| format!("cannot read it: {e}"))
+    crate::input::read_bytes(path, &crate::input::HEIGHT_FILE).map_err(|e| match e.kind() {
+        std::io::ErrorKind::FileTooLarge => too_large("the file, grown while read,".into()),
+        _ => format!("cannot read it: {e}"),
+    })
 }
 
 /// Checks a grid's counts against the cap and the minimum of 2 per side.
@@ -155,7 +164,8 @@ impl Dtype {
                 big_endian: b[0] == b'>',
             }),
             _ => Err(format!(
-                "dtype {descr:?} is not numeric (expected float32, float64 or an integer type)"
+                "dtype {} is not numeric (expected float32, float64 or an integer type)",
+                excerpt(descr)
             )),
         }
     }
@@ -176,6 +186,17 @@ impl Dtype {
             (b'i', _) => (((bits << shift) as i64) >> shift) as f64,
             _ => bits as f64,
         }
+    }
+}
+
+/// A header's text as a message quotes it: escaped (it may hold any byte a file holds) and cut
+/// to 40 characters.
+fn excerpt(text: &str) -> String {
+    let cut: String = text.chars().take(40).collect();
+    if cut.len() < text.len() {
+        format!("{cut:?}…")
+    } else {
+        format!("{cut:?}")
     }
 }
 
@@ -222,7 +243,12 @@ fn parse_npy(bytes: &[u8]) -> Result<Values, String> {
     let fortran = match header_field(header, "fortran_order")? {
         "True" => true,
         "False" => false,
-        other => return Err(format!("fortran_order {other:?} is not True or False")),
+        other => {
+            return Err(format!(
+                "fortran_order {} is not True or False",
+                excerpt(other)
+            ));
+        }
     };
     let shape_text = header_field(header, "shape")?;
     let shape: Vec<usize> = shape_text
@@ -232,12 +258,13 @@ fn parse_npy(bytes: &[u8]) -> Result<Values, String> {
         .filter(|s| !s.is_empty())
         .map(|s| {
             s.parse::<usize>()
-                .map_err(|_| format!("shape {shape_text} is not numbers"))
+                .map_err(|_| format!("shape {} is not numbers", excerpt(shape_text)))
         })
         .collect::<Result<_, _>>()?;
     let [nx, ny] = shape[..] else {
         return Err(format!(
-            "shape {shape_text} has {} dimensions: a 2-D array (x, y) is needed",
+            "shape {} has {} dimensions: a 2-D array (x, y) is needed",
+            excerpt(shape_text),
             shape.len()
         ));
     };
@@ -246,7 +273,8 @@ fn parse_npy(bytes: &[u8]) -> Result<Values, String> {
     let needed = nx * ny * dtype.size;
     if data.len() < needed {
         return Err(format!(
-            "truncated: shape {shape_text} needs {needed} bytes of data, the file has {}",
+            "truncated: shape {} needs {needed} bytes of data, the file has {}",
+            excerpt(shape_text),
             data.len()
         ));
     }

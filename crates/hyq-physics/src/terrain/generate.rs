@@ -6,6 +6,7 @@
 //! slope passes through height 0 there and the stairs start a given distance ahead of it, so
 //! the robot spawns on the same ground whatever the grid's rectangle.
 
+use crate::bounds::short;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -141,7 +142,7 @@ fn counts(extent: &Extent) -> Result<(usize, usize), TerrainError> {
     if !(r.is_finite() && r > 0.0) {
         return Err(TerrainError::invalid(
             "resolution_m",
-            format!("{r} must be finite and > 0"),
+            format!("{} must be finite and > 0", short(r)),
         ));
     }
     let mut n = [0usize; 2];
@@ -149,7 +150,7 @@ fn counts(extent: &Extent) -> Result<(usize, usize), TerrainError> {
         if !(s.is_finite() && s > 0.0) {
             return Err(TerrainError::invalid(
                 "size_m",
-                format!("{s} along {axis} must be finite and > 0"),
+                format!("{} along {axis} must be finite and > 0", short(s)),
             ));
         }
         let cells = (s / r).round();
@@ -189,7 +190,7 @@ fn within(what: &str, value: f64, lo: f64, hi: f64, unit: &str) -> Result<(), Te
     } else {
         Err(TerrainError::invalid(
             what,
-            format!("{value} must be within [{lo}, {hi}] {unit}"),
+            format!("{} must be within [{lo}, {hi}] {unit}", short(value)),
         ))
     }
 }

@@ -75,7 +75,8 @@ impl HeightGrid {
                 return Err(TerrainError::invalid(
                     "heights",
                     format!(
-                        "height {h} at column {}, row {} is not finite or beyond ±{MAX_HEIGHT_M} m",
+                        "height {} at column {}, row {} is not finite or beyond ±{MAX_HEIGHT_M} m",
+                        crate::bounds::short(h),
                         i % columns,
                         i / columns
                     ),
