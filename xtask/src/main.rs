@@ -12,6 +12,7 @@ mod codegen;
 mod docs;
 mod fuzz;
 mod mujoco;
+mod regen;
 mod rllib;
 mod soak;
 mod stages;
@@ -71,6 +72,10 @@ commands:
   codegen [--check]                     write the documents' tables made from the code (the
                                         info and step record schemas, the reward terms, the
                                         configuration's tables); --check fails if one is stale
+  regen-reports [--dev]                 remake every comparison report under docs/comparison
+                                        and every image under docs/media with the command each
+                                        states (one build of hyq with every engine, release or
+                                        --dev), then fail if git sees any file changed
   help                                  this text
 ";
 
@@ -85,6 +90,7 @@ fn main() -> ExitCode {
         Some("vendor-check") => vendor::vendor_check(&args[1..]),
         Some("vendor-diff") => vendor::vendor_diff(&args[1..]),
         Some("codegen") => codegen::codegen(&args[1..]),
+        Some("regen-reports") => regen::regen_reports(&args[1..]),
         Some("help") | Some("--help") | Some("-h") | None => {
             print!("{HELP}");
             Ok(())
