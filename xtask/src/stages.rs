@@ -333,10 +333,8 @@ fn engine_stage(engine: &Engine, members: &[String], root: &Path) -> Result<Outc
             why: format!("{why}; then these tests run"),
         });
     }
-    let mut tests = 0;
-    for args in engine_stage_args(engine, members, root) {
-        tests += cargo_test(root, &args.iter().map(String::as_str).collect::<Vec<_>>())?;
-    }
+    let args = engine_stage_args(engine, members, root)?;
+    let tests = cargo_test(root, &args.iter().map(String::as_str).collect::<Vec<_>>())?;
     Ok(Outcome::Passed { tests })
 }
 
@@ -450,8 +448,8 @@ pub fn python_features(engines: &[&Engine]) -> String {
 /// Stage 3: installs the pinned requirements into the venv (and Stable-Baselines3 without its
 /// dependencies), builds the extension with the dev
 /// profile and installs the package (`maturin develop`: fast to build; users get release
-/// builds from `maturin build --release` or `pip install`), builds the `hyq` command the CLI
-/// parity test runs, then runs pytest and returns how many tests passed. The package is built
+/// builds from `maturin build --release` or `pip install`), then runs pytest with the `hyq`
+/// command the first stage built (for the CLI parity tests) and returns how many tests passed. The package is built
 /// with the feature of each of `engines` (those whose stage ran) that has `python_tests`, so its
 /// tests run on them too.
 fn python_stage(root: &Path, venv: &Path, engines: &[&Engine]) -> Result<u64, String> {
@@ -484,11 +482,21 @@ fn python_stage(root: &Path, venv: &Path, engines: &[&Engine]) -> Result<u64, St
         develop.extend(["--features", &features]);
     }
     run_in_venv(venv, &crate_dir, &python, &develop)?;
-    cargo_test(root, &["build", "--locked", "-p", "hyq-cli"])?;
+    // The `hyq` command the CLI parity tests run is the one the first stage built for hyq-cli's
+    // integration tests (an engine stage after it rebuilds it with that engine built in, which
+    // these tests, on the default engine, do not see). `cargo build -p hyq-cli` here would
+    // unify the crates' features in yet another way (no dev-dependencies) and compile the
+    // physics crates and everything above them once more.
     let target = std::env::var_os("CARGO_TARGET_DIR")
         .map(PathBuf::from)
         .unwrap_or_else(|| root.join("target"));
     let cli = target.join("debug").join("hyq");
+    if !cli.is_file() {
+        return Err(format!(
+            "{} is missing: the first stage's `cargo test` builds it for hyq-cli's tests",
+            cli.display()
+        ));
+    }
 
     let args = ["-m", "pytest", "-p", "no:cacheprovider"];
     println!("\n$ {} {}", python.display(), args.join(" "));
@@ -536,75 +544,175 @@ pub(crate) fn pytest_passed_count(line: &str) -> Option<u64> {
     Some(passed)
 }
 
-/// The crates whose feature of an engine's name runs their tests on that engine too (the spec
-/// section by section, the env, the command line, the comparison runs).
+/// The crates whose feature of an engine's name runs some of their tests on that engine too (the
+/// spec section by section, the env, the command line, the comparison runs).
 const ENGINE_FEATURE_CRATES: [&str; 4] = ["spec-tests", "hyq-env", "hyq-cli", "hyq-compare"];
 
-/// An engine stage's `cargo test` commands: the backend's own tests and every crate of
-/// [`ENGINE_FEATURE_CRATES`] that is a workspace member, with the feature of the engine's name.
-/// When the command line has a test file of the engine's own (`hyq-cli/tests/<name>_backend.rs`),
-/// only that file of its tests runs, in a second command, to keep the stage short: the first
-/// stage ran all of them on rapier.
-fn engine_stage_args(engine: &Engine, members: &[String], root: &Path) -> Vec<Vec<String>> {
-    let feature = engine.feature.unwrap_or(engine.name);
-    let own_cli_test = format!("{}_backend", engine.name);
-    let cli_alone = members.iter().any(|m| m == "hyq-cli")
-        && root
-            .join("crates/hyq-cli/tests")
-            .join(format!("{own_cli_test}.rs"))
-            .exists();
-    let crates: Vec<&str> = ENGINE_FEATURE_CRATES
-        .into_iter()
-        .filter(|c| !(cli_alone && *c == "hyq-cli"))
-        .collect();
-    let mut commands = vec![feature_stage_args(
-        engine.crate_name,
-        feature,
-        &crates,
-        members,
-    )];
-    if cli_alone {
-        let cli_feature = format!("hyq-cli/{feature}");
-        commands.push(
-            [
-                "test",
-                "--locked",
-                "-p",
-                "hyq-cli",
-                "--features",
-                &cli_feature,
-                "--test",
-                &own_cli_test,
-            ]
-            .map(String::from)
-            .to_vec(),
-        );
+/// What marks a test file as one an engine's stage runs: it names the engine's feature in a
+/// positive `cfg` (`feature = "<feature>"`, not inside `not(...)`), or it runs its bodies on
+/// every built engine through one of these (hyq-engines' macros and its list of built engines).
+const EVERY_ENGINE_MARKERS: [&str; 4] = [
+    "for_each_backend!",
+    "for_each_engine!",
+    "with_engine!",
+    "hyq_engines::built",
+];
+
+/// Whether a test's source `text` exercises the engine whose cargo feature is `feature`: see
+/// [`EVERY_ENGINE_MARKERS`]. A file that names the feature only as `not(feature = ...)` holds
+/// tests of the build without the engine, which the rapier stage runs.
+fn exercises_engine(text: &str, feature: &str) -> bool {
+    if EVERY_ENGINE_MARKERS.iter().any(|m| text.contains(m)) {
+        return true;
     }
-    commands
+    let needle = format!("feature = \"{feature}\"");
+    text.match_indices(&needle)
+        .any(|(at, _)| !text[..at].trim_end().ends_with("not("))
 }
 
-/// A backend stage's `cargo test` arguments: the backend crate's own tests plus each of
-/// `crates` that is a workspace member, built with its `feature`.
-fn feature_stage_args(
-    backend: &str,
-    feature: &str,
-    crates: &[&str],
-    members: &[String],
-) -> Vec<String> {
-    let mut args: Vec<String> = ["test", "--locked", "-p", backend]
-        .map(String::from)
-        .to_vec();
-    let mut features = Vec::new();
-    for &name in crates {
-        if members.iter().any(|m| m == name) {
-            args.extend(["-p".to_string(), name.to_string()]);
-            features.push(format!("{name}/{feature}"));
+/// One integration-test target of a crate: its name (`tests/<name>.rs`, or `tests/<name>/`
+/// with a `main.rs`) and the text of its sources (every `.rs` file of the directory).
+struct TestTarget {
+    name: String,
+    text: String,
+}
+
+/// The integration-test targets of the crate in `dir` (cargo's automatic discovery, which every
+/// crate of the workspace uses), by name, with the helper modules (`tests/<dir>/` without a
+/// `main.rs`, such as `common/`) as a second list.
+fn test_targets(dir: &Path) -> Result<(Vec<TestTarget>, Vec<TestTarget>), String> {
+    let tests = dir.join("tests");
+    let mut targets = Vec::new();
+    let mut helpers = Vec::new();
+    let entries = match std::fs::read_dir(&tests) {
+        Ok(entries) => entries,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok((targets, helpers)),
+        Err(e) => return Err(format!("cannot list {}: {e}", tests.display())),
+    };
+    for entry in entries {
+        let path = entry
+            .map_err(|e| format!("cannot list {}: {e}", tests.display()))?
+            .path();
+        let Some(name) = path.file_stem().and_then(|n| n.to_str()).map(str::to_owned) else {
+            continue;
+        };
+        if path.is_dir() {
+            let target = TestTarget {
+                name,
+                text: rust_sources(&path)?,
+            };
+            if path.join("main.rs").is_file() {
+                targets.push(target);
+            } else {
+                helpers.push(target);
+            }
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            let text = std::fs::read_to_string(&path)
+                .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+            targets.push(TestTarget { name, text });
         }
+    }
+    targets.sort_by(|a, b| a.name.cmp(&b.name));
+    Ok((targets, helpers))
+}
+
+/// Every `.rs` file under `dir`, concatenated (in name order, so the result is stable).
+fn rust_sources(dir: &Path) -> Result<String, String> {
+    let mut paths: Vec<PathBuf> = std::fs::read_dir(dir)
+        .map_err(|e| format!("cannot list {}: {e}", dir.display()))?
+        .filter_map(|entry| entry.ok().map(|e| e.path()))
+        .collect();
+    paths.sort();
+    let mut text = String::new();
+    for path in paths {
+        if path.is_dir() {
+            text.push_str(&rust_sources(&path)?);
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            text.push_str(
+                &std::fs::read_to_string(&path)
+                    .map_err(|e| format!("cannot read {}: {e}", path.display()))?,
+            );
+            text.push('\n');
+        }
+    }
+    Ok(text)
+}
+
+/// The names of the crate in `dir`'s integration tests that exercise the engine of `feature`
+/// ([`exercises_engine`]), counting a helper module's marker for every target that declares it
+/// (`mod common;`).
+fn engine_tests(dir: &Path, feature: &str) -> Result<Vec<String>, String> {
+    let (targets, helpers) = test_targets(dir)?;
+    let marked_helpers: Vec<String> = helpers
+        .iter()
+        .filter(|h| exercises_engine(&h.text, feature))
+        .map(|h| format!("mod {};", h.name))
+        .collect();
+    Ok(targets
+        .into_iter()
+        .filter(|t| {
+            exercises_engine(&t.text, feature)
+                || marked_helpers.iter().any(|m| t.text.contains(m.as_str()))
+        })
+        .map(|t| t.name)
+        .collect())
+}
+
+/// The directory of workspace member `name` (`crates/<name>`, or `<name>` at the root).
+fn member_dir(root: &Path, name: &str) -> PathBuf {
+    let nested = root.join("crates").join(name);
+    if nested.is_dir() {
+        nested
+    } else {
+        root.join(name)
+    }
+}
+
+/// An engine stage's `cargo test` command, one command so that cargo unifies the features of
+/// every crate it builds once, as the first stage did: the backend crate's unit tests and every
+/// integration test of it, and, of each crate of [`ENGINE_FEATURE_CRATES`] that is a workspace
+/// member, the integration tests that exercise the engine ([`engine_tests`]), built with the
+/// feature of the engine's name. The rest of those crates' tests (bad input, documents, rapier
+/// alone, the build without the engine) would run exactly as in the first stage, which ran them,
+/// so they are not rebuilt and run again. `--lib` also runs those crates' unit tests, which cargo
+/// cannot leave out of one command.
+fn engine_stage_args(
+    engine: &Engine,
+    members: &[String],
+    root: &Path,
+) -> Result<Vec<String>, String> {
+    let feature = engine.feature.unwrap_or(engine.name);
+    let mut packages = vec![engine.crate_name.to_string()];
+    let mut features = Vec::new();
+    let mut tests: Vec<String> = test_targets(&member_dir(root, engine.crate_name))?
+        .0
+        .into_iter()
+        .map(|t| t.name)
+        .collect();
+    for name in ENGINE_FEATURE_CRATES {
+        if !members.iter().any(|m| m == name) {
+            continue;
+        }
+        packages.push(name.to_string());
+        features.push(format!("{name}/{feature}"));
+        for test in engine_tests(&member_dir(root, name), feature)? {
+            if !tests.contains(&test) {
+                tests.push(test);
+            }
+        }
+    }
+    let mut args: Vec<String> = ["test", "--locked"].map(String::from).to_vec();
+    for package in packages {
+        args.extend(["-p".to_string(), package]);
     }
     if !features.is_empty() {
         args.extend(["--features".to_string(), features.join(",")]);
     }
-    args
+    args.push("--lib".to_string());
+    for test in tests {
+        args.extend(["--test".to_string(), test]);
+    }
+    Ok(args)
 }
 
 /// Prints the summary table, one line per stage with its wall time and a last line with the
@@ -723,38 +831,124 @@ mod tests {
     }
 
     #[test]
-    fn the_dart_stage_runs_every_dart_feature_crate_with_its_feature() {
-        let members: Vec<String> = ["hyq-spec", "hyq-dart", "spec-tests", "hyq-env"]
-            .map(String::from)
-            .to_vec();
-        let dart = hyq_engines::find("dart").expect("an engine");
-        let commands = engine_stage_args(dart, &members, &workspace_root());
-        assert_eq!(
-            commands.iter().map(|c| c.join(" ")).collect::<Vec<_>>(),
-            [
-                "test --locked -p hyq-dart -p spec-tests -p hyq-env --features spec-tests/dart,hyq-env/dart"
-            ]
-        );
+    fn a_test_file_exercises_an_engine_by_its_feature_or_by_running_on_every_engine() {
+        assert!(exercises_engine("#![cfg(feature = \"dart\")]", "dart"));
+        assert!(exercises_engine(
+            "#[cfg(feature = \"mujoco\")]\nfn t() {}",
+            "mujoco"
+        ));
+        assert!(exercises_engine(
+            "#[cfg(any(feature = \"dart\", feature = \"mujoco\"))]",
+            "mujoco"
+        ));
+        assert!(exercises_engine(
+            "spec_tests::for_each_backend! { }",
+            "dart"
+        ));
+        assert!(exercises_engine(
+            "for e in hyq_engines::built() {}",
+            "mujoco"
+        ));
+        assert!(!exercises_engine("#[cfg(feature = \"dart\")]", "mujoco"));
+        assert!(!exercises_engine("#[cfg(not(feature = \"dart\"))]", "dart"));
+        assert!(!exercises_engine("//! with `--features dart`", "dart"));
+        assert!(!exercises_engine("run(&[\"--backend\", \"dart\"])", "dart"));
+    }
+
+    /// The `--test` names of an engine stage's command, and the command without them.
+    fn stage_of(engine: &str) -> (String, Vec<String>) {
+        let members = workspace_members(&workspace_root()).unwrap_or_else(|e| panic!("{e}"));
+        let engine = hyq_engines::find(engine).expect("an engine");
+        let args = engine_stage_args(engine, &members, &workspace_root())
+            .unwrap_or_else(|e| panic!("{e}"));
+        let mut tests = Vec::new();
+        let mut rest = Vec::new();
+        let mut it = args.into_iter();
+        while let Some(arg) = it.next() {
+            if arg == "--test" {
+                tests.push(it.next().expect("a test name follows --test"));
+            } else {
+                rest.push(arg);
+            }
+        }
+        (rest.join(" "), tests)
     }
 
     #[test]
-    fn the_mujoco_stage_runs_every_mujoco_feature_crate_and_the_clis_mujoco_tests() {
-        let members: Vec<String> = ["hyq-mujoco", "spec-tests", "hyq-env", "hyq-cli", "xtask"]
-            .map(String::from)
-            .to_vec();
-        let mujoco = hyq_engines::find("mujoco").expect("an engine");
-        let commands: Vec<String> = engine_stage_args(mujoco, &members, &workspace_root())
-            .iter()
-            .map(|c| c.join(" "))
-            .collect();
+    fn the_dart_stage_runs_the_backend_and_the_tests_that_exercise_dart_in_one_command() {
+        let (command, tests) = stage_of("dart");
         assert_eq!(
-            commands,
-            [
-                "test --locked -p hyq-mujoco -p spec-tests -p hyq-env --features \
-                 spec-tests/mujoco,hyq-env/mujoco",
-                "test --locked -p hyq-cli --features hyq-cli/mujoco --test mujoco_backend",
-            ]
+            command,
+            "test --locked -p hyq-dart -p spec-tests -p hyq-env -p hyq-cli -p hyq-compare \
+             --features spec-tests/dart,hyq-env/dart,hyq-cli/dart,hyq-compare/dart --lib"
         );
+        for test in [
+            "conformance",
+            "determinism",
+            "threads",
+            "spec",
+            "dart_backend",
+            "other_robots_through_env",
+            "compare_writes_reports",
+            "run_summary_output",
+            "rapier_vs_dart_within_ledger",
+        ] {
+            assert!(
+                tests.iter().any(|t| t == test),
+                "{test} missing from {tests:?}"
+            );
+        }
+        for test in [
+            "mujoco_backend",
+            "bad_input_cases",
+            "cli_errors_are_one_line",
+        ] {
+            assert!(!tests.iter().any(|t| t == test), "{test} in {tests:?}");
+        }
+    }
+
+    #[test]
+    fn the_mujoco_stage_runs_the_backend_and_the_tests_that_exercise_mujoco_in_one_command() {
+        let (command, tests) = stage_of("mujoco");
+        assert!(
+            command.starts_with("test --locked -p hyq-mujoco -p spec-tests"),
+            "{command}"
+        );
+        for test in [
+            "library_errors",
+            "spec",
+            "mujoco_backend",
+            "env_step_allocates_nothing_on_its_thread",
+            "same_backend_agrees_exactly",
+        ] {
+            assert!(
+                tests.iter().any(|t| t == test),
+                "{test} missing from {tests:?}"
+            );
+        }
+        assert!(!tests.iter().any(|t| t == "dart_backend"), "{tests:?}");
+    }
+
+    /// The engine stages select the backend crates' unit tests with `--lib` alone: a test in one
+    /// of their binaries would not run, so there must be none.
+    #[test]
+    fn the_backend_crates_binaries_hold_no_unit_tests() {
+        for engine in optional_engines() {
+            let dir = member_dir(&workspace_root(), engine.crate_name);
+            let bins = dir.join("src").join("bin");
+            let mut files: Vec<PathBuf> = vec![dir.join("src").join("main.rs")];
+            if let Ok(entries) = std::fs::read_dir(&bins) {
+                files.extend(entries.filter_map(|e| e.ok().map(|e| e.path())));
+            }
+            for file in files {
+                let text = if file.is_dir() {
+                    rust_sources(&file).unwrap_or_else(|e| panic!("{e}"))
+                } else {
+                    std::fs::read_to_string(&file).unwrap_or_default()
+                };
+                assert!(!text.contains("#[test]"), "{} holds a test", file.display());
+            }
+        }
     }
 
     #[test]

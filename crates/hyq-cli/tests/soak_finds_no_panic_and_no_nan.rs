@@ -4,7 +4,7 @@
 //! terms, every info field: `hyq soak` checks each and fails naming the first bad one), and the
 //! summary accounts for every row and every episode. Five episodes at least: enough to cross
 //! resets and falls; longer runs find nothing more here (the 10⁶-step soak found nothing) and
-//! cost CI time twice (this test runs in the rapier and the DART stage).
+//! would cost CI time.
 
 // In tests a failed unwrap is a failed test, with its location.
 #![allow(clippy::unwrap_used)]
