@@ -1,6 +1,7 @@
 //! `cargo xtask codegen`: writes the documents' sections that are made from the code's one
 //! statement of each schema (rust-analyzer's `cargo xtask codegen`): the README's info table (from
-//! hyq-env's `INFO_KEYS`) and step record table (from `RECORD_KEYS`), the same record table in
+//! hyq-env's `INFO_KEYS`), the keys `[randomize]` adds to it (`RANDOMIZE_INFO_KEYS`, in the README
+//! and docs/robustness.md) and step record table (from `RECORD_KEYS`), the same record table in
 //! the command's README, the reward terms' names (hyq-spec's `REWARD_TERMS`) where a page lists
 //! them, and the configuration's tables and `[task]` keys (`EnvConfig::TABLES`, `TaskConfig`).
 //!
@@ -58,7 +59,7 @@ pub fn codegen(args: &[String]) -> Result<(), String> {
 mod generate {
     use std::path::Path;
 
-    use hyq_env::{EnvConfig, INFO_KEYS, InfoValue, RECORD_KEYS};
+    use hyq_env::{EnvConfig, INFO_KEYS, InfoKey, InfoValue, RANDOMIZE_INFO_KEYS, RECORD_KEYS};
     use hyq_spec::{REWARD_TERMS, TermKind};
 
     /// One generated section: the file (from the repository root), the section's name, and what
@@ -70,7 +71,7 @@ mod generate {
     }
 
     /// Every generated section.
-    const SECTIONS: [Section; 6] = [
+    const SECTIONS: [Section; 10] = [
         Section {
             file: "README.md",
             name: "config-keys",
@@ -80,6 +81,11 @@ mod generate {
             file: "README.md",
             name: "info-table",
             render: info_table,
+        },
+        Section {
+            file: "README.md",
+            name: "randomize-info-table",
+            render: randomize_info_table,
         },
         Section {
             file: "README.md",
@@ -101,12 +107,32 @@ mod generate {
             name: "term-names",
             render: term_names,
         },
+        Section {
+            file: "docs/robustness.md",
+            name: "randomize-info-table",
+            render: randomize_info_table,
+        },
+        Section {
+            file: "crates/hyq-spec/README.md",
+            name: "term-table",
+            render: term_table,
+        },
+        Section {
+            file: "crates/hyq-engines/README.md",
+            name: "engine-table",
+            render: engine_table,
+        },
     ];
 
     /// The robot the documents describe (the spec's HyQ): its observation length and joint count.
     fn documented_robot() -> (usize, usize) {
         let hyq = hyq_spec::RobotDescription::hyq_spec();
         (hyq_spec::SPEC_TABLE.len(), hyq.joint_ranges().len())
+    }
+
+    /// The documented robot's body count (the bundled HyQ's links).
+    fn documented_links() -> usize {
+        hyq_physics::bundled::hyq().num_links()
     }
 
     /// `names` as a list of code spans: `` `a`, `b` ``.
@@ -134,6 +160,51 @@ mod generate {
         text
     }
 
+    /// hyq-spec's crate README table: a row per reward term, in the table's order.
+    fn term_table() -> String {
+        let mut out = String::from(
+            "| term | kind | spec | sum over an episode | reported |\n|---|---|---|---|---|\n",
+        );
+        for t in &REWARD_TERMS {
+            let kind = match t.kind {
+                TermKind::Reward => "reward",
+                TermKind::Multiplier => "multiplier",
+                TermKind::Penalty => "penalty",
+            };
+            let sum = t.sum_name.map_or("", |s| s);
+            let reported = if t.opt_in.is_some() {
+                "when configured"
+            } else {
+                "always"
+            };
+            out.push_str(&format!(
+                "| `{}` | {kind} | {} | {sum} | {reported} |\n",
+                t.name, t.section
+            ));
+        }
+        out
+    }
+
+    /// hyq-engines' crate README table: a row per engine of `ENGINES`.
+    fn engine_table() -> String {
+        let mut out = String::from(
+            "| name | engine | crate | cargo feature | needs (install) |\n|---|---|---|---|---|\n",
+        );
+        for e in &hyq_engines::ENGINES {
+            let feature = e
+                .feature
+                .map_or("none (always built)".to_owned(), |f| format!("`{f}`"));
+            let needs = e.needs.map_or("nothing".to_owned(), |n| {
+                format!("{} (`{}`)", n.what, n.install)
+            });
+            out.push_str(&format!(
+                "| `{}` | {} | `{}` | {feature} | {needs} |\n",
+                e.name, e.summary, e.crate_name
+            ));
+        }
+        out
+    }
+
     /// A Markdown table with the header `key | type | meaning`.
     fn table(rows: &[(String, String, String)]) -> String {
         let mut out = String::from("| key | type | meaning |\n|---|---|---|\n");
@@ -145,10 +216,21 @@ mod generate {
 
     /// The info table: a row per key, the reward terms a row per kind, the end reasons one row.
     pub(super) fn info_table() -> String {
+        info_rows(&INFO_KEYS)
+    }
+
+    /// The table of the keys `[randomize]` adds to the info, a row per key.
+    pub(super) fn randomize_info_table() -> String {
+        info_rows(&RANDOMIZE_INFO_KEYS)
+    }
+
+    /// The table of `keys`, as [`info_table`] describes it.
+    fn info_rows(keys: &[InfoKey]) -> String {
         let (_, joints) = documented_robot();
+        let links = documented_links();
         let mut rows = Vec::new();
-        for key in &INFO_KEYS {
-            let kind = key.kind(joints);
+        for key in keys {
+            let kind = key.kind(joints, links);
             match key.value {
                 InfoValue::Terms => {
                     for term_kind in TermKind::ALL {
@@ -170,6 +252,7 @@ mod generate {
             text.replace("{obs}", &obs.to_string())
                 .replace("{joints}", &joints.to_string())
                 .replace("{terms}", &term_names())
+                .replace("{randomize}", &randomize_names())
         };
         let rows: Vec<_> = RECORD_KEYS
             .iter()
@@ -187,6 +270,17 @@ mod generate {
             })
             .collect();
         table(&rows)
+    }
+
+    /// The names the record writes under `randomize`: the info's `randomize.` keys without their
+    /// prefix.
+    fn randomize_names() -> String {
+        let prefix = hyq_env::randomize::RANDOMIZE_PREFIX;
+        spans(
+            RANDOMIZE_INFO_KEYS
+                .iter()
+                .map(|k| k.name.strip_prefix(prefix).unwrap_or(k.name)),
+        )
     }
 
     /// The keys of `[task]` (hyq-spec's `TaskConfig`), in the order a written configuration holds
@@ -283,9 +377,11 @@ mod generate {
 
 #[cfg(test)]
 mod tests {
-    use super::generate::{info_table, record_table, regenerate, stale, term_names};
+    use super::generate::{
+        info_table, randomize_info_table, record_table, regenerate, stale, term_names,
+    };
     use super::*;
-    use hyq_env::{INFO_KEYS, RECORD_KEYS};
+    use hyq_env::{INFO_KEYS, RANDOMIZE_INFO_KEYS, RECORD_KEYS};
 
     /// Every generated section is what the code gives: a key, term or table added in the code
     /// and not yet written into the documents fails here, naming the file. With
@@ -332,6 +428,16 @@ mod tests {
             for name in key.names() {
                 assert!(info.contains(&format!("`{name}`")), "{name}");
             }
+        }
+        let randomize = randomize_info_table();
+        for key in &RANDOMIZE_INFO_KEYS {
+            assert!(
+                randomize.contains(&format!("| `{}` |", key.name)),
+                "{}",
+                key.name
+            );
+            let name = key.name.strip_prefix("randomize.").unwrap_or(key.name);
+            assert!(record_table().contains(&format!("`{name}`")), "{name}");
         }
         let record = record_table();
         for key in &RECORD_KEYS {

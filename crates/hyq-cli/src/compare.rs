@@ -203,46 +203,14 @@ pub fn execute(args: CompareArgs) -> Result<(), Failure> {
         (Some(PolicyChoice::Mlp(file)), _) => {
             return execute_policy(&args, file, &choices, model);
         }
-        (_, Some(_)) if args.episodes.is_some() || args.config.is_some() => {
-            let flag = if args.episodes.is_some() {
-                "--episodes"
-            } else {
-                "--config"
-            };
-            return Err(usage(format!(
-                "{flag} goes with --policy mlp:FILE; a scenario sets its own episode and \
-                 configuration (change it with --set)"
-            )));
-        }
-        (_, Some(scenario)) => scenario,
-        // clap requires one of the two and parse_policy takes only mlp:FILE.
-        _ => return Err(usage("give --scenario NAME or --policy mlp:FILE")),
+        (_, scenario) => checked_scenario(&args, scenario)?,
     };
-    if choices.len() > 2 && !args.set_b.is_empty() {
-        return Err(usage(
-            "--set-b: overrides the second backend of a two-backend comparison; with three \
-             backends use --set (every side)",
-        ));
-    }
     let ledger = match &args.ledger {
         Some(path) => Ledger::from_file(path),
         None => Ledger::built_in(),
     }
     .map_err(|e| usage(format!("--ledger: {e}")))?;
-    let parse_all = |flag: &str, items: &[String]| {
-        items
-            .iter()
-            .map(|i| parse_override(i).map_err(|e| usage(format!("{flag}: {e}"))))
-            .collect::<Result<Vec<_>, Failure>>()
-    };
-    let spec = ComparisonSpec {
-        scenario,
-        seed: args.seed,
-        seconds: args.seconds,
-        one_step_states: args.one_step_states,
-        overrides: parse_all("--set", &args.set)?,
-        overrides_b: parse_all("--set-b", &args.set_b)?,
-    };
+    let spec = comparison_spec(&args, scenario)?;
     prepare_output_dir(&args.out).map_err(|e| usage(format!("--out: {e}")))?;
 
     if choices.len() > 2 {
@@ -264,18 +232,69 @@ pub fn execute(args: CompareArgs) -> Result<(), Failure> {
                 .map_err(compare_failure)
         })
     })?;
-    report
-        .write(&args.out, &command_line())
-        .map_err(|e| Failure {
-            status: 1,
-            message: e.to_string(),
-        })?;
+    written(report.write(&args.out, &command_line()))?;
     print_summary(&report, &args)?;
     if args.strict && report.flagged > 0 {
         let names: Vec<&str> = report.flags().map(|c| c.metric.name()).collect();
         return Err(strict_failure(report.flagged, &names, &args));
     }
     Ok(())
+}
+
+/// The scenario of a scenario comparison (`scenario`, as `--scenario` gave it), refusing the
+/// flags that go with a policy comparison only, and `--set-b` beside three backends.
+fn checked_scenario(args: &CompareArgs, scenario: Option<Scenario>) -> Result<Scenario, Failure> {
+    let scenario = match scenario {
+        Some(_) if args.episodes.is_some() || args.config.is_some() => {
+            let flag = if args.episodes.is_some() {
+                "--episodes"
+            } else {
+                "--config"
+            };
+            return Err(usage(format!(
+                "{flag} goes with --policy mlp:FILE; a scenario sets its own episode and \
+                 configuration (change it with --set)"
+            )));
+        }
+        Some(scenario) => scenario,
+        // clap requires one of the two and parse_policy takes only mlp:FILE.
+        None => return Err(usage("give --scenario NAME or --policy mlp:FILE")),
+    };
+    if args.backends.0.len() > 2 && !args.set_b.is_empty() {
+        return Err(usage(
+            "--set-b: overrides the second backend of a two-backend comparison; with three \
+             backends use --set (every side)",
+        ));
+    }
+    Ok(scenario)
+}
+
+/// The scenario comparison's specification: `scenario` with the seed, length and sampling of
+/// `args`, and its `--set` and `--set-b` overrides parsed (a bad one names its flag).
+fn comparison_spec(args: &CompareArgs, scenario: Scenario) -> Result<ComparisonSpec, Failure> {
+    let parse_all = |flag: &str, items: &[String]| {
+        items
+            .iter()
+            .map(|i| parse_override(i).map_err(|e| usage(format!("{flag}: {e}"))))
+            .collect::<Result<Vec<_>, Failure>>()
+    };
+    Ok(ComparisonSpec {
+        scenario,
+        seed: args.seed,
+        seconds: args.seconds,
+        one_step_states: args.one_step_states,
+        overrides: parse_all("--set", &args.set)?,
+        overrides_b: parse_all("--set-b", &args.set_b)?,
+    })
+}
+
+/// A report's writing as the command's result: a failure to write is status 1 (the run itself
+/// went through; the disk refused it).
+fn written<T>(result: Result<T, hyq_compare::CompareError>) -> Result<T, Failure> {
+    result.map_err(|e| Failure {
+        status: 1,
+        message: e.to_string(),
+    })
 }
 
 /// A comparison's error as a failure: overrides and the configuration they make are checked
@@ -324,12 +343,7 @@ fn execute_many(
         sides.push(side);
     }
     let report = compare_all(&plan, &mut sides, ledger).map_err(compare_failure)?;
-    report
-        .write(&args.out, &command_line())
-        .map_err(|e| Failure {
-            status: 1,
-            message: e.to_string(),
-        })?;
+    written(report.write(&args.out, &command_line()))?;
     let mut out = String::new();
     let end = |s: &hyq_compare::SideReport| {
         let r: Vec<&str> = s.end_reasons.iter().map(|r| r.as_str()).collect();
@@ -398,12 +412,7 @@ fn execute_policy(
         }
     }
     let report = plan.report(&sides, &replays);
-    report
-        .write(&args.out, &command_line())
-        .map_err(|e| Failure {
-            status: 1,
-            message: e.to_string(),
-        })?;
+    written(report.write(&args.out, &command_line()))?;
     print_policy_summary(&report, args)
 }
 
@@ -469,9 +478,17 @@ fn print_policy_summary(report: &PolicyReport, args: &CompareArgs) -> Result<(),
             .iter()
             .map(|e| format!("{} {}", e.reasons, e.episodes))
             .collect();
+        // With `[randomize]` on, the falls and pushes (the push target's figure); else nothing.
+        let randomized = s.randomized.as_ref().map_or_else(String::new, |r| {
+            format!(
+                "; fell {}, {:.2} pushes per episode",
+                r.fell_text(s.episodes.len()),
+                r.pushes_mean
+            )
+        });
         let _ = writeln!(
             out,
-            "{}: distance walked (K - D^T) {:.3} m mean, {:.3} m min; travel {:.3} m; return {:.3}; ended by {}",
+            "{}: distance walked (K - D^T) {:.3} m mean, {:.3} m min; travel {:.3} m; return {:.3}; ended by {}{randomized}",
             s.label,
             s.distance_walked_m.mean,
             s.distance_walked_m.min,
@@ -479,6 +496,18 @@ fn print_policy_summary(report: &PolicyReport, args: &CompareArgs) -> Result<(),
             s.ret.mean,
             ends.join(", ")
         );
+    }
+    match report.drew_alike {
+        Some(true) => {
+            let _ = writeln!(
+                out,
+                "randomised: every engine drew the same values in each episode"
+            );
+        }
+        Some(false) => {
+            let _ = writeln!(out, "randomised: the engines did NOT draw the same values");
+        }
+        None => {}
     }
     for p in &report.pairs {
         let _ = writeln!(

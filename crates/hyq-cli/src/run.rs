@@ -12,7 +12,9 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
-use hyq_env::{Env, Policy, Reason, ResetOptions, Step, StepInfo, StepRecord, TermSums};
+use hyq_env::{
+    Env, EpisodeRandomization, Policy, Reason, ResetOptions, Step, StepInfo, StepRecord, TermSums,
+};
 use hyq_physics::Backend;
 use hyq_spec::terms::terms_of;
 use hyq_spec::{REWARD_TERMS, RewardTerm, TaskConfig, TermKind};
@@ -135,6 +137,9 @@ pub struct EpisodeSummary {
     pub final_position: [f64; 3],
     /// G (m).
     pub goal: [f64; 3],
+    /// When `[randomize]` is on: the episode's drawn values and its pushes (else not written).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub randomize: Option<EpisodeRandomization>,
 }
 
 /// The mean of each multiplier (`hyq_spec::REWARD_TERMS` of kind `Multiplier`) over an
@@ -380,6 +385,10 @@ impl EpisodeSummary {
             initial_position: info.initial_position,
             final_position: info.initial_position,
             goal: info.goal,
+            randomize: info.randomize.as_ref().map(|r| EpisodeRandomization {
+                draw: r.draw.clone(),
+                pushes: 0,
+            }),
         }
     }
 
@@ -396,6 +405,9 @@ impl EpisodeSummary {
             self.truncated = step.truncated;
             self.reasons = info.reasons.iter().collect();
             self.final_distance_to_goal = info.distance_to_goal;
+            if let (Some(s), Some(r)) = (self.randomize.as_mut(), &info.randomize) {
+                s.pushes = r.pushes;
+            }
         }
     }
 }
@@ -425,10 +437,14 @@ pub fn compact(v: f64) -> String {
 /// The per-episode table of `hyq run`: the return and the sum of every reward and penalty term
 /// (`hyq_spec::REWARD_TERMS`), the end and the distance.
 pub fn summary_table(summaries: &[EpisodeSummary]) -> String {
-    let summed = || REWARD_TERMS.iter().filter(|t| t.kind.is_summed());
     let header: Vec<&str> = ["episode", "steps", "time_s", "return"]
         .into_iter()
-        .chain(summed().map(|t| t.name))
+        .chain(
+            REWARD_TERMS
+                .iter()
+                .filter(|t| t.kind.is_summed())
+                .map(|t| t.name),
+        )
         .chain(["<end", "distance_m", "dx_m"])
         .collect();
     let mut table = Table::new(&header);
@@ -441,7 +457,12 @@ pub fn summary_table(summaries: &[EpisodeSummary]) -> String {
             format!("{:.2}", s.simulated_s),
             num(s.ret),
         ];
-        row.extend(summed().map(|t| num(s.terms.get(t.name).unwrap_or_default())));
+        row.extend(
+            s.terms
+                .iter()
+                .filter(|(t, _)| t.kind.is_summed())
+                .map(|(_, v)| num(v)),
+        );
         row.extend([
             end.join("+"),
             format!(

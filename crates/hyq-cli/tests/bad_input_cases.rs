@@ -71,6 +71,11 @@ fn configuration_keys_and_values() {
     ] {
         fails(2, &["run", "--set", s], &["--set"]);
     }
+    // a key of another terrain kind, which would be ignored.
+    bad_set(
+        &["terrain.kind=\"slope\"", "terrain.step_height_m=0.2"],
+        &["terrain.step_height_m", "\"stairs\"", "\"slope\""],
+    );
     // wrong types.
     bad_set(&["task.fall_penalty=abc"], &["fall_penalty"]);
     bad_set(&["control.velocity_limit=maybe"], &["velocity_limit"]);
@@ -429,6 +434,131 @@ fn records_and_plots() {
     // --out an existing file.
     fails(2, &["plot", &good, "--out", &good], &[]);
     assert!(Path::new(&good).is_file());
+}
+
+#[test]
+fn randomization_keys_and_values() {
+    // Reversed and non-finite ranges.
+    bad_set(
+        &["randomize.ground_friction=[1.0, 0.5]"],
+        &["randomize.ground_friction", "[1.0, 0.5]", "lo <= hi"],
+    );
+    bad_set(
+        &["randomize.link_mass_scale=[nan, 1]"],
+        &["randomize.link_mass_scale", "[NaN, 1.0]", "finite"],
+    );
+    bad_set(
+        &["randomize.trunk_added_mass_kg=[-1, inf]"],
+        &["randomize.trunk_added_mass_kg", "inf", "finite"],
+    );
+    bad_set(
+        &["randomize.push_velocity_xy_mps=[1, 0.5]"],
+        &["randomize.push_velocity_xy_mps", "[1.0, 0.5]"],
+    );
+    // A scale that can make a mass, a gain or an effort zero or negative.
+    for key in ["kp_scale", "kd_scale", "effort_scale", "link_mass_scale"] {
+        let set = format!("randomize.{key}=[0, 1]");
+        bad_set(
+            &[&set],
+            &[&format!("randomize.{key}"), "[0.0, 1.0]", "lo > 0"],
+        );
+    }
+    // Known only against the robot: HyQ's trunk cannot lose 100 kg.
+    bad_set(
+        &["randomize.trunk_added_mass_kg=[-100, 0]"],
+        &["randomize.trunk_added_mass_kg", "[-100.0, 0.0]", "positive"],
+    );
+    // A delay longer than an env step (10 sub-steps by default).
+    bad_set(
+        &["randomize.actuator_delay_substeps=[0, 11]"],
+        &[
+            "randomize.actuator_delay_substeps",
+            "[0, 11]",
+            "longer than an env step",
+        ],
+    );
+    // A negative or non-finite deviation, a probability above 1.
+    bad_set(
+        &["randomize.obs_noise.joint_speed=-1"],
+        &["randomize.obs_noise.joint_speed", "-1"],
+    );
+    bad_set(
+        &["randomize.obs_noise.quaternion=nan"],
+        &["randomize.obs_noise.quaternion", "NaN"],
+    );
+    bad_set(
+        &["randomize.obs_noise.contact_flip=1.5"],
+        &["randomize.obs_noise.contact_flip", "1.5", "probability"],
+    );
+    // Pushes without a speed, or at intervals of 0.
+    bad_set(
+        &["randomize.push_interval_s=[2, 4]"],
+        &["randomize.push_interval_s", "speed"],
+    );
+    bad_set(
+        &[
+            "randomize.push_interval_s=[0, 4]",
+            "randomize.push_velocity_xy_mps=[0.5, 0.5]",
+        ],
+        &["randomize.push_interval_s", "[0.0, 4.0]", "lo > 0"],
+    );
+    // Unknown keys, a bad preset, a scalar for a range.
+    bad_set(&["randomize.bogus=1"], &["randomize.bogus", "bogus"]);
+    bad_set(
+        &["randomize.obs_noise.bogus=1"],
+        &["randomize.obs_noise.bogus"],
+    );
+    bad_set(&["randomize.preset=gym"], &["randomize.preset", "gym"]);
+    bad_set(
+        &["randomize.ground_friction=0.5"],
+        &["randomize.ground_friction", "0.5"],
+    );
+
+    // Before anything runs: no record is started, from --set or from --config.
+    let record = scratch("randomize-bad.jsonl");
+    let _ = std::fs::remove_file(&record);
+    let config = write(
+        "randomize-bad.toml",
+        b"[randomize]\nground_friction = [1.0, 0.2]\n",
+    );
+    let record_arg = record.to_str().unwrap();
+    fails(
+        2,
+        &["run", "--config", &config, "--record", record_arg],
+        &["randomize.ground_friction", "[1.0, 0.2]"],
+    );
+    fails(
+        2,
+        &[
+            "run",
+            "--set",
+            "randomize.kp_scale=[0, 1]",
+            "--record",
+            record_arg,
+        ],
+        &["randomize.kp_scale"],
+    );
+    assert!(!record.exists());
+    // hyq compare --policy refuses before its output directory is made.
+    let out = scratch("randomize-bad-compare");
+    let _ = std::fs::remove_dir_all(&out);
+    let policy = format!("mlp:{}", common::committed_policy().display());
+    fails(
+        2,
+        &[
+            "compare",
+            "--backends",
+            "rapier,rapier",
+            "--policy",
+            &policy,
+            "--config",
+            &config,
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        &["randomize.ground_friction", "[1.0, 0.2]"],
+    );
+    assert!(!out.exists());
 }
 
 /// A copy of the bundled HyQ (profile and URDF) in scratch directory `name`, with `profile` and

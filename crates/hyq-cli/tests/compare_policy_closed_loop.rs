@@ -5,6 +5,9 @@
 //! the first backend's actions replayed open loop reproduce its own run exactly; and a bad
 //! policy file (missing, another format, another layout or action mode, a non-finite weight) is
 //! one line naming the file, exit status 2, before anything runs or the output directory is made.
+//! With `[randomize]` on (`--set randomize.*`), every engine draws what `hyq run` draws, and the
+//! report says so and counts each engine's falls and pushes; off, neither report nor summary
+//! mentions it.
 
 #![allow(clippy::unwrap_used)]
 
@@ -133,8 +136,110 @@ fn each_backend_runs_the_episodes_hyq_run_runs_and_the_report_is_written() {
     ] {
         assert!(md.contains(section), "report.md lacks {section:?}");
     }
+    // `[randomize]` off: the reports and the summaries say nothing of it.
+    let written = std::fs::read_to_string(dir.join("report.json")).unwrap();
+    for text in [&md, &written, &run, &out] {
+        assert!(!text.to_lowercase().contains("randomi"), "{text}");
+    }
     let png = std::fs::read(dir.join("trunk_x_z.png")).unwrap();
     assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
+}
+
+/// The randomisation the comparison's tests turn on: a friction, mass and gain draw, a delay,
+/// and pushes.
+const RANDOMIZED: [&str; 12] = [
+    "--set",
+    "randomize.ground_friction=[0.5, 1.25]",
+    "--set",
+    "randomize.trunk_added_mass_kg=[-5.0, 5.0]",
+    "--set",
+    "randomize.kp_scale=[0.9, 1.1]",
+    "--set",
+    "randomize.actuator_delay_substeps=[0, 2]",
+    "--set",
+    "randomize.push_interval_s=[0.3, 0.5]",
+    "--set",
+    "randomize.push_velocity_xy_mps=[0.5, 0.5]",
+];
+
+#[test]
+fn with_randomisation_every_engine_draws_what_hyq_run_draws() {
+    let dir = fresh_dir("compare_policy_randomized");
+    let out = short_compare(&dir, &RANDOMIZED);
+    let json = read_json(&dir);
+    let sides = json["sides"].as_array().unwrap();
+    let policy = policy_arg(&committed_policy());
+    let mut args = vec![
+        "run",
+        "--policy",
+        &policy,
+        "--episodes",
+        "2",
+        "--seed",
+        "7",
+        "--set",
+        "task.max_time_steps=120",
+        "--set",
+        "reset.joint_noise_rad=0.05",
+        "--json",
+    ];
+    args.extend_from_slice(&RANDOMIZED);
+    let runs: Vec<Value> = hyq_ok(&args)
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(json["drew_alike"], true);
+    for side in sides {
+        let episodes = side["episodes"].as_array().unwrap();
+        for (e, r) in episodes.iter().zip(&runs) {
+            assert!(r["randomize"]["pushes"].as_u64().unwrap() >= 2, "{r}");
+            assert_eq!(e["randomize"], r["randomize"], "the run's draws and pushes");
+            assert_eq!(e["return"], r["return"]);
+        }
+        // The fall count is the episodes whose reasons hold `fell`.
+        let fell = episodes
+            .iter()
+            .filter(|e| {
+                e["end_reasons"]
+                    .as_array()
+                    .unwrap()
+                    .contains(&"fell".into())
+            })
+            .count();
+        let randomized = &side["randomized"];
+        assert_eq!(randomized["fell"], fell, "{randomized}");
+        assert_eq!(randomized["fall_rate_pct"], 50.0 * fell as f64);
+        let pushes: u64 = runs
+            .iter()
+            .map(|r| r["randomize"]["pushes"].as_u64().unwrap())
+            .sum();
+        assert_eq!(randomized["pushes_mean"], pushes as f64 / 2.0);
+    }
+    let e = sides[0]["episodes"].as_array().unwrap();
+    assert_ne!(
+        e[0]["randomize"], e[1]["randomize"],
+        "each episode draws anew"
+    );
+    let md = std::fs::read_to_string(dir.join("report.md")).unwrap();
+    assert!(
+        md.contains("every engine drew the same values in each episode"),
+        "{md}"
+    );
+    assert!(
+        md.contains("| fell (episodes ending with `fell`) |"),
+        "{md}"
+    );
+    assert!(
+        out.contains("randomised: every engine drew the same values"),
+        "{out}"
+    );
+    assert!(out.contains(" pushes per episode"), "{out}");
+    for run in json["replay"]["runs"].as_array().unwrap() {
+        assert_eq!(
+            run["trunk_position"]["max"], 0.0,
+            "the replay draws alike: {run}"
+        );
+    }
 }
 
 #[test]
@@ -335,14 +440,15 @@ fn scenario_and_ledger_options_do_not_mix_with_a_policy() {
     assert!(!dir.exists());
 }
 
-/// With DART built in: the real two-engine comparison, closed loop, states a gap, and the
-/// replay of rapier's actions on rapier is still exact while DART's differs.
+/// With DART built in: the real two-engine comparison, closed loop and randomised, draws the
+/// same values on both, states a gap, and the replay of rapier's actions on rapier is still
+/// exact while DART's differs.
 #[cfg(feature = "dart")]
 #[test]
 fn rapier_and_dart_part_and_the_report_says_by_how_much() {
     let dir = fresh_dir("compare_policy_dart");
     let policy = policy_arg(&committed_policy());
-    hyq_ok(&[
+    let mut args = vec![
         "compare",
         "--backends",
         "rapier,dart",
@@ -354,8 +460,15 @@ fn rapier_and_dart_part_and_the_report_says_by_how_much() {
         "task.max_time_steps=150",
         "--out",
         dir.to_str().unwrap(),
-    ]);
+    ];
+    // Randomised, both engines draw the same values.
+    args.extend_from_slice(&RANDOMIZED);
+    hyq_ok(&args);
     let json = read_json(&dir);
+    assert_eq!(json["drew_alike"], true);
+    let draws = |side: usize| json["sides"][side]["episodes"][0]["randomize"].clone();
+    assert!(draws(0)["kp_scale"].is_array(), "{}", draws(0));
+    assert_eq!(draws(0)["kp_scale"], draws(1)["kp_scale"]);
     let pair = &json["pairs"][0];
     assert!(
         pair["trunk_position"]["max"].as_f64().unwrap() > 0.0,

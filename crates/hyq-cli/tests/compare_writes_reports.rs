@@ -1,7 +1,8 @@
 //! Invariant: `hyq compare` writes report.md, report.json and trunk_x_z.png into `--out` for the
 //! two backends it was given, with the documented JSON keys; a self-comparison agrees exactly;
 //! and `--strict` turns a divergence outside the ledger into exit status 1 with one error line,
-//! after the reports are written (so the evidence is always on disk).
+//! after the reports are written (so the evidence is always on disk); with `[randomize]` on, the
+//! report says whether both sides drew the same values.
 
 #![allow(clippy::unwrap_used)]
 
@@ -97,6 +98,8 @@ fn a_self_comparison_writes_three_files_and_agrees_exactly() {
     ] {
         assert!(md.contains(section), "report.md lacks {section:?}");
     }
+    assert!(!md.contains("Randomised"), "off, not mentioned");
+    assert!(json["sides"][0].get("randomize").is_none());
     let png = std::fs::read(dir.join("trunk_x_z.png")).unwrap();
     assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
     assert!(png.len() < 200_000, "plot is {} bytes", png.len());
@@ -143,6 +146,51 @@ fn strict_fails_on_a_perturbed_backend_after_writing_the_reports() {
     let json = read_json(&dir);
     assert!(json["flagged"].as_u64().unwrap() > 0);
     assert_eq!(json["overrides_b"][0], "physics.gravity=[0,0,-10.791]");
+}
+
+#[test]
+fn a_randomised_scenario_says_whether_both_sides_drew_alike() {
+    let dir = fresh_dir("compare_randomized");
+    let mut args = vec![
+        "compare",
+        "--backends",
+        "rapier,rapier",
+        "--scenario",
+        "stand",
+        "--seconds",
+        "0.2",
+        "--one-step-states",
+        "2",
+        "--set",
+        "randomize.ground_friction=[0.5, 1.0]",
+        "--set",
+        "randomize.kp_scale=[0.9, 1.1]",
+        "--out",
+        dir.to_str().unwrap(),
+    ];
+    hyq_ok(&args);
+    let json = read_json(&dir);
+    let (a, b) = (
+        &json["sides"][0]["randomize"],
+        &json["sides"][1]["randomize"],
+    );
+    assert!(a["kp_scale"].is_array(), "{a}");
+    assert_eq!(a, b);
+    // Drawn alike, the same engine runs alike.
+    assert_eq!(json["trajectory"]["trunk_position"]["max"], 0.0);
+    let md = std::fs::read_to_string(dir.join("report.md")).unwrap();
+    assert!(md.contains("both sides drew the same values"), "{md}");
+
+    // Randomised on one side only, they differ, and the report says so.
+    args.extend(["--set-b", "randomize.ground_friction=[0.3, 0.4]"]);
+    hyq_ok(&args);
+    let json = read_json(&dir);
+    assert_ne!(json["sides"][0]["randomize"], json["sides"][1]["randomize"]);
+    let md = std::fs::read_to_string(dir.join("report.md")).unwrap();
+    assert!(
+        md.contains("both sides did not draw the same values"),
+        "{md}"
+    );
 }
 
 /// With DART built in, the real comparison runs and stays within the ledger.

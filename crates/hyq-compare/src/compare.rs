@@ -225,20 +225,9 @@ impl Plan {
     ) -> Result<Report, CompareError> {
         let spec = &self.spec;
         let scenario = spec.scenario;
-        let (traj_a, traj_b) = (&a.traj, &b.traj);
-        let picked = sample_indices(traj_a, spec.one_step_states);
-        let shared: Vec<(u64, &hyq_physics::RobotState, &[f64])> = picked
-            .iter()
-            .map(|&t| (t as u64, &traj_a.states[t], traj_a.targets_after(t)))
-            .collect();
-        let after_a = a.env.one_step(&traj_a.label, &shared)?;
-        let after_b = b.env.one_step(&traj_b.label, &shared)?;
-        let errors: Vec<OneStepErrors> = after_a
-            .iter()
-            .zip(&after_b)
-            .map(|(x, y)| one_step_errors(x, y))
-            .collect();
+        let errors = one_step_comparison(a, b, spec.one_step_states)?;
         let one_step_summary = summarise_one_step(&errors);
+        let (traj_a, traj_b) = (&a.traj, &b.traj);
 
         let trajectory = compare_trajectories(traj_a, traj_b);
         let sides = [
@@ -300,6 +289,28 @@ impl Plan {
             series,
         })
     }
+}
+
+/// The one-step comparison of two sides: `states` states sampled from `a`'s run, each with the
+/// joint targets that followed it, stepped once on each side; the errors per state.
+fn one_step_comparison(
+    a: &mut Side,
+    b: &mut Side,
+    states: usize,
+) -> Result<Vec<OneStepErrors>, CompareError> {
+    let (traj_a, traj_b) = (&a.traj, &b.traj);
+    let picked = sample_indices(traj_a, states);
+    let shared: Vec<(u64, &hyq_physics::RobotState, &[f64])> = picked
+        .iter()
+        .map(|&t| (t as u64, &traj_a.states[t], traj_a.targets_after(t)))
+        .collect();
+    let after_a = a.env.one_step(&traj_a.label, &shared)?;
+    let after_b = b.env.one_step(&traj_b.label, &shared)?;
+    Ok(after_a
+        .iter()
+        .zip(&after_b)
+        .map(|(x, y)| one_step_errors(x, y))
+        .collect())
 }
 
 /// One side of a comparison after its run: the trajectory, the standing height, and the
@@ -415,6 +426,7 @@ fn side_report(
         mean_trunk_z_m: mean_z,
         final_position: traj.positions.last().copied().unwrap_or([f64::NAN; 3]),
         overrides: written(shared).chain(written(own)).collect(),
+        randomize: traj.randomize.clone(),
     }
 }
 

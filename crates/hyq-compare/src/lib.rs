@@ -37,6 +37,7 @@ pub mod metrics;
 mod multi;
 mod plot;
 pub mod policy;
+mod randomized;
 mod report;
 pub mod run;
 mod scenario;
@@ -50,6 +51,7 @@ pub use ledger::{Known, Ledger, Metric, ScenarioScope, ToleranceSource};
 pub use multi::{MultiReport, PairSummary, compare_all};
 pub use plot::{PLOT_SIZE, plot_many, plot_policy, plot_trunk_x_z};
 pub use policy::{PolicyPlan, PolicyReport, PolicySpec};
+pub use randomized::RandomizedSide;
 pub use report::{
     JSON_FILE, MARKDOWN_FILE, PLOT_FILE, Report, SERIES_POINTS, Series, SideReport,
     prepare_output_dir,

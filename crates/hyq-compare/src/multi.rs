@@ -218,6 +218,10 @@ impl MultiReport {
                 self.overrides.join(" ")
             );
         }
+        let draws = self.sides.iter().map(|s| [s.randomize.as_ref()]);
+        if let Some(alike) = crate::randomized::drew_alike(draws) {
+            let _ = writeln!(w, "{}", crate::randomized::line(alike, "every side"));
+        }
         let verdict = if self.flagged == 0 {
             "**Every metric of every pair is within the ledger.**".to_owned()
         } else {

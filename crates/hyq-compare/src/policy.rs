@@ -23,12 +23,13 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use hyq_env::{ActionMode, EnvConfig, Policy, Reason};
+use hyq_env::{ActionMode, EnvConfig, EpisodeRandomization, Policy, Reason};
 use hyq_physics::{Backend, RobotModel};
 use serde::Serialize;
 
 use crate::error::CompareError;
 use crate::metrics::{Divergence, compare_trajectories};
+use crate::randomized::{RandomizedSide, drew_alike};
 use crate::report::{PLOT_FILE, prepare_output_dir, sig, thin, write_report_files};
 use crate::run::{Trajectory, build_env, run_episode, run_script};
 
@@ -102,6 +103,9 @@ pub struct EpisodeOutcome {
     pub travel_m: f64,
     /// C^T (m).
     pub final_position: [f64; 3],
+    /// `[randomize]`'s draws for the episode and its pushes, when it is on (else not written).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub randomize: Option<EpisodeRandomization>,
 }
 
 impl EpisodeOutcome {
@@ -118,6 +122,7 @@ impl EpisodeOutcome {
             distance_walked_m: t.initial_distance_m - t.final_distance_m,
             travel_m: travel(start, end, t.goal),
             final_position: end,
+            randomize: t.randomize.clone(),
         }
     }
 }
@@ -245,6 +250,11 @@ impl<P: Policy + Clone> PolicyPlan<P> {
             max_steps: self.config.task.max_time_steps,
             env_dt_s: self.config.env_dt(),
             configuration: self.spec.configuration.clone(),
+            drew_alike: drew_alike(
+                sides
+                    .iter()
+                    .map(|s| s.episodes.iter().map(|e| e.randomize.as_ref())),
+            ),
             sides: sides.iter().map(side_report).collect(),
             pairs,
             replay,
@@ -286,6 +296,10 @@ fn side_report(s: &PolicySide) -> PolicySideReport {
             .into_iter()
             .map(|(reasons, episodes)| EndCount { reasons, episodes })
             .collect(),
+        randomized: RandomizedSide::of(
+            e.iter()
+                .map(|o| (o.end_reasons.contains(&Reason::Fell), o.randomize.as_ref())),
+        ),
         episodes: e.clone(),
     }
 }
@@ -399,6 +413,9 @@ pub struct PolicySideReport {
     pub steps: Stats,
     /// How the episodes ended.
     pub ended_by: Vec<EndCount>,
+    /// With `[randomize]` on, the falls and pushes (else not written).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub randomized: Option<RandomizedSide>,
     /// Every episode.
     pub episodes: Vec<EpisodeOutcome>,
 }
@@ -514,6 +531,10 @@ pub struct PolicyReport {
     pub env_dt_s: f64,
     /// The configuration as applied (`key=value (source)`).
     pub configuration: Vec<String>,
+    /// With `[randomize]` on, whether every engine drew the same values in each episode (they
+    /// must: the draws depend on the seed alone); not written when it is off.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub drew_alike: Option<bool>,
     /// Per engine.
     pub sides: Vec<PolicySideReport>,
     /// Per pair of engines, in the order (1, 2), (1, 3), (2, 3).
@@ -558,6 +579,7 @@ impl PolicyReport {
         let mut m = String::new();
         self.markdown_header(&mut m, command);
         self.markdown_per_engine(&mut m);
+        self.markdown_randomized(&mut m);
         self.markdown_pairs(&mut m);
         self.markdown_replay(&mut m);
         self.markdown_episodes(&mut m);
@@ -632,6 +654,47 @@ impl PolicyReport {
                 .collect::<Vec<_>>()
                 .join(", ")
         });
+    }
+
+    /// With `[randomize]` on: whether every engine drew alike, and each engine's falls and
+    /// pushes; nothing when it is off.
+    fn markdown_randomized(&self, w: &mut String) {
+        let Some(alike) = self.drew_alike else {
+            return;
+        };
+        // Writing into a String cannot fail.
+        let _ = writeln!(w, "\n## Randomisation\n");
+        let _ = writeln!(w, "{}\n", crate::randomized::line(alike, "every engine"));
+        let labels: Vec<&str> = self.sides.iter().map(|s| s.label.as_str()).collect();
+        let _ = writeln!(w, "| | {} |", labels.join(" | "));
+        let _ = writeln!(w, "|---|{}", "---|".repeat(labels.len()));
+        let cell = |s: &PolicySideReport, f: &dyn Fn(&RandomizedSide) -> String| {
+            s.randomized.as_ref().map_or_else(|| "—".to_owned(), f)
+        };
+        let fell: Vec<String> = self
+            .sides
+            .iter()
+            .map(|s| cell(s, &|r| r.fell_text(s.episodes.len())))
+            .collect();
+        let _ = writeln!(
+            w,
+            "| fell (episodes ending with `fell`) | {} |",
+            fell.join(" | ")
+        );
+        let pushes: Vec<String> = self
+            .sides
+            .iter()
+            .map(|s| {
+                cell(s, &|r| {
+                    format!("{:.2} [{}, {}]", r.pushes_mean, r.pushes_min, r.pushes_max)
+                })
+            })
+            .collect();
+        let _ = writeln!(
+            w,
+            "| pushes per episode, mean [min, max] | {} |",
+            pushes.join(" | ")
+        );
     }
 
     /// Each pair's divergence over the first episodes and the gaps between their means.

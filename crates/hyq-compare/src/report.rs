@@ -49,6 +49,9 @@ pub struct SideReport {
     pub final_position: [f64; 3],
     /// The configuration overrides this side ran with.
     pub overrides: Vec<String>,
+    /// `[randomize]`'s draws and pushes, when it is on (else not written).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub randomize: Option<hyq_env::EpisodeRandomization>,
 }
 
 /// Time series for plotting: the trunk's x and z per backend and the three divergences, over
@@ -247,6 +250,10 @@ impl Report {
                 b.label,
                 self.overrides_b.join(" ")
             );
+        }
+        let draws = self.sides.iter().map(|s| [s.randomize.as_ref()]);
+        if let Some(alike) = crate::randomized::drew_alike(draws) {
+            let _ = writeln!(w, "{}", crate::randomized::line(alike, "both sides"));
         }
         let verdict = if self.flagged == 0 {
             "**Every metric is within the ledger.**".to_owned()

@@ -4,7 +4,7 @@
 
 use std::sync::Arc;
 
-use hyq_env::{Env, EnvConfig, Reasons, ResetOptions};
+use hyq_env::{Env, EnvConfig, EpisodeRandomization, Reasons, ResetOptions};
 use hyq_physics::na::UnitQuaternion;
 use hyq_physics::{Backend, RobotModel, RobotState, TrunkState};
 use serde::Serialize;
@@ -66,6 +66,9 @@ pub struct Trajectory {
     pub initial_distance_m: f64,
     /// D^T, its distance to the goal after the last step (m).
     pub final_distance_m: f64,
+    /// `[randomize]`'s draws for the episode and its pushes, when it is on: the draws are the
+    /// same on every engine for the same seed.
+    pub randomize: Option<EpisodeRandomization>,
 }
 
 impl Trajectory {
@@ -170,6 +173,10 @@ pub fn run_episode<B: Backend>(
         goal,
         initial_distance_m,
         final_distance_m: initial_distance_m,
+        randomize: env.episode_draw().map(|draw| EpisodeRandomization {
+            draw: draw.clone(),
+            pushes: 0,
+        }),
     };
     let record = |traj: &mut Trajectory, env: &Env<B>| {
         let trunk: &TrunkState = env.trunk();
@@ -200,6 +207,9 @@ pub fn run_episode<B: Backend>(
         if done {
             break;
         }
+    }
+    if let (Some(r), Some((_, pushes))) = (traj.randomize.as_mut(), env.push()) {
+        r.pushes = pushes;
     }
     // The last sample has no step after it: repeat the last step's targets so that every
     // sample has targets (the one-step comparison never samples the last state).

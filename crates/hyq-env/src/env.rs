@@ -52,7 +52,7 @@ use crate::config::{ConfigError, EnvConfig, ObservationExtra, in_world, outside_
 use crate::divergence::Divergence;
 use crate::goal::{GoalSampler, sample_reset_state};
 use crate::info::{Reason, Reasons, StepInfo};
-use crate::randomize::{EpisodeDraw, Randomizer, check_for_robot};
+use crate::randomize::{EpisodeDraw, RandomizeInfo, Randomizer, check_for_robot};
 use crate::terrain::Ground;
 
 /// Why the environment refused a call. Every variant names what was wrong.
@@ -390,6 +390,47 @@ fn robustness(
     })))
 }
 
+/// The actuator of `model` with `config`'s `[control]` gains (the robot's own where a key is
+/// unset) and velocity limit, refusing gains that do not give one value per joint.
+fn actuator(model: &RobotModel, config: &EnvConfig) -> Result<Actuator, EnvError> {
+    let n = model.num_joints();
+    let gains = |key: &str, g: &crate::config::Gains, profile: &[f64]| {
+        g.resolve(profile).ok_or_else(|| ConfigError::Invalid {
+            key: key.to_owned(),
+            value: g.to_string(),
+            expected: format!("one gain per joint: {n} values"),
+        })
+    };
+    let kp = gains("control.kp", &config.control.kp, model.kp())?;
+    let kd = gains("control.kd", &config.control.kd, model.kd())?;
+    let mut actuator = Actuator::with_gains(model, &kp, &kd)?;
+    actuator.set_velocity_limit(config.control.velocity_limit);
+    Ok(actuator)
+}
+
+/// The info of an environment not yet reset, with room for `n` joint targets: every field
+/// neutral, overwritten by the first reset.
+fn info_before_reset(n: usize) -> StepInfo {
+    StepInfo {
+        episode: 0,
+        t: 0,
+        reward: RewardBreakdown::NEUTRAL,
+        reasons: Reasons::NONE,
+        joint_at_limit: None,
+        divergence: None,
+        distance_to_goal: 0.0,
+        d_n: 1.0,
+        roll: 0.0,
+        pitch: 0.0,
+        yaw: 0.0,
+        goal: [0.0; 3],
+        initial_position: [0.0; 3],
+        joint_targets: vec![0.0; n],
+        action_clipped: false,
+        randomize: None,
+    }
+}
+
 impl<B: Backend> Env<B> {
     /// Builds an environment for `model` on backend `B` with `config`: validates the whole
     /// configuration for this robot (gains per joint, the fixed goal against the spawn point,
@@ -400,17 +441,7 @@ impl<B: Backend> Env<B> {
         config.validate()?;
         let options: B::Options = config.physics.engine_options(B::NAME)?;
         let n = model.num_joints();
-        let gains = |key: &str, g: &crate::config::Gains, profile: &[f64]| {
-            g.resolve(profile).ok_or_else(|| ConfigError::Invalid {
-                key: key.to_owned(),
-                value: g.to_string(),
-                expected: format!("one gain per joint: {n} values"),
-            })
-        };
-        let kp = gains("control.kp", &config.control.kp, model.kp())?;
-        let kd = gains("control.kd", &config.control.kd, model.kd())?;
-        let mut actuator = Actuator::with_gains(&model, &kp, &kd)?;
-        actuator.set_velocity_limit(config.control.velocity_limit);
+        let actuator = actuator(&model, &config)?;
         let space = ActionSpace::new(&model, &config.action);
         let robot = robot_description(&model)?;
         let layout = crate::observation::extend(
@@ -453,23 +484,7 @@ impl<B: Backend> Env<B> {
             obs: vec![0.0; obs_len],
             obs_next: vec![0.0; obs_len],
             obs_f32: vec![0.0; obs_len],
-            info: StepInfo {
-                episode: 0,
-                t: 0,
-                reward: RewardBreakdown::NEUTRAL,
-                reasons: Reasons::NONE,
-                joint_at_limit: None,
-                divergence: None,
-                distance_to_goal: 0.0,
-                d_n: 1.0,
-                roll: 0.0,
-                pitch: 0.0,
-                yaw: 0.0,
-                goal: [0.0; 3],
-                initial_position: [0.0; 3],
-                joint_targets: vec![0.0; n],
-                action_clipped: false,
-            },
+            info: info_before_reset(n),
             robustness,
             timing_on: false,
             timing: StepTiming::default(),
@@ -515,17 +530,7 @@ impl<B: Backend> Env<B> {
             ],
         };
         let (ground, state, goal) = self.draw_episode(options, &mut rngs)?;
-        state.validate(&self.model)?;
-        let requested = Point3::from(state.trunk.pose.translation.vector);
-        if !requested.iter().all(|v| in_world(*v)) {
-            return Err(outside_world("reset option state's trunk position", requested).into());
-        }
-        if !goal.iter().all(|v| in_world(*v)) {
-            return Err(outside_world("reset option goal", goal).into());
-        }
-        // Checked against the requested start before anything changes, so a refused goal leaves
-        // the environment as it was.
-        let requested_rules = episode_rules(&self.config.task, requested, goal)?;
+        let requested_rules = self.check_start(&state, goal)?;
         self.backend.set_terrain(ground.terrain())?;
         if !self.begin_varied_episode(seed, &state)? {
             self.backend.set_state(&state)?;
@@ -546,37 +551,8 @@ impl<B: Backend> Env<B> {
         let initial = Point3::from(self.state.trunk.pose.translation.vector);
         let (rules, k) = episode_rules(&self.config.task, initial, goal).unwrap_or(requested_rules);
         let initial = rules.initial();
-        self.latching.fill(false);
-        let accel = Vector3::zeros();
-        self.write_observation(accel, &goal)
-            .map_err(|e| PhysicsError::Diverged {
-                what: e.to_string(),
-            })?;
-        std::mem::swap(&mut self.obs, &mut self.obs_next);
-        self.contacts.fill(false);
-        if let Some(r) = self.robustness.as_deref_mut() {
-            r.delay.reset(&self.state.q);
-        }
-        self.observe();
-
-        let attitude = roll_pitch_yaw(&self.state.trunk.pose.rotation);
-        let d0 = (goal - initial).norm();
-        let info = &mut self.info;
-        info.episode = self.episodes;
-        info.t = 0;
-        info.reward = RewardBreakdown::NEUTRAL;
-        info.reasons = Reasons::NONE;
-        info.joint_at_limit = None;
-        info.divergence = None;
-        info.distance_to_goal = d0;
-        info.d_n = k.normalise(d0);
-        info.roll = attitude.roll;
-        info.pitch = attitude.pitch;
-        info.yaw = attitude.yaw;
-        info.goal = goal.coords.into();
-        info.initial_position = initial.coords.into();
-        info.joint_targets.copy_from_slice(&self.state.q);
-        info.action_clipped = false;
+        self.observe_reset(&goal)?;
+        self.write_reset_info(goal, initial, k);
         self.episode = Some(Episode {
             rules,
             k,
@@ -627,6 +603,10 @@ impl<B: Backend> Env<B> {
         if let Some(e) = self.episode.as_mut() {
             e.done = self.info.reasons.done();
         }
+        if let (Some(r), Some(info)) = (self.robustness.as_deref(), self.info.randomize.as_mut()) {
+            info.push_velocity_mps = r.randomizer.pushed();
+            info.pushes = r.randomizer.pushes();
+        }
         if self.timing_on {
             whole.lap(&mut self.timing.total);
             self.timing.steps += 1;
@@ -639,6 +619,72 @@ impl<B: Backend> Env<B> {
             truncated: self.info.reasons.truncated(),
             info: &self.info,
         })
+    }
+
+    /// Checks a reset's start `state` and `goal` before anything changes, so a refused reset
+    /// leaves the environment as it was: the state valid for the robot, the trunk and the goal
+    /// inside the world, and the goal far enough from the requested start. Returns the rules and
+    /// K of the requested start.
+    fn check_start(
+        &self,
+        state: &RobotState,
+        goal: Point3<f64>,
+    ) -> Result<(EpisodeRules, StartGoalDistance), EnvError> {
+        state.validate(&self.model)?;
+        let requested = Point3::from(state.trunk.pose.translation.vector);
+        if !requested.iter().all(|v| in_world(*v)) {
+            return Err(outside_world("reset option state's trunk position", requested).into());
+        }
+        if !goal.iter().all(|v| in_world(*v)) {
+            return Err(outside_world("reset option goal", goal).into());
+        }
+        episode_rules(&self.config.task, requested, goal)
+    }
+
+    /// Writes the reset observation (zero acceleration, no contact yet) from the state the
+    /// engine was just put in, and starts the actuator delay from its joint angles.
+    fn observe_reset(&mut self, goal: &Point3<f64>) -> Result<(), EnvError> {
+        self.latching.fill(false);
+        let accel = Vector3::zeros();
+        self.write_observation(accel, goal)
+            .map_err(|e| PhysicsError::Diverged {
+                what: e.to_string(),
+            })?;
+        std::mem::swap(&mut self.obs, &mut self.obs_next);
+        self.contacts.fill(false);
+        if let Some(r) = self.robustness.as_deref_mut() {
+            r.delay.reset(&self.state.q);
+        }
+        self.observe();
+        Ok(())
+    }
+
+    /// The reset's info: episode counted, t = 0, neutral reward, no reason, the distance from
+    /// `initial` to `goal` and its D_n under `k`, the attitude read back, and the joint
+    /// targets at the joint angles (the robot starts at rest).
+    fn write_reset_info(&mut self, goal: Point3<f64>, initial: Point3<f64>, k: StartGoalDistance) {
+        let attitude = roll_pitch_yaw(&self.state.trunk.pose.rotation);
+        let d0 = (goal - initial).norm();
+        let info = &mut self.info;
+        info.episode = self.episodes;
+        info.t = 0;
+        info.reward = RewardBreakdown::NEUTRAL;
+        info.reasons = Reasons::NONE;
+        info.joint_at_limit = None;
+        info.divergence = None;
+        info.distance_to_goal = d0;
+        info.d_n = k.normalise(d0);
+        info.roll = attitude.roll;
+        info.pitch = attitude.pitch;
+        info.yaw = attitude.yaw;
+        info.goal = goal.coords.into();
+        info.initial_position = initial.coords.into();
+        info.joint_targets.copy_from_slice(&self.state.q);
+        info.action_clipped = false;
+        info.randomize = self
+            .robustness
+            .as_deref()
+            .map(|r| RandomizeInfo::at_reset(r.randomizer.draw()));
     }
 
     /// The next episode's ground, start state and goal, from the goal, noise and terrain streams

@@ -6,6 +6,7 @@ use hyq_physics::RobotModel;
 use hyq_spec::{JointLimitHit, LimitSide, RewardBreakdown, Termination, Terminations};
 
 use crate::divergence::Divergence;
+use crate::randomize::RandomizeInfo;
 use serde::{Deserialize, Serialize, Serializer};
 use std::fmt;
 
@@ -216,6 +217,10 @@ pub struct StepInfo {
     pub joint_targets: Vec<f64>,
     /// Whether any action value was outside the action space and clipped.
     pub action_clipped: bool,
+    /// When `[randomize]` is on: the episode's drawn values and the step's push (absent
+    /// otherwise, and then not written).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub randomize: Option<RandomizeInfo>,
 }
 
 impl StepInfo {
@@ -277,6 +282,8 @@ pub enum VectorLen {
     Three,
     /// One value per actuated joint.
     Joints,
+    /// One value per body of the model ([`RobotModel::links`]).
+    Links,
 }
 
 /// One key (or, for [`InfoValue::Terms`] and [`InfoValue::ReasonFlags`], one family of keys) of
@@ -302,8 +309,8 @@ impl InfoKey {
     }
 
     /// Its type as Python sees it (`"int"`, `"float"`, `"bool"`, `"str"`, `"float64 array
-    /// (k,)"`), `joints` being the robot's joint count.
-    pub fn kind(&self, joints: usize) -> String {
+    /// (k,)"`), `joints` and `links` being the robot's joint and body counts.
+    pub fn kind(&self, joints: usize, links: usize) -> String {
         match self.value {
             InfoValue::Int(_) => "int".into(),
             InfoValue::Float(_) | InfoValue::Terms => "float".into(),
@@ -311,6 +318,7 @@ impl InfoKey {
             InfoValue::Text(_) => "str".into(),
             InfoValue::Vector(_, VectorLen::Three) => "float64 array (3,)".into(),
             InfoValue::Vector(_, VectorLen::Joints) => format!("float64 array ({joints},)"),
+            InfoValue::Vector(_, VectorLen::Links) => format!("float64 array ({links},)"),
         }
     }
 }

@@ -19,10 +19,12 @@ use serde::{Deserialize, Serialize};
 
 use crate::env::Env;
 use crate::info::{Reason, Reasons, StepInfo};
+use crate::randomize::RandomizeInfo;
 
 /// One key of the step record: its name, its JSON type and what it holds. In a type or a
-/// meaning, `{obs}` stands for the robot's observation length, `{joints}` for its joint count
-/// and `{terms}` for the reward terms' names (the documents write them for HyQ).
+/// meaning, `{obs}` stands for the robot's observation length, `{joints}` for its joint count,
+/// `{terms}` for the reward terms' names and `{randomize}` for the names of
+/// [`RANDOMIZE_INFO_KEYS`](crate::RANDOMIZE_INFO_KEYS) (the documents write them for HyQ).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct RecordKey {
     /// The key.
@@ -37,7 +39,7 @@ pub struct RecordKey {
 }
 
 /// The step record's keys, in the order written: its one schema ([`StepRecord`]'s fields).
-pub const RECORD_KEYS: [RecordKey; 17] = [
+pub const RECORD_KEYS: [RecordKey; 18] = [
     RecordKey {
         name: "robot",
         kind: "string",
@@ -142,6 +144,13 @@ pub const RECORD_KEYS: [RecordKey; 17] = [
                   `timeout`, `diverged`, in that order; empty while it goes on",
         optional: false,
     },
+    RecordKey {
+        name: "randomize",
+        kind: "object",
+        meaning: "`[randomize]`'s draws for the episode and the step's push, named as the info's \
+                  `randomize.` keys: {randomize}",
+        optional: true,
+    },
 ];
 
 /// One env step as written to a JSONL record (see the module docs for the schema). Borrows the
@@ -185,6 +194,9 @@ pub struct StepRecord<'a> {
     pub truncated: bool,
     /// Why the episode ended (empty while it goes on).
     pub reasons: Vec<Reason>,
+    /// `[randomize]`'s draws and the step's push, when it is on (else not written).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub randomize: Option<Cow<'a, RandomizeInfo>>,
 }
 
 impl<'a> StepRecord<'a> {
@@ -216,6 +228,7 @@ impl<'a> StepRecord<'a> {
             terminated: info.terminated(),
             truncated: info.truncated(),
             reasons: info.reasons.iter().collect(),
+            randomize: info.randomize.as_ref().map(Cow::Borrowed),
         }
     }
 

@@ -400,6 +400,97 @@ fn goal_keys_of_another_mode_are_refused_by_name() {
 }
 
 #[test]
+fn terrain_keys_of_another_kind_are_refused_by_name() {
+    // Each key is read by some kinds only; given with another, it used to be silently ignored.
+    let cases: &[Case<'_>] = &[
+        (
+            &[("terrain.step_height_m", "0.2")],
+            &["terrain.step_height_m", "0.2", "\"stairs\"", "\"flat\""],
+        ),
+        (
+            &[("terrain.kind", "slope"), ("terrain.amplitude_m", "0.1")],
+            &["terrain.amplitude_m", "\"rough\"", "\"slope\""],
+        ),
+        (
+            &[
+                ("terrain.kind", "rough"),
+                ("terrain.file", "\"heights.npy\""),
+            ],
+            &[
+                "terrain.file",
+                "heights.npy",
+                "\"heightfield\"",
+                "\"rough\"",
+            ],
+        ),
+        (
+            &[("terrain.kind", "stairs"), ("terrain.seed", "\"episode\"")],
+            &["terrain.seed", "episode", "\"rough\"", "\"stairs\""],
+        ),
+        (
+            &[("terrain.kind", "rough"), ("terrain.stairs", "down")],
+            &["terrain.stairs", "\"down\""],
+        ),
+        (
+            &[("terrain.size_m", "[4, 4]")],
+            &["terrain.size_m", "\"flat\""],
+        ),
+        (
+            &[
+                ("terrain.kind", "slope"),
+                ("terrain.direction_deg", "90"),
+                ("terrain.start_m", "2"),
+            ],
+            &["terrain.start_m", "\"stairs\"", "\"slope\""],
+        ),
+    ];
+    for (pairs, words) in cases {
+        let mut c = EnvConfig::default();
+        let e = c.set_all(pairs).expect_err("refused").to_string();
+        for w in *words {
+            assert!(e.contains(w), "{pairs:?}: {e} lacks {w}");
+        }
+        assert!(!e.contains('\n'), "one line: {e}");
+        assert_eq!(c, EnvConfig::default());
+    }
+    // The same in a file.
+    let e = parse_err("[terrain]\nkind = \"rough\"\nslope_deg = 5\n");
+    assert!(
+        e.contains("terrain.slope_deg") && e.contains("\"slope\""),
+        "{e}"
+    );
+    // A kind's own keys, and the other kinds' keys at their defaults (as a written-out
+    // configuration holds them), are accepted, and a written table reads back as it was.
+    for pairs in [
+        &[
+            ("terrain.kind", "stairs"),
+            ("terrain.direction_deg", "90"),
+            ("terrain.stairs", "down"),
+        ][..],
+        &[
+            ("terrain.kind", "rough"),
+            ("terrain.seed", "\"episode\""),
+            ("terrain.curriculum", "true"),
+        ][..],
+        &[
+            ("terrain.kind", "slope"),
+            ("terrain.amplitude_m", "0.05"),
+            ("terrain.slope_deg", "-5"),
+        ][..],
+    ] {
+        let mut c = EnvConfig::default();
+        c.set_all(pairs)
+            .unwrap_or_else(|e| panic!("{pairs:?}: {e}"));
+        let text = c.to_toml_string();
+        assert!(
+            text.contains("[terrain]") && text.contains("amplitude_m"),
+            "{text}"
+        );
+        assert_eq!(EnvConfig::from_toml_str(&text, "written").ok(), Some(c));
+    }
+}
+
+#[test]
 fn messages_name_the_key_at_its_line_in_plain_words_and_short_numbers() {
     let file = |text: &str| parse_err(text);
     let set = |key: &str, value: &str| {

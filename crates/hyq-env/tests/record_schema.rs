@@ -2,12 +2,15 @@
 //! (`RECORD_KEYS`, in that order; `terms.m_height` only when the height penalty is configured),
 //! names the env's robot, its numbers read back to the same bits, its reasons use the stable
 //! names, and unknown keys are refused when reading; a record written before records named their
-//! robot still reads, and writes out to the same bytes.
+//! robot still reads, and writes out to the same bytes; `randomize` (the episode's draws and the
+//! step's push) is written only when `[randomize]` is on, last, holding every
+//! `RANDOMIZE_INFO_KEYS` value the info reads, and reads back.
 
 mod common;
 
 use common::{reset, scripted};
-use hyq_env::{RECORD_KEYS, Reason, StepRecord};
+use hyq_env::randomize::RANDOMIZE_PREFIX;
+use hyq_env::{InfoValue, RANDOMIZE_INFO_KEYS, RECORD_KEYS, Reason, StepRecord};
 
 #[test]
 fn a_record_has_the_schema_keys_and_round_trips_bit_for_bit() {
@@ -138,4 +141,59 @@ fn a_record_without_the_robot_key_reads_and_writes_back_the_same_bytes() {
     let named = StepRecord::from_json_line(&line).unwrap_or_else(|e| panic!("{e}: {line}"));
     assert_eq!(named.robot.as_deref(), Some("hyq"));
     assert_eq!(named.to_json_line(), line);
+}
+
+#[test]
+fn randomize_is_written_only_when_randomize_is_on_and_reads_back() {
+    let mut env = scripted(&[
+        ("randomize.kp_scale", "[0.8, 1.2]"),
+        ("randomize.trunk_added_mass_kg", "[-5, 5]"),
+        ("randomize.actuator_delay_substeps", "[1, 3]"),
+        ("randomize.push_interval_s", "[0.01, 0.01]"),
+        ("randomize.push_velocity_xy_mps", "[0.5, 0.5]"),
+    ]);
+    reset(&mut env, 0);
+    // The first push is due one interval after reset: at the second step's start.
+    for _ in 0..2 {
+        env.step(&[0.0; 12]).unwrap_or_else(|e| panic!("{e}"));
+    }
+    let info = env.info().randomize.clone().expect("randomize is on");
+    assert_eq!(Some(&info.draw), env.episode_draw());
+    assert_eq!(info.pushes, 1);
+    let line = StepRecord::from_env(&env, &[0.0; 12]).to_json_line();
+    let value: serde_json::Value = serde_json::from_str(&line).unwrap_or_else(|e| panic!("{e}"));
+    // The schema's last key, written last.
+    assert_eq!(RECORD_KEYS.last().map(|k| k.name), Some("randomize"));
+    assert!(
+        line.rfind("\"randomize\":") > line.rfind("\"reasons\":"),
+        "{line}"
+    );
+    let written = value["randomize"]
+        .as_object()
+        .unwrap_or_else(|| panic!("no randomize object: {line}"));
+    assert_eq!(written.len(), RANDOMIZE_INFO_KEYS.len());
+    for key in &RANDOMIZE_INFO_KEYS {
+        let name = key.name.strip_prefix(RANDOMIZE_PREFIX).unwrap_or(key.name);
+        let read = match key.value {
+            InfoValue::Float(read) => serde_json::json!(read(env.info())),
+            InfoValue::Int(read) => serde_json::json!(read(env.info())),
+            InfoValue::Vector(read, _) => serde_json::json!(read(env.info())),
+            _ => panic!("{name}: a randomisation key is a number, a count or a vector"),
+        };
+        assert_eq!(written.get(name), Some(&read), "{name}");
+    }
+    assert_ne!(value["randomize"]["kp_scale"][0], serde_json::json!(1.0));
+    let back = StepRecord::from_json_line(&line).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(back.randomize.as_deref(), Some(&info));
+    assert_eq!(back.to_json_line(), line);
+
+    let mut plain = scripted(&[]);
+    reset(&mut plain, 0);
+    plain.step(&[0.0; 12]).unwrap_or_else(|e| panic!("{e}"));
+    assert!(plain.info().randomize.is_none());
+    assert!(
+        !StepRecord::from_env(&plain, &[0.0; 12])
+            .to_json_line()
+            .contains("randomize")
+    );
 }

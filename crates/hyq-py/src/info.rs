@@ -8,25 +8,44 @@
 //! `diverged` holds, `reasons` is `""` while the episode goes on. The caller gives
 //! `observation_clipped` (it does the clipping). A fresh dict and fresh arrays every call.
 //!
+//! When `[randomize]` is on, the info also holds hyq-env's [`RANDOMIZE_INFO_KEYS`] (the
+//! episode's draws and the step's push, `randomize.<name>`), read the same way, after the
+//! others; an env whose `[randomize]` is off has none of them.
+//!
 //! The vector info holds the same keys as arrays over the envs, exactly as Gymnasium's
 //! `SyncVectorEnv` builds them from N single infos: int64, float64 and bool arrays, object
 //! arrays of str, and float64 (N, k) arrays, each with its `_key` mask (all true: every env
 //! reports every key every step).
 
-use hyq_env::{INFO_KEYS, InfoValue, Reason, StepInfo};
+use hyq_env::{INFO_KEYS, InfoKey, InfoValue, RANDOMIZE_INFO_KEYS, Reason, StepInfo};
 use hyq_physics::RobotModel;
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
 
-/// The schema as `(key, type)` pairs in [`INFO_KEYS`]' order, every family expanded
-/// (`hyq.INFO_SCHEMA`); `joints` is the robot's joint count.
-pub fn info_schema(joints: usize) -> Vec<(&'static str, String)> {
-    INFO_KEYS
-        .iter()
-        .flat_map(|k| k.names().into_iter().map(move |n| (n, k.kind(joints))))
+/// The schema of `keys` as `(key, type)` pairs in their order, every family expanded
+/// (`hyq.INFO_SCHEMA` of [`INFO_KEYS`], `hyq.randomize_info_schema` of
+/// [`RANDOMIZE_INFO_KEYS`]); `joints` and `links` are the robot's joint and body counts.
+pub fn info_schema(keys: &[InfoKey], joints: usize, links: usize) -> Vec<(&'static str, String)> {
+    keys.iter()
+        .flat_map(|k| {
+            k.names()
+                .into_iter()
+                .map(move |n| (n, k.kind(joints, links)))
+        })
         .collect()
+}
+
+/// The keys an info of `info` holds, in order: [`INFO_KEYS`], then [`RANDOMIZE_INFO_KEYS`] when
+/// the env's `[randomize]` is on.
+fn keys_of(info: &StepInfo) -> impl Iterator<Item = &'static InfoKey> {
+    let randomized: &'static [InfoKey] = if info.randomize.is_some() {
+        &RANDOMIZE_INFO_KEYS
+    } else {
+        &[]
+    };
+    INFO_KEYS.iter().chain(randomized)
 }
 
 /// The single env's info dict (see the module docs): every key of [`INFO_KEYS`] in its order,
@@ -41,7 +60,7 @@ pub fn info_dict<'py>(
     // The core's episode counter (episodes since the env was built) is not a key: an info must
     // be a function of the seed and the actions (Gymnasium's step-determinism check), and
     // that count is not.
-    for key in &INFO_KEYS {
+    for key in keys_of(info) {
         match key.value {
             InfoValue::Int(read) => d.set_item(key.name, read(info))?,
             InfoValue::Float(read) => d.set_item(key.name, read(info))?,
@@ -89,10 +108,15 @@ pub fn vector_info_dict<'py>(
         let column: Vec<bool> = infos.iter().map(|i| read(i)).collect();
         column.into_pyarray(py).into_any()
     };
-    for key in &INFO_KEYS {
+    // The envs share one configuration, so the first says whether `[randomize]` keys are there.
+    let keys: Vec<&InfoKey> = infos.first().map_or_else(
+        || INFO_KEYS.iter().collect(),
+        |first| keys_of(first).collect(),
+    );
+    for key in keys {
         match key.value {
             // int64, as Gymnasium builds an array of Python ints. Invariant: the integer keys
-            // count env steps, far below 2^63.
+            // count env steps, pushes or sub-steps, far below 2^63.
             InfoValue::Int(read) => {
                 let column: Vec<i64> = infos
                     .iter()

@@ -55,6 +55,13 @@ fn backends() -> Vec<&'static str> {
     engines::built_backends()
 }
 
+/// The keys and types an env whose `[randomize]` is on adds to its info
+/// (`hyq.randomize_info_schema`), for a robot of `num_links` bodies and `num_joints` joints.
+#[pyfunction]
+fn randomize_info_schema(num_links: usize, num_joints: usize) -> Vec<(&'static str, String)> {
+    info::info_schema(&hyq_env::RANDOMIZE_INFO_KEYS, num_joints, num_links)
+}
+
 /// The `hyq._core` module.
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -64,6 +71,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(default_config_toml, m)?)?;
     m.add_function(wrap_pyfunction!(spaces::observation_table, m)?)?;
     m.add_function(wrap_pyfunction!(backends, m)?)?;
+    m.add_function(wrap_pyfunction!(randomize_info_schema, m)?)?;
     m.add("ROBOTS", hyq_physics::bundled::NAMES.to_vec())?;
     m.add("DEFAULT_ROBOT", hyq_physics::bundled::DEFAULT)?;
     m.add("DEFAULT_BACKEND", hyq_engines::DEFAULT.name)?;
@@ -84,7 +92,11 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
         .map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))?;
     m.add(
         "INFO_SCHEMA",
-        info::info_schema(default_robot.joints().len()),
+        info::info_schema(
+            &hyq_env::INFO_KEYS,
+            default_robot.joints().len(),
+            default_robot.num_links(),
+        ),
     )?;
     // The reward terms' names in hyq-spec's table order: the info's term keys.
     m.add(

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import copy
 import pickle
+import re
 import subprocess
 import sys
 
@@ -315,3 +316,33 @@ def test_a_deeply_nested_urdf_is_a_value_error_not_a_crash(tmp_path) -> None:
     done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True)
     assert done.returncode == 0, done.stderr
     assert "nested more than 64 deep" in done.stdout, done.stdout
+
+
+@pytest.mark.parametrize(
+    ("randomize", "named"),
+    [
+        ({"ground_friction": [1.2, 0.4]}, "randomize.ground_friction = [1.2, 0.4]"),
+        ({"trunk_added_mass_kg": [-1.0, float("inf")]}, "randomize.trunk_added_mass_kg"),
+        ({"link_mass_scale": [float("nan"), 1.0]}, "randomize.link_mass_scale = [NaN, 1.0]"),
+        ({"kp_scale": [0.0, 1.0]}, "randomize.kp_scale = [0.0, 1.0]"),
+        ({"effort_scale": [-1.0, 1.0]}, "randomize.effort_scale = [-1.0, 1.0]"),
+        ({"trunk_added_mass_kg": [-100.0, 0.0]}, "randomize.trunk_added_mass_kg = [-100.0, 0.0]"),
+        ({"actuator_delay_substeps": [0, 11]}, "randomize.actuator_delay_substeps = [0, 11]"),
+        ({"obs_noise": {"joint_speed": -1.0}}, "randomize.obs_noise.joint_speed = -1.0"),
+        ({"push_interval_s": [2.0, 4.0]}, "randomize.push_interval_s"),
+        ({"bogus": [0, 1]}, "bogus"),
+        ({"preset": "gym"}, "gym"),
+    ],
+)
+def test_bad_randomize_values_are_value_errors_naming_key_and_value(
+    randomize: dict, named: str
+) -> None:
+    """Reversed or non-finite ranges, a scale that can make a mass or gain zero or negative, a
+    delay longer than an env step, a negative deviation, an unknown key, a bad preset: a
+    ValueError naming the key and the value, before an env exists, from keyword arguments and
+    from ``env_config`` alike."""
+    for kwargs in ({"randomize": randomize}, {"env_config": {"randomize": randomize}}):
+        with pytest.raises(ValueError, match=re.escape(named)):
+            hyq.HyQEnv(**kwargs)
+    with pytest.raises(ValueError, match=re.escape(named)):
+        hyq.HyQVectorEnv(num_envs=2, randomize=randomize)

@@ -9,7 +9,7 @@ use hyq_physics::{ActuatorScales, DynamicsDraw, PhysicsParams, RobotModel};
 use hyq_spec::ObservationLayout;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::config::{NoiseDistribution, RandomizeConfig};
 
@@ -41,7 +41,7 @@ const OPTIONS: usize = 10;
 /// One episode's drawn variations, as the info and the records report them: the values in
 /// effect, the nominal ones (the configured friction, factors of 1, no added mass, offset or
 /// delay) for options that are off.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct EpisodeDraw {
     /// Ground friction coefficient.
     pub ground_friction: f64,

@@ -13,12 +13,15 @@
 //! simulated state, never from the noisy observation.
 //!
 //! The table and its checks are `config/randomize.rs` (one file per table, like every other);
-//! here, `presets.rs` holds the anchors' ranges and `draw.rs` the streams and the draws.
+//! here, `presets.rs` holds the anchors' ranges, `draw.rs` the streams and the draws, and
+//! `info.rs` what the fronts report of them.
 
 mod draw;
+mod info;
 mod presets;
 
 pub use draw::{EpisodeDraw, FIRST_OPTION_STREAM, OBS_NOISE_STREAM, PUSH_STREAM, Randomizer};
+pub use info::{EpisodeRandomization, RANDOMIZE_INFO_KEYS, RANDOMIZE_PREFIX, RandomizeInfo};
 pub use presets::{PRESET_RANGES, Preset, PresetRange, preset_table};
 
 use hyq_physics::RobotModel;

@@ -20,7 +20,7 @@ import gymnasium
 
 from hyq import _core
 from hyq.env import HyQEnv
-from hyq.info import INFO_SCHEMA
+from hyq.info import INFO_SCHEMA, randomize_info_schema
 from hyq.observation import OBSERVATION_TABLE, ObservationRow, observation_table
 from hyq.vector import HyQVectorEnv
 
@@ -77,4 +77,5 @@ __all__ = [
     "ObservationRow",
     "__version__",
     "observation_table",
+    "randomize_info_schema",
 ]
