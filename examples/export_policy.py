@@ -31,7 +31,6 @@ import numpy as np
 
 import hyq
 from hyq._config import config_pairs
-from hyq.observation import observation_table
 from hyq.policy_file import write_onnx
 
 #: A clip that never binds: rsl_rl does not clip its normalised observations.
@@ -96,6 +95,17 @@ def sb3_actor(run: Path, args: argparse.Namespace, robot: str, names: list[str])
     }
 
 
+def trained_steps(run: Path, model_path: Path, config: dict[str, Any]) -> int:
+    """The env steps behind an rsl_rl checkpoint: the run's checkpoints.json entry (which counts
+    a resumed run's earlier steps too), else the run's budget."""
+    known = run / "checkpoints.json"
+    if known.is_file():
+        steps = json.loads(known.read_text()).get(model_path.name)
+        if steps is not None:
+            return int(steps)
+    return int(config["steps"])
+
+
 def rsl_rl_actor(run: Path, args: argparse.Namespace, robot: str, names: list[str],
                  config: dict[str, Any]) -> dict[str, Any]:
     """The rsl_rl actor's layers, normalisation and activation."""
@@ -134,7 +144,7 @@ def rsl_rl_actor(run: Path, args: argparse.Namespace, robot: str, names: list[st
         "obs_epsilon": 0.0,
         "layers": layers,
         "activation": actor_cfg["activation"],
-        "env_steps": config["steps"],
+        "env_steps": trained_steps(run, Path(model_path), config),
         "trainer": "rsl_rl PPO (examples/train_rsl_rl.py)",
     }
 
@@ -144,11 +154,13 @@ def metadata_of(actor: dict[str, Any], config: dict[str, Any], robot: str, names
     env_kwargs: dict[str, Any] = config["env"]
     action = env_kwargs.get("action", {})
     mode = action.get("mode", "normalized")
-    # What the policy needs of its environment: every task and action key it trained with. The
-    # reset distribution and the randomisation are training or evaluation conditions, only
-    # recorded (training_env_config).
+    # What the policy needs of its environment: every task, action and observation key it
+    # trained with. The reset distribution, the randomisation and the ground (with its
+    # curriculum) are training or evaluation conditions, only recorded (training_env_config):
+    # replaying a rough-ground policy on its curriculum's first level would measure it on
+    # ground a tenth as rough as the one it learned to walk on.
     applied = {k: v for k, v in config_pairs(env_kwargs)
-               if not k.startswith(("reset.", "randomize."))}
+               if not k.startswith(("reset.", "randomize.", "terrain."))}
     metadata = {
         "format": "hyq-mlp-policy",
         "format_version": "1",
@@ -212,8 +224,9 @@ def export_run(args: argparse.Namespace) -> Path:
         fail(f"{run}: no config.json (not a run directory of examples/train_sb3_ppo.py or train_rsl_rl.py)")
     config = json.loads((run / "config.json").read_text())
     robot = config.get("robot", "hyq")
-    names = [row.name for row in observation_table(robot)]
-    probe = hyq.HyQEnv(robot=robot)
+    # The rows the policy was trained on: the robot's, then the run's observation extras.
+    probe = hyq.HyQEnv(robot=robot, **{k: v for k, v in config["env"].items() if k == "observation"})
+    names = [row.name for row in probe.observation_table]
     joints = list(probe.joint_names)
     probe.close()
     trainer = config.get("trainer", "sb3")

@@ -13,6 +13,7 @@ command line (--robot, --backend, --env, --cfg, --iterations, --seed). Same seed
 --torch-threads: the same run, bit for bit. It writes into OUT:
 
     model_<iteration>.pt       rsl_rl's checkpoints (every --checkpoint-every iterations and the last)
+    checkpoints.json           the env steps behind each evaluated checkpoint
     progress.csv, evals.csv,   the learning curve, as train_sb3_ppo.py writes it
     progress.png
     eval.json                  the final policy on the 20 evaluation episodes, and the run's timing
@@ -85,6 +86,7 @@ RECIPE_ITERATIONS: dict[str, tuple[int, int]] = {
     "reach": (250, 50),
     "anymal_walk": (80, 20),
     "walk_randomized": (64, 32),
+    "walk_rough": (256, 32),
 }
 
 
@@ -140,6 +142,12 @@ def parse_args() -> argparse.Namespace:
     parser.add_argument("--curve-episodes", type=int, default=32, help="least episodes per curve row")
     parser.add_argument("--env", type=json.loads, default={},
                         help='JSON object of environment keys to change, e.g. \'{"fall_penalty": 0}\'')
+    parser.add_argument("--resume", type=Path, metavar="CHECKPOINT",
+                        help="start from an rsl_rl checkpoint (model_N.pt: its networks, observation "
+                             "normalisers, action noise and optimiser) instead of from scratch, e.g. "
+                             "the walk recipe's final one to fine-tune it with randomisation, or on "
+                             "rough ground with the height scan added to its rows; --iterations then "
+                             "counts the iterations added")
     parser.add_argument("--cfg", type=json.loads, default={},
                         help='JSON object merged into rsl_rl\'s configuration, e.g. \'{"algorithm": {"entropy_coef": 0.005}}\'')
     return parser.parse_args()
@@ -156,9 +164,63 @@ def evaluate(runner: OnPolicyRunner, run: dict[str, Any]) -> dict[str, Any]:
             return policy(group).numpy()
 
     try:
-        return recipes.evaluate(act, run["env"], run["robot"], run["backend"])
+        return recipes.evaluate(act, run["eval_env"], run["robot"], run["backend"])
     finally:
         runner.alg.train_mode()
+
+
+def resume(runner: OnPolicyRunner, path: Path, names: list[str], per_iteration: int) -> None:
+    """Loads checkpoint `path` into `runner`. A checkpoint whose observation rows are the first
+    rows of this env's (the walk's 39 before the rough recipe's height scan) is widened: the
+    added rows get zero weights in the first layers, so the policy starts as the checkpoint's
+    exactly, and a normalisation of mean 0 and deviation 1 whose count is one iteration's
+    steps, so their statistics are learnt within a few iterations while the others' hold; the
+    optimiser starts afresh (its moments have the old shapes)."""
+    if not path.is_file():
+        raise SystemExit(f"error: --resume {path}: no such checkpoint file")
+    saved = torch.load(path, map_location="cpu", weights_only=False)
+    rows = (saved.get("infos") or {}).get("observation", names)
+    if rows == names:
+        runner.load(str(path))
+        return
+    if rows != names[: len(rows)]:
+        raise SystemExit(f"error: --resume {path}: its observation rows are neither this env's "
+                         f"nor their first {len(rows)}")
+    extra = len(names) - len(rows)
+    for part in ("actor_state_dict", "critic_state_dict"):
+        state = saved[part]
+        state["mlp.0.weight"] = torch.cat([state["mlp.0.weight"], torch.zeros(state["mlp.0.weight"].shape[0], extra)], 1)
+        for key, fill in (("_mean", 0.0), ("_var", 1.0), ("_std", 1.0)):
+            old = state[f"obs_normalizer.{key}"]
+            state[f"obs_normalizer.{key}"] = torch.cat([old, torch.full((1, extra), fill)], 1)
+        state["obs_normalizer.count"] = torch.tensor(per_iteration, dtype=state["obs_normalizer.count"].dtype)
+    runner.alg.load(saved, {"actor": True, "critic": True, "iteration": True}, strict=True)
+    runner.current_learning_iteration = saved["iter"]
+
+
+def steps_before(resume: Path | None) -> int:
+    """The env steps behind checkpoint `resume` (0 from scratch), from its run's
+    checkpoints.json, else its run's whole budget (config.json)."""
+    if resume is None:
+        return 0
+    run = resume.parent
+    if (run / "checkpoints.json").is_file():
+        known = json.loads((run / "checkpoints.json").read_text())
+        if resume.name in known:
+            return int(known[resume.name])
+    if (run / "config.json").is_file():
+        return int(json.loads((run / "config.json").read_text())["steps"])
+    return 0
+
+
+def command_of(args: argparse.Namespace) -> str:
+    """This run's command; a resumed run's is preceded by the command of the run it resumes
+    (its config.json beside the checkpoint), so the exported file names every step."""
+    command = " ".join(sys.argv)
+    prior = args.resume.parent / "config.json" if args.resume else None
+    if prior is not None and prior.is_file():
+        command = f"{json.loads(prior.read_text())['command']} && {command}"
+    return command
 
 
 def main() -> None:
@@ -172,6 +234,7 @@ def main() -> None:
         "robot": args.robot or recipe["robot"],
         "backend": args.backend or recipe["backend"],
         "env": recipes.merge(recipe["env"], args.env),
+        "eval_env": recipes.merge(recipes.merge(recipe["env"], args.env), recipe.get("eval_env", {})),
     }
     recipes.check_backend(run["backend"])
     cfg = copy.deepcopy(TRAIN_CFG)
@@ -183,7 +246,8 @@ def main() -> None:
         **run, "trainer": "rsl_rl", "rsl_rl": cfg, "iterations": iterations, "envs": args.envs,
         "steps": iterations * cfg["num_steps_per_env"] * args.envs, "seed": args.seed,
         "torch_threads": args.torch_threads, "commit": recipes.git_commit(),
-        "command": " ".join(sys.argv),
+        "resume": str(args.resume) if args.resume else None,
+        "command": command_of(args),
     }
     recipes.write_json(args.out / "config.json", config)
 
@@ -197,17 +261,25 @@ def main() -> None:
     env = TimedEnv(clock, episodes, progress, num_envs=args.envs, seed=args.seed, robot=run["robot"],
                    backend=run["backend"], **run["env"])
     runner = Runner(env, copy.deepcopy(cfg), log_dir=str(args.out), device="cpu")
+    if args.resume:
+        resume(runner, args.resume, env.observation_names, per_iteration=cfg["num_steps_per_env"] * args.envs)
     evals = recipes.CurveFile(args.out / "evals.csv", recipes.EVAL_FIELDS)
     per_iteration = cfg["num_steps_per_env"] * args.envs
     title = (f"PPO (rsl_rl) on {run['robot']}, {run['backend']}: "
              f"examples/train_rsl_rl.py --recipe {args.recipe}")
     done = 0
+    prior_steps = steps_before(args.resume)
+    trained: dict[str, int] = {}
     while done < iterations:
         # learn() in chunks of `every` iterations, with an evaluation after each.
         chunk = min(every, iterations - done)
         runner.learn(num_learning_iterations=chunk)
         done += chunk
         steps = done * per_iteration
+        # The checkpoint learn() wrote last, with the env steps behind it (a resumed run's
+        # include those of the run it resumed), for the export's metadata.
+        trained[f"model_{runner.current_learning_iteration}.pt"] = prior_steps + steps
+        recipes.write_json(args.out / "checkpoints.json", trained)
         start = time.monotonic()
         result = evaluate(runner, run)
         clock.eval_s += time.monotonic() - start

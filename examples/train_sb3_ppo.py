@@ -77,6 +77,7 @@ RECIPE_STEPS: dict[str, tuple[int, int]] = {
     "reach": (600_000, 100_000),
     "anymal_walk": (200_000, 100_000),
     "walk_randomized": (400_000, 100_000),
+    "walk_rough": (1_000_000, 100_000),
 }
 #: Each recipe's changes to RECIPE_PPO. The reach: a learning rate falling linearly to 0 over the
 #: budget ("lr_schedule"), since at a constant 3e-4 the deterministic policy reached the goal in
@@ -173,7 +174,7 @@ def evaluate(model: PPO, obs_norm: VecNormalize, run: dict[str, Any]) -> dict[st
         action, _ = model.predict(obs_norm.normalize_obs(obs), deterministic=True)
         return action
 
-    return recipes.evaluate(act, run["env"], run["robot"], run["backend"])
+    return recipes.evaluate(act, run["eval_env"], run["robot"], run["backend"])
 
 
 def parse_args() -> argparse.Namespace:
@@ -208,6 +209,7 @@ def main() -> None:
         "robot": args.robot or recipe["robot"],
         "backend": args.backend or recipe["backend"],
         "env": recipes.merge(recipe["env"], args.env),
+        "eval_env": recipes.merge(recipes.merge(recipe["env"], args.env), recipe.get("eval_env", {})),
     }
     recipes.check_backend(run["backend"])
     ppo_kwargs = {**RECIPE_PPO, **RECIPE_PPO_CHANGES.get(args.recipe, {}), **args.ppo}

@@ -211,10 +211,13 @@ pub fn execute(args: CompareArgs) -> Result<(), Failure> {
     }
     .map_err(|e| usage(format!("--ledger: {e}")))?;
     let spec = comparison_spec(&args, scenario)?;
+    // The plan checks the overrides and the configuration they make, so a bad --set is refused
+    // before --out is created.
+    let plan = Plan::new(model, &spec).map_err(compare_failure)?;
     prepare_output_dir(&args.out).map_err(|e| usage(format!("--out: {e}")))?;
 
     if choices.len() > 2 {
-        return execute_many(&args, &choices, model, &spec, &ledger);
+        return execute_many(&args, &choices, &plan, &ledger);
     }
     let (a, b) = (choices[0], choices[1]);
     let (name_a, name_b) = (a.name(), b.name());
@@ -228,8 +231,11 @@ pub fn execute(args: CompareArgs) -> Result<(), Failure> {
     let labels = [name_a, label_b.as_str()];
     let report: Report = with_backend!(a, A => {
         with_backend!(b, B => {
-            hyq_compare::compare::<A, B>(model.clone(), &spec, labels, &ledger)
-                .map_err(compare_failure)
+            let mut side_a = plan.run_side::<A>(labels[0], &[]).map_err(compare_failure)?;
+            let mut side_b = plan
+                .run_side::<B>(labels[1], &spec.overrides_b)
+                .map_err(compare_failure)?;
+            plan.pair(&mut side_a, &mut side_b, &ledger).map_err(compare_failure)
         })
     })?;
     written(report.write(&args.out, &command_line()))?;
@@ -330,11 +336,9 @@ fn strict_failure(flagged: usize, names: &[&str], args: &CompareArgs) -> Failure
 fn execute_many(
     args: &CompareArgs,
     choices: &[BackendChoice],
-    model: std::sync::Arc<hyq_physics::RobotModel>,
-    spec: &ComparisonSpec,
+    plan: &Plan,
     ledger: &Ledger,
 ) -> Result<(), Failure> {
-    let plan = Plan::new(model, spec).map_err(compare_failure)?;
     let mut sides = Vec::with_capacity(choices.len());
     for &choice in choices {
         let side = with_backend!(choice, B => {
@@ -342,7 +346,7 @@ fn execute_many(
         })?;
         sides.push(side);
     }
-    let report = compare_all(&plan, &mut sides, ledger).map_err(compare_failure)?;
+    let report = compare_all(plan, &mut sides, ledger).map_err(compare_failure)?;
     written(report.write(&args.out, &command_line()))?;
     let mut out = String::new();
     let end = |s: &hyq_compare::SideReport| {

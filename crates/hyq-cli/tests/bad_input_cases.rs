@@ -559,6 +559,33 @@ fn randomization_keys_and_values() {
         &["randomize.ground_friction", "[1.0, 0.2]"],
     );
     assert!(!out.exists());
+    // So does a scenario comparison, on two engines and on three.
+    for backends in ["rapier,rapier", "rapier,rapier,rapier"] {
+        fails(
+            2,
+            &[
+                "compare",
+                "--backends",
+                backends,
+                "--seconds",
+                "0.1",
+                "--config",
+                &config,
+                "--out",
+                out.to_str().unwrap(),
+            ],
+            &["randomize.ground_friction", "[1.0, 0.2]"],
+        );
+        assert!(!out.exists(), "--backends {backends}");
+    }
+    // A push interval of 0 says why pushes need one, not why masses and gains do.
+    bad_set(
+        &[
+            "randomize.push_interval_s=[0, 4]",
+            "randomize.push_velocity_xy_mps=[0.5, 0.5]",
+        ],
+        &["randomize.push_interval_s", "push at every step"],
+    );
 }
 
 /// A copy of the bundled HyQ (profile and URDF) in scratch directory `name`, with `profile` and

@@ -334,6 +334,16 @@ impl VecCore {
         call(slf, "num_envs", |this| Ok(this.vec.get().num_envs()))
     }
 
+    /// The envs' observation table (the same for every env): its robot's §3 rows, then the
+    /// rows of `observation.extra` (see `spaces::table_rows`).
+    fn observation_table<'py>(slf: &Bound<'py, Self>) -> PyResult<Vec<crate::spaces::TableRow>> {
+        call(slf, "observation_table", |this| {
+            Ok(crate::spaces::table_rows(
+                this.vec.get().env(0).observation_layout(),
+            ))
+        })
+    }
+
     /// The observation space's lower bounds (float32; see `spaces`).
     fn observation_low<'py>(
         slf: &Bound<'py, Self>,

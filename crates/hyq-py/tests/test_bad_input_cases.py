@@ -346,3 +346,22 @@ def test_bad_randomize_values_are_value_errors_naming_key_and_value(
             hyq.HyQEnv(**kwargs)
     with pytest.raises(ValueError, match=re.escape(named)):
         hyq.HyQVectorEnv(num_envs=2, randomize=randomize)
+
+
+@pytest.mark.parametrize(
+    "terrain, named",
+    [
+        ({"kind": "slope", "step_height_m": 0.2}, "terrain.step_height_m"),
+        ({"kind": "rough", "slope_deg": 5.0}, "terrain.slope_deg"),
+        ({"kind": "stairs", "amplitude_m": 0.1}, "terrain.amplitude_m"),
+        ({"kind": "flat", "curriculum": True}, "terrain.curriculum"),
+    ],
+)
+def test_a_terrain_key_of_another_kind_is_a_value_error_naming_it(terrain: dict, named: str) -> None:
+    """A terrain key that the chosen kind would ignore is refused, naming the key, from keyword
+    arguments, ``env_config`` and the vector env alike (the CLI's `--set` refuses it too)."""
+    for kwargs in ({"terrain": terrain}, {"env_config": {"terrain": terrain}}):
+        with pytest.raises(ValueError, match=re.escape(named)):
+            hyq.HyQEnv(**kwargs)
+    with pytest.raises(ValueError, match=re.escape(named)):
+        hyq.HyQVectorEnv(num_envs=2, terrain=terrain)

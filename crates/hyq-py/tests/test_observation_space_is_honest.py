@@ -118,4 +118,10 @@ def test_observation_extra_and_terrain_reach_the_spaces_and_the_table() -> None:
     assert float(np.linalg.norm(obs[226:229])) == pytest.approx(info["distance_to_goal"], rel=1e-6)
     assert "[terrain]" in env.config_toml() and "[observation]" in env.config_toml()
     assert "[terrain]" not in hyq.HyQEnv().config_toml()
+    # The vector env's table is the single env's, extras included.
+    venv = hyq.HyQVectorEnv(num_envs=2, terrain={"kind": "rough", "amplitude_m": 0.05, "size_m": [6.0, 6.0]},
+                            observation={"extra": ["goal_vector", "height_scan", "trunk_velocity"]})
+    assert venv.observation_table == table
+    assert len(hyq.HyQVectorEnv(num_envs=1).observation_table) == 39
+    venv.close()
     env.close()

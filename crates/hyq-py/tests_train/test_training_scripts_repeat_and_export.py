@@ -146,3 +146,46 @@ def test_another_robots_model_is_refused_in_one_line(which, tmp_path, sb3_runs, 
     (run / "config.json").write_text(json.dumps(config))
     line = one_line_error(script("export_policy.py", "--run", run, "--out", tmp_path / "x.safetensors"))
     assert "'hyq'" in line and "'anymal_c'" in line
+
+
+def test_a_resumed_run_continues_the_checkpoint_and_names_both_commands(rsl_runs, tmp_path) -> None:
+    source = rsl_runs[0]
+    last = sorted(source.glob("model_*.pt"), key=lambda p: int(p.stem[6:]))[-1]
+    out = train("train_rsl_rl.py", [*RSL[:3], "1", *RSL[4:], "--resume", last], tmp_path / "resumed")
+    first = torch.load(last, weights_only=False)
+    models = sorted(out.glob("model_*.pt"), key=lambda p: int(p.stem[6:]))
+    resumed = torch.load(models[-1], weights_only=False)
+    # The iteration count goes on from the checkpoint's, and the networks moved on from its.
+    assert resumed["iter"] == first["iter"] + 1
+    weights = "actor_state_dict"
+    assert any(not torch.equal(first[weights][k], resumed[weights][k]) for k in first[weights])
+    # The env steps behind the new checkpoint count the resumed run's.
+    per_iteration = 32 * 4
+    steps = json.loads((out / "checkpoints.json").read_text())
+    assert steps == {models[-1].name: json.loads((source / "checkpoints.json").read_text())[last.name] + per_iteration}
+    config = json.loads((out / "config.json").read_text())
+    assert config["resume"] == str(last)
+    before = json.loads((source / "config.json").read_text())["command"]
+    assert config["command"].startswith(before + " && ") and "--resume" in config["command"]
+
+
+def test_resuming_from_a_missing_checkpoint_is_refused_in_one_line(tmp_path) -> None:
+    done = script("train_rsl_rl.py", *RSL, "--resume", tmp_path / "none.pt", "--out", tmp_path / "o")
+    assert done.returncode != 0
+    assert done.stderr.strip().splitlines()[-1] == f"error: --resume {tmp_path / 'none.pt'}: no such checkpoint file"
+
+
+def test_the_rough_recipe_trains_and_exports_its_height_scan_rows(tmp_path) -> None:
+    run = train("train_rsl_rl.py", [*RSL, "--recipe", "walk_rough"], tmp_path / "rough")
+    out = tmp_path / "rough.safetensors"
+    done = script("export_policy.py", "--run", run, "--out", out, "--onnx")
+    assert done.returncode == 0, done.stderr
+    metadata = read_policy(out).metadata
+    assert len(json.loads(metadata["observation"])) == 39 + 17 * 11
+    # The height scan is part of what the policy needs; the ground and its curriculum are a
+    # training condition, recorded only.
+    applied = json.loads(metadata["env_config"])
+    trained = json.loads(metadata["training_env_config"])
+    assert "height_scan" in applied["observation.extra"], applied
+    assert not any(k.startswith("terrain.") for k in applied), applied
+    assert "rough" in trained["terrain.kind"] and trained["terrain.curriculum"] == "true", trained

@@ -387,11 +387,12 @@ fn range(
     } else {
         format!(" and hi <= {max}")
     };
-    let why = if open_min && min == 0.0 {
-        ": a factor or interval of 0 or less cannot be drawn (a mass, gain or effort must stay \
-         positive)"
-    } else {
-        ""
+    let why = match (open_min && min == 0.0, key == "randomize.push_interval_s") {
+        (true, true) => ": pushes need time between them (an interval of 0 or less would push at \
+                         every step)",
+        (true, false) => ": a factor of 0 or less cannot be drawn (a mass, gain or effort must \
+                          stay positive)",
+        (false, _) => "",
     };
     Err(ConfigError::Invalid {
         key: key.to_owned(),

@@ -36,7 +36,6 @@ from gymnasium.vector import AutoresetMode
 from rsl_rl.env import VecEnv
 from tensordict import TensorDict
 
-from hyq.observation import observation_table
 from hyq.vector import HyQVectorEnv
 
 #: The observation group the adapter returns.
@@ -78,7 +77,7 @@ class HyQRslRlVecEnv(VecEnv):
         self.max_episode_length = int(self.venv.max_time_steps)
         self.device = torch.device(device)
         #: The observation rows' names, in order.
-        self.observation_names = [row.name for row in observation_table(kwargs.get("robot", "hyq"))]
+        self.observation_names = [row.name for row in self.venv.observation_table]
         self.cfg = {
             "robot": self.venv.robot,
             "num_envs": self.num_envs,

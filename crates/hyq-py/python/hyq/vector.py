@@ -29,6 +29,7 @@ from hyq._checks import (
     check_path,
 )
 from hyq.env import check_render_mode, check_seed, core_options, reset_goal
+from hyq.observation import ObservationRow
 
 _MODES = {
     AutoresetMode.NEXT_STEP: "next_step",
@@ -119,6 +120,12 @@ class HyQVectorEnv(VectorEnv):
     def robot(self) -> str:
         """The robot's name (its profile's ``name``)."""
         return self._core.robot
+
+    @property
+    def observation_table(self) -> tuple[ObservationRow, ...]:
+        """The envs' observation table (``hyq.HyQEnv.observation_table``: the robot's rows, then
+        those of ``observation.extra``), the same for every env."""
+        return tuple(ObservationRow(*row) for row in self._core.observation_table())
 
     def reset(
         self,
