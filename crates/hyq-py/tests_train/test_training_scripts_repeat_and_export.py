@@ -155,8 +155,10 @@ def test_a_resumed_run_continues_the_checkpoint_and_names_both_commands(rsl_runs
     first = torch.load(last, weights_only=False)
     models = sorted(out.glob("model_*.pt"), key=lambda p: int(p.stem[6:]))
     resumed = torch.load(models[-1], weights_only=False)
-    # The iteration count goes on from the checkpoint's, and the networks moved on from its.
-    assert resumed["iter"] == first["iter"] + 1
+    # The observation statistics go on from the checkpoint's (a fresh start's one iteration
+    # would have counted fewer samples than the checkpoint's two), and the networks moved on.
+    count = "obs_normalizer.count"
+    assert resumed["actor_state_dict"][count] > first["actor_state_dict"][count]
     weights = "actor_state_dict"
     assert any(not torch.equal(first[weights][k], resumed[weights][k]) for k in first[weights])
     # The env steps behind the new checkpoint count the resumed run's.
@@ -189,3 +191,40 @@ def test_the_rough_recipe_trains_and_exports_its_height_scan_rows(tmp_path) -> N
     assert "height_scan" in applied["observation.extra"], applied
     assert not any(k.startswith("terrain.") for k in applied), applied
     assert "rough" in trained["terrain.kind"] and trained["terrain.curriculum"] == "true", trained
+
+
+def test_a_walk_checkpoint_widened_for_the_height_scan_acts_as_it_did(rsl_runs, tmp_path) -> None:
+    """--resume of a checkpoint with the spec's 39 rows into the rough recipe (39 rows, then the
+    height scan's 187): the widened policy's actions are the checkpoint's for every height scan,
+    so the fine-tuning starts from the flat walker exactly."""
+    import copy
+
+    import recipes
+    import train_rsl_rl
+    from hyq.rsl_rl import HyQRslRlVecEnv
+    from rsl_rl.runners import OnPolicyRunner
+    from tensordict import TensorDict
+
+    last = sorted(rsl_runs[0].glob("model_*.pt"), key=lambda p: int(p.stem[6:]))[-1]
+    cfg = copy.deepcopy(train_rsl_rl.TRAIN_CFG)
+    cfg["num_steps_per_env"] = 32
+    env = HyQRslRlVecEnv(num_envs=2, seed=0, robot="hyq", backend="rapier",
+                         **recipes.merge(recipes.WALK_ROUGH_ENV, {"max_time_steps": 40}))
+    runner = OnPolicyRunner(env, cfg, log_dir=None, device="cpu")
+    train_rsl_rl.resume(runner, last, env.observation_names, per_iteration=64)
+    widened = runner.alg.get_policy()
+    widened.eval()
+    saved = torch.load(last, weights_only=False)
+    from rsl_rl.models import MLPModel
+
+    flat_obs = torch.as_tensor(observations(16))
+    group = TensorDict({"policy": flat_obs}, batch_size=[16])
+    actor_cfg = {k: v for k, v in cfg["actor"].items() if k != "class_name"}
+    flat = MLPModel(group, cfg["obs_groups"], "actor", 12, **actor_cfg)
+    flat.load_state_dict(saved["actor_state_dict"])
+    flat.eval()
+    scans = torch.as_tensor(np.random.default_rng(1).uniform(-1, 1, (16, 187)), dtype=torch.float32)
+    wide = TensorDict({"policy": torch.cat([flat_obs, scans], 1)}, batch_size=[16])
+    with torch.inference_mode():
+        assert torch.equal(widened(wide), flat(group))
+    env.close()

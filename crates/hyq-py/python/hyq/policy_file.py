@@ -247,9 +247,24 @@ def _mismatch(what: str, trained: list[str], env: list[str]) -> str | None:
     return None
 
 
+def _observation_options(props: dict[str, str], path: Any) -> dict[str, Any]:
+    """The ``observation`` keys of a policy's ``env_config`` (TOML values) as ``HyQEnv``'s
+    ``observation`` table: the rows it reads beyond its robot's (a height scan, say)."""
+    import tomllib
+
+    try:
+        pairs = json.loads(props.get("env_config", "{}"))
+        table = {key.split(".", 1)[1]: tomllib.loads(f"v = {value}")["v"]
+                 for key, value in pairs.items() if key.startswith("observation.")}
+    except (ValueError, AttributeError, TypeError) as e:
+        raise _refuse(path, f"metadata `env_config` is not a table of TOML values ({e})") from None
+    return {"observation": table} if table else {}
+
+
 def check_onnx_layout(model: Any, robot: str, path: Any = "ONNX policy") -> dict[str, str]:
     """Checks that an ONNX policy (an ``onnx.ModelProto`` or an onnxruntime session) is one of
-    these files and fits `robot`'s environment: the robot's name, the observation rows and the
+    these files and fits `robot`'s environment (with the observation extras its `env_config`
+    names): the robot's name, the observation rows and the
     joints, in order, and the graph's input and output widths. Returns its metadata; raises
     ``ValueError`` naming the file and the first difference."""
     from hyq.env import HyQEnv
@@ -267,7 +282,7 @@ def check_onnx_layout(model: Any, robot: str, path: Any = "ONNX policy") -> dict
     for key in ("robot", "observation", "action"):
         if key not in props:
             raise _refuse(path, f"metadata has no `{key}` entry")
-    env = HyQEnv(robot=robot)
+    env = HyQEnv(robot=robot, **_observation_options(props, path))
     try:
         if props["robot"] != env.robot:
             raise _refuse(path, f"trained for robot {props['robot']!r}, the environment runs {env.robot!r}")
