@@ -388,10 +388,14 @@ fn range(
         format!(" and hi <= {max}")
     };
     let why = match (open_min && min == 0.0, key == "randomize.push_interval_s") {
-        (true, true) => ": pushes need time between them (an interval of 0 or less would push at \
-                         every step)",
-        (true, false) => ": a factor of 0 or less cannot be drawn (a mass, gain or effort must \
-                          stay positive)",
+        (true, true) => {
+            ": pushes need time between them (an interval of 0 or less would push at \
+                         every step)"
+        }
+        (true, false) => {
+            ": a factor of 0 or less cannot be drawn (a mass, gain or effort must \
+                          stay positive)"
+        }
         (false, _) => "",
     };
     Err(ConfigError::Invalid {
