@@ -567,6 +567,8 @@ fn randomization_keys_and_values() {
                 "compare",
                 "--backends",
                 backends,
+                "--scenario",
+                "trot",
                 "--seconds",
                 "0.1",
                 "--config",
