@@ -559,27 +559,26 @@ fn randomization_keys_and_values() {
         &["randomize.ground_friction", "[1.0, 0.2]"],
     );
     assert!(!out.exists());
-    // So does a scenario comparison, on two engines and on three.
-    for backends in ["rapier,rapier", "rapier,rapier,rapier"] {
-        fails(
-            2,
-            &[
-                "compare",
-                "--backends",
-                backends,
-                "--scenario",
-                "trot",
-                "--seconds",
-                "0.1",
-                "--set",
-                "randomize.ground_friction=[1.0, 0.2]",
-                "--out",
-                out.to_str().unwrap(),
-            ],
-            &["randomize.ground_friction", "[1.0, 0.2]"],
-        );
-        assert!(!out.exists(), "--backends {backends}");
-    }
+    // So does a scenario comparison (its plan, checked before --out is made, is the same for
+    // two engines and three).
+    fails(
+        2,
+        &[
+            "compare",
+            "--backends",
+            "rapier,rapier",
+            "--scenario",
+            "trot",
+            "--seconds",
+            "0.1",
+            "--set",
+            "randomize.ground_friction=[1.0, 0.2]",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        &["randomize.ground_friction", "[1.0, 0.2]"],
+    );
+    assert!(!out.exists());
     // A push interval of 0 says why pushes need one, not why masses and gains do.
     bad_set(
         &[
