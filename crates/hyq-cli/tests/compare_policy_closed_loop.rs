@@ -33,6 +33,31 @@ fn read_json(dir: &Path) -> Value {
 
 /// A short self-comparison of the committed policy (120 steps, 2 episodes, reset noise on so
 /// that the episodes differ), with `extra` arguments, into `dir`.
+/// `hyq run --json` of the committed policy over the short comparison's episodes (seed 7, two
+/// episodes of 120 steps, the reset noise) with `extra` arguments: one summary per episode.
+fn hyq_run_json(extra: &[&str]) -> Vec<Value> {
+    let policy = policy_arg(&committed_policy());
+    let mut args = vec![
+        "run",
+        "--policy",
+        &policy,
+        "--episodes",
+        "2",
+        "--seed",
+        "7",
+        "--set",
+        "task.max_time_steps=120",
+        "--set",
+        "reset.joint_noise_rad=0.05",
+        "--json",
+    ];
+    args.extend_from_slice(extra);
+    hyq_ok(&args)
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect()
+}
+
 fn short_compare(dir: &Path, extra: &[&str]) -> String {
     let policy = policy_arg(&committed_policy());
     let mut args = vec![
@@ -73,25 +98,7 @@ fn each_backend_runs_the_episodes_hyq_run_runs_and_the_report_is_written() {
     assert_eq!(sides[1]["label"], "rapier (B)");
 
     // The same episodes as `hyq run`, to the bit (JSON numbers round-trip f64 exactly).
-    let policy = policy_arg(&committed_policy());
-    let run = hyq_ok(&[
-        "run",
-        "--policy",
-        &policy,
-        "--episodes",
-        "2",
-        "--seed",
-        "7",
-        "--set",
-        "task.max_time_steps=120",
-        "--set",
-        "reset.joint_noise_rad=0.05",
-        "--json",
-    ]);
-    let runs: Vec<Value> = run
-        .lines()
-        .map(|l| serde_json::from_str(l).unwrap())
-        .collect();
+    let runs = hyq_run_json(&[]);
     for side in sides {
         let episodes = side["episodes"].as_array().unwrap();
         assert_eq!(episodes.len(), 2);
@@ -168,26 +175,7 @@ fn with_randomisation_every_engine_draws_what_hyq_run_draws() {
     let out = short_compare(&dir, &RANDOMIZED);
     let json = read_json(&dir);
     let sides = json["sides"].as_array().unwrap();
-    let policy = policy_arg(&committed_policy());
-    let mut args = vec![
-        "run",
-        "--policy",
-        &policy,
-        "--episodes",
-        "2",
-        "--seed",
-        "7",
-        "--set",
-        "task.max_time_steps=120",
-        "--set",
-        "reset.joint_noise_rad=0.05",
-        "--json",
-    ];
-    args.extend_from_slice(&RANDOMIZED);
-    let runs: Vec<Value> = hyq_ok(&args)
-        .lines()
-        .map(|l| serde_json::from_str(l).unwrap())
-        .collect();
+    let runs = hyq_run_json(&RANDOMIZED);
     assert_eq!(json["drew_alike"], true);
     for side in sides {
         let episodes = side["episodes"].as_array().unwrap();
