@@ -145,6 +145,7 @@ fn each_backend_runs_the_episodes_hyq_run_runs_and_the_report_is_written() {
     }
     // `[randomize]` off: the reports and the summaries say nothing of it.
     let written = std::fs::read_to_string(dir.join("report.json")).unwrap();
+    let run = serde_json::to_string(&runs).unwrap();
     for text in [&md, &written, &run, &out] {
         assert!(!text.to_lowercase().contains("randomi"), "{text}");
     }
