@@ -509,6 +509,15 @@ fn randomization_keys_and_values() {
         &["randomize.obs_noise.bogus"],
     );
     bad_set(&["randomize.preset=gym"], &["randomize.preset", "gym"]);
+    // A name given as a number is said as such, not in the TOML parser's words.
+    bad_set(
+        &["randomize.preset=1"],
+        &["randomize.preset", "one of this key's names, in quotes"],
+    );
+    bad_set(
+        &["terrain.kind=1"],
+        &["terrain.kind", "one of this key's names, in quotes"],
+    );
     bad_set(
         &["randomize.ground_friction=0.5"],
         &["randomize.ground_friction", "0.5"],

@@ -88,9 +88,18 @@ fn compact_numbers(message: &str) -> String {
     out
 }
 
+/// The TOML parser's words for a value that is not a string where a key takes one of a list of
+/// names (`terrain.kind = 1`), and what they are said as.
+const NOT_A_NAME: (&str, &str) = (
+    "invalid type: unit variant, expected string only",
+    "expected one of this key's names, in quotes",
+);
+
 /// A parser's message on one line (the fronts print errors on one line), as hyq-physics'
-/// [`hyq_physics::one_line`] writes it, with numbers in their short form ([`compact_numbers`])
-/// and control characters escaped ([`hyq_physics::printable`]: it quotes the user's keys).
+/// [`hyq_physics::one_line`] writes it, with numbers in their short form ([`compact_numbers`]),
+/// control characters escaped ([`hyq_physics::printable`]: it quotes the user's keys) and the
+/// parser's words for a name given as a number said plainly ([`NOT_A_NAME`]).
 pub(super) fn parser_message(message: &str) -> String {
-    hyq_physics::printable(&compact_numbers(&hyq_physics::one_line(message)))
+    let message = message.replace(NOT_A_NAME.0, NOT_A_NAME.1);
+    hyq_physics::printable(&compact_numbers(&hyq_physics::one_line(&message)))
 }
