@@ -33,24 +33,24 @@ fn read_json(dir: &Path) -> Value {
 
 /// A short self-comparison of the committed policy (120 steps, 2 episodes, reset noise on so
 /// that the episodes differ), with `extra` arguments, into `dir`.
-/// `hyq run --json` of the committed policy over the short comparison's episodes (seed 7, two
-/// episodes of 120 steps, the reset noise) with `extra` arguments: one summary per episode.
+/// The short comparison's episodes: two of 120 steps from seed 7, with reset noise.
+const EPISODES: [&str; 8] = [
+    "--episodes",
+    "2",
+    "--seed",
+    "7",
+    "--set",
+    "task.max_time_steps=120",
+    "--set",
+    "reset.joint_noise_rad=0.05",
+];
+
+/// `hyq run --json` of the committed policy over the short comparison's [`EPISODES`] with
+/// `extra` arguments: one summary per episode.
 fn hyq_run_json(extra: &[&str]) -> Vec<Value> {
     let policy = policy_arg(&committed_policy());
-    let mut args = vec![
-        "run",
-        "--policy",
-        &policy,
-        "--episodes",
-        "2",
-        "--seed",
-        "7",
-        "--set",
-        "task.max_time_steps=120",
-        "--set",
-        "reset.joint_noise_rad=0.05",
-        "--json",
-    ];
+    let mut args = vec!["run", "--policy", &policy, "--json"];
+    args.extend_from_slice(&EPISODES);
     args.extend_from_slice(extra);
     hyq_ok(&args)
         .lines()
@@ -66,17 +66,10 @@ fn short_compare(dir: &Path, extra: &[&str]) -> String {
         "rapier,rapier",
         "--policy",
         &policy,
-        "--episodes",
-        "2",
-        "--seed",
-        "7",
-        "--set",
-        "task.max_time_steps=120",
-        "--set",
-        "reset.joint_noise_rad=0.05",
         "--out",
         dir.to_str().unwrap(),
     ];
+    args.extend_from_slice(&EPISODES);
     args.extend_from_slice(extra);
     hyq_ok(&args)
 }
