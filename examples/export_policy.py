@@ -95,15 +95,12 @@ def sb3_actor(run: Path, args: argparse.Namespace, robot: str, names: list[str])
     }
 
 
-def trained_steps(run: Path, model_path: Path, config: dict[str, Any]) -> int:
-    """The env steps behind an rsl_rl checkpoint: the run's checkpoints.json entry (which counts
-    a resumed run's earlier steps too), else the run's budget."""
-    known = run / "checkpoints.json"
-    if known.is_file():
-        steps = json.loads(known.read_text()).get(model_path.name)
-        if steps is not None:
-            return int(steps)
-    return int(config["steps"])
+def trained_steps(saved: dict[str, Any], config: dict[str, Any]) -> int:
+    """The env steps behind an rsl_rl checkpoint: its own count (which includes a resumed
+    run's earlier steps), else, for a checkpoint written before checkpoints counted them, the
+    run's budget."""
+    steps = (saved.get("infos") or {}).get("env_steps")
+    return int(config["steps"] if steps is None else steps)
 
 
 def rsl_rl_actor(run: Path, args: argparse.Namespace, robot: str, names: list[str],
@@ -144,7 +141,7 @@ def rsl_rl_actor(run: Path, args: argparse.Namespace, robot: str, names: list[st
         "obs_epsilon": 0.0,
         "layers": layers,
         "activation": actor_cfg["activation"],
-        "env_steps": trained_steps(run, Path(model_path), config),
+        "env_steps": trained_steps(saved, config),
         "trainer": "rsl_rl PPO (examples/train_rsl_rl.py)",
     }
 

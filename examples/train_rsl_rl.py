@@ -12,8 +12,8 @@ here (rsl_rl's own defaults but where the comment says why). Every part can be c
 command line (--robot, --backend, --env, --cfg, --iterations, --seed). Same seed and
 --torch-threads: the same run, bit for bit. It writes into OUT:
 
-    model_<iteration>.pt       rsl_rl's checkpoints (every --checkpoint-every iterations and the last)
-    checkpoints.json           the env steps behind each evaluated checkpoint
+    model_<iteration>.pt       rsl_rl's checkpoints (every --checkpoint-every iterations and the
+                               last), each with the env steps behind it
     progress.csv, evals.csv,   the learning curve, as train_sb3_ppo.py writes it
     progress.png
     eval.json                  the final policy on the 20 evaluation episodes, and the run's timing
@@ -117,12 +117,16 @@ class TimedEnv(HyQRslRlVecEnv):
 
 class Runner(OnPolicyRunner):
     """OnPolicyRunner whose checkpoints name the robot and its observation rows (what
-    examples/export_policy.py checks a model against)."""
+    examples/export_policy.py checks a model against) and the env steps behind them (those of
+    this run, and of the run a resumed one started from: `steps_before`)."""
+
+    steps_before = 0
 
     def save(self, path: str, infos: dict | None = None) -> None:
         env = self.env
         super().save(path, {**(infos or {}), "robot": env.cfg["robot"],
-                            "observation": env.observation_names})
+                            "observation": env.observation_names,
+                            "env_steps": self.steps_before + env.steps})
 
 
 def parse_args() -> argparse.Namespace:
@@ -169,8 +173,9 @@ def evaluate(runner: OnPolicyRunner, run: dict[str, Any]) -> dict[str, Any]:
         runner.alg.train_mode()
 
 
-def resume(runner: OnPolicyRunner, path: Path, names: list[str], per_iteration: int) -> None:
-    """Loads checkpoint `path` into `runner`. A checkpoint whose observation rows are the first
+def resume(runner: Runner, path: Path, names: list[str], per_iteration: int) -> None:
+    """Loads checkpoint `path` into `runner`, whose checkpoints then count the env steps behind
+    it (`steps_before`). A checkpoint whose observation rows are the first
     rows of this env's (the walk's 39 before the rough recipe's height scan) is widened: the
     added rows get zero weights in the first layers, so the policy starts as the checkpoint's
     exactly, and a normalisation of mean 0 and deviation 1 whose count is one iteration's
@@ -179,6 +184,7 @@ def resume(runner: OnPolicyRunner, path: Path, names: list[str], per_iteration: 
     if not path.is_file():
         raise SystemExit(f"error: --resume {path}: no such checkpoint file")
     saved = torch.load(path, map_location="cpu", weights_only=False)
+    runner.steps_before = steps_behind(saved, path)
     rows = (saved.get("infos") or {}).get("observation", names)
     if rows == names:
         runner.load(str(path))
@@ -198,19 +204,13 @@ def resume(runner: OnPolicyRunner, path: Path, names: list[str], per_iteration: 
     runner.current_learning_iteration = saved["iter"]
 
 
-def steps_before(resume: Path | None) -> int:
-    """The env steps behind checkpoint `resume` (0 from scratch), from its run's
-    checkpoints.json, else its run's whole budget (config.json)."""
-    if resume is None:
-        return 0
-    run = resume.parent
-    if (run / "checkpoints.json").is_file():
-        known = json.loads((run / "checkpoints.json").read_text())
-        if resume.name in known:
-            return int(known[resume.name])
-    if (run / "config.json").is_file():
-        return int(json.loads((run / "config.json").read_text())["steps"])
-    return 0
+def steps_behind(saved: dict[str, Any], path: Path) -> int:
+    """The env steps behind checkpoint `saved` (read from `path`): its own count, else (a
+    checkpoint written before checkpoints counted them) its run's whole budget."""
+    steps = (saved.get("infos") or {}).get("env_steps")
+    if steps is None and (path.parent / "config.json").is_file():
+        steps = json.loads((path.parent / "config.json").read_text())["steps"]
+    return int(steps or 0)
 
 
 def command_of(args: argparse.Namespace) -> str:
@@ -229,12 +229,13 @@ def main() -> None:
     iterations, every = RECIPE_ITERATIONS[args.recipe]
     iterations = args.iterations or iterations
     every = args.checkpoint_every or every
+    env_keys = recipes.merge(recipe["env"], args.env)
     run = {
         "recipe": args.recipe,
         "robot": args.robot or recipe["robot"],
         "backend": args.backend or recipe["backend"],
-        "env": recipes.merge(recipe["env"], args.env),
-        "eval_env": recipes.merge(recipes.merge(recipe["env"], args.env), recipe.get("eval_env", {})),
+        "env": env_keys,
+        "eval_env": recipes.merge(env_keys, recipe.get("eval_env", {})),
     }
     recipes.check_backend(run["backend"])
     cfg = copy.deepcopy(TRAIN_CFG)
@@ -261,25 +262,19 @@ def main() -> None:
     env = TimedEnv(clock, episodes, progress, num_envs=args.envs, seed=args.seed, robot=run["robot"],
                    backend=run["backend"], **run["env"])
     runner = Runner(env, copy.deepcopy(cfg), log_dir=str(args.out), device="cpu")
-    if args.resume:
-        resume(runner, args.resume, env.observation_names, per_iteration=cfg["num_steps_per_env"] * args.envs)
-    evals = recipes.CurveFile(args.out / "evals.csv", recipes.EVAL_FIELDS)
     per_iteration = cfg["num_steps_per_env"] * args.envs
+    if args.resume:
+        resume(runner, args.resume, env.observation_names, per_iteration)
+    evals = recipes.CurveFile(args.out / "evals.csv", recipes.EVAL_FIELDS)
     title = (f"PPO (rsl_rl) on {run['robot']}, {run['backend']}: "
              f"examples/train_rsl_rl.py --recipe {args.recipe}")
     done = 0
-    prior_steps = steps_before(args.resume)
-    trained: dict[str, int] = {}
     while done < iterations:
         # learn() in chunks of `every` iterations, with an evaluation after each.
         chunk = min(every, iterations - done)
         runner.learn(num_learning_iterations=chunk)
         done += chunk
         steps = done * per_iteration
-        # The checkpoint learn() wrote last, with the env steps behind it (a resumed run's
-        # include those of the run it resumed), for the export's metadata.
-        trained[f"model_{runner.current_learning_iteration}.pt"] = prior_steps + steps
-        recipes.write_json(args.out / "checkpoints.json", trained)
         start = time.monotonic()
         result = evaluate(runner, run)
         clock.eval_s += time.monotonic() - start

@@ -204,12 +204,13 @@ def main() -> None:
     args = parse_args()
     recipe = recipes.RECIPES[args.recipe]
     steps, every = RECIPE_STEPS[args.recipe]
+    env_keys = recipes.merge(recipe["env"], args.env)
     run = {
         "recipe": args.recipe,
         "robot": args.robot or recipe["robot"],
         "backend": args.backend or recipe["backend"],
-        "env": recipes.merge(recipe["env"], args.env),
-        "eval_env": recipes.merge(recipes.merge(recipe["env"], args.env), recipe.get("eval_env", {})),
+        "env": env_keys,
+        "eval_env": recipes.merge(env_keys, recipe.get("eval_env", {})),
     }
     recipes.check_backend(run["backend"])
     ppo_kwargs = {**RECIPE_PPO, **RECIPE_PPO_CHANGES.get(args.recipe, {}), **args.ppo}
