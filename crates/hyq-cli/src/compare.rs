@@ -231,11 +231,7 @@ pub fn execute(args: CompareArgs) -> Result<(), Failure> {
     let labels = [name_a, label_b.as_str()];
     let report: Report = with_backend!(a, A => {
         with_backend!(b, B => {
-            let mut side_a = plan.run_side::<A>(labels[0], &[]).map_err(compare_failure)?;
-            let mut side_b = plan
-                .run_side::<B>(labels[1], &spec.overrides_b)
-                .map_err(compare_failure)?;
-            plan.pair(&mut side_a, &mut side_b, &ledger).map_err(compare_failure)
+            plan.compare_two::<A, B>(labels, &ledger).map_err(compare_failure)
         })
     })?;
     written(report.write(&args.out, &command_line()))?;

@@ -176,6 +176,19 @@ impl Plan {
         })
     }
 
+    /// Runs the two sides, `A` with the shared overrides and `B` with `--set-b`'s too,
+    /// labelled `labels`, and compares them against `ledger` ([`compare`] on a plan already
+    /// checked).
+    pub fn compare_two<A: Backend, B: Backend>(
+        &self,
+        labels: [&str; 2],
+        ledger: &Ledger,
+    ) -> Result<Report, CompareError> {
+        let mut a = self.run_side::<A>(labels[0], &[])?;
+        let mut b = self.run_side::<B>(labels[1], &self.spec.overrides_b)?;
+        self.pair(&mut a, &mut b, ledger)
+    }
+
     /// The robot.
     pub fn model(&self) -> &Arc<RobotModel> {
         &self.model
@@ -369,10 +382,7 @@ pub fn compare<A: Backend, B: Backend>(
     labels: [&str; 2],
     ledger: &Ledger,
 ) -> Result<Report, CompareError> {
-    let plan = Plan::new(model, spec)?;
-    let mut a = plan.run_side::<A>(labels[0], &[])?;
-    let mut b = plan.run_side::<B>(labels[1], &spec.overrides_b)?;
-    plan.pair(&mut a, &mut b, ledger)
+    Plan::new(model, spec)?.compare_two::<A, B>(labels, ledger)
 }
 
 /// The one-step comparison's part of the report.
