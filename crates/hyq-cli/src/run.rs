@@ -385,10 +385,10 @@ impl EpisodeSummary {
             initial_position: info.initial_position,
             final_position: info.initial_position,
             goal: info.goal,
-            randomize: info.randomize.as_ref().map(|r| EpisodeRandomization {
-                draw: r.draw.clone(),
-                pushes: 0,
-            }),
+            randomize: info
+                .randomize
+                .as_ref()
+                .map(|r| EpisodeRandomization::starting(&r.draw)),
         }
     }
 

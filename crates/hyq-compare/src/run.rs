@@ -173,10 +173,7 @@ pub fn run_episode<B: Backend>(
         goal,
         initial_distance_m,
         final_distance_m: initial_distance_m,
-        randomize: env.episode_draw().map(|draw| EpisodeRandomization {
-            draw: draw.clone(),
-            pushes: 0,
-        }),
+        randomize: env.episode_draw().map(EpisodeRandomization::starting),
     };
     let record = |traj: &mut Trajectory, env: &Env<B>| {
         let trunk: &TrunkState = env.trunk();

@@ -46,6 +46,16 @@ pub struct EpisodeRandomization {
     pub pushes: u64,
 }
 
+impl EpisodeRandomization {
+    /// The randomisation of an episode that drew `draw`, before its first push.
+    pub fn starting(draw: &EpisodeDraw) -> Self {
+        Self {
+            draw: draw.clone(),
+            pushes: 0,
+        }
+    }
+}
+
 /// The prefix of every key of [`RANDOMIZE_INFO_KEYS`]; without it, a key is the name the
 /// record, `hyq run --json` and `hyq compare` write under `randomize`.
 pub const RANDOMIZE_PREFIX: &str = "randomize.";
