@@ -264,9 +264,9 @@ def _observation_options(props: dict[str, str], path: Any) -> dict[str, Any]:
 def check_onnx_layout(model: Any, robot: str, path: Any = "ONNX policy") -> dict[str, str]:
     """Checks that an ONNX policy (an ``onnx.ModelProto`` or an onnxruntime session) is one of
     these files and fits `robot`'s environment (with the observation extras its `env_config`
-    names): the robot's name, the observation rows and the
-    joints, in order, and the graph's input and output widths. Returns its metadata; raises
-    ``ValueError`` naming the file and the first difference."""
+    names): the robot's name, the observation rows and the joints, in order, and the graph's
+    input and output widths. Returns its metadata; raises ``ValueError`` naming the file and
+    the first difference."""
     from hyq.env import HyQEnv
 
     if hasattr(model, "get_modelmeta"):
