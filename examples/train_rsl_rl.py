@@ -181,8 +181,6 @@ def resume(runner: Runner, path: Path, names: list[str], per_iteration: int) -> 
     exactly, and a normalisation of mean 0 and deviation 1 whose count is one iteration's
     steps, so their statistics are learnt within a few iterations while the others' hold; the
     optimiser starts afresh (its moments have the old shapes)."""
-    if not path.is_file():
-        raise SystemExit(f"error: --resume {path}: no such checkpoint file")
     saved = torch.load(path, map_location="cpu", weights_only=False)
     runner.steps_before = steps_behind(saved, path)
     rows = (saved.get("infos") or {}).get("observation", names)
@@ -238,6 +236,9 @@ def main() -> None:
         "eval_env": recipes.merge(env_keys, recipe.get("eval_env", {})),
     }
     recipes.check_backend(run["backend"])
+    if args.resume and not args.resume.is_file():
+        # Before OUT is made, so a mistyped checkpoint leaves nothing behind.
+        raise SystemExit(f"error: --resume {args.resume}: no such checkpoint file")
     cfg = copy.deepcopy(TRAIN_CFG)
     for key, value in args.cfg.items():
         cfg[key] = {**cfg[key], **value} if isinstance(value, dict) and isinstance(cfg.get(key), dict) else value

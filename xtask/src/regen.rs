@@ -55,8 +55,8 @@ pub fn regen_reports(args: &[String]) -> Result<(), String> {
     if !run_cargo(&root, &build)?.success() {
         return Err("building hyq failed".into());
     }
-    let hyq = root
-        .join("target")
+    // Where cargo put it: `$CARGO_TARGET_DIR` when set, as for every xtask build.
+    let hyq = crate::vendor::target_dir(&root)
         .join(if dev { "debug" } else { "release" })
         .join("hyq");
     for words in &commands {

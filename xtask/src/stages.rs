@@ -487,10 +487,7 @@ fn python_stage(root: &Path, venv: &Path, engines: &[&Engine]) -> Result<u64, St
     // these tests, on the default engine, do not see). `cargo build -p hyq-cli` here would
     // unify the crates' features in yet another way (no dev-dependencies) and compile the
     // physics crates and everything above them once more.
-    let target = std::env::var_os("CARGO_TARGET_DIR")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| root.join("target"));
-    let cli = target.join("debug").join("hyq");
+    let cli = crate::vendor::target_dir(root).join("debug").join("hyq");
     if !cli.is_file() {
         return Err(format!(
             "{} is missing: the first stage's `cargo test` builds it for hyq-cli's tests",
