@@ -1,14 +1,14 @@
 //! `hyq model`: the robot the environment simulates, written for tools outside the project.
 //!
 //! Three formats, one file each (stdout unless `--out FILE`):
-//! - `mjcf`: MuJoCo's XML model (hyq-physics' [`mjcf`] generator) with the configuration's
+//! - `mjcf`: MuJoCo's XML model (hyq-formats' [`mjcf`] generator) with the configuration's
 //!   time step, gravity, friction and contact distance, the MuJoCo backend's solver and contact
 //!   settings (`[physics.mujoco]`: the backend's defaults, stiff 2 ms contacts and limits and
 //!   10 no-slip iterations, unless the configuration changes them), and the chosen actuators: `position`
 //!   servos (default: MuJoCo runs kp (q* − q) − kd q̇ clamped to the effort limit inside every
 //!   step, without the shared actuator's velocity-limit rule), `motor`s (control = torque) or
 //!   `none`;
-//! - `urdf`: the loaded robot as URDF (hyq-physics' [`urdf_export`]: fixed links lumped,
+//! - `urdf`: the loaded robot as URDF (hyq-formats' [`urdf`]: fixed links lumped,
 //!   primitive shapes), capsules as `<capsule>` (default) or as `<cylinder>`s spanning them for
 //!   urdfdom-based loaders such as DART's;
 //! - `json`: the facts a simulator loop outside the project needs to run the environment's
@@ -26,9 +26,10 @@ use std::path::PathBuf;
 use clap::{Args, ValueEnum};
 use hyq_env::EnvConfig;
 use hyq_physics::RobotModel;
-use hyq_physics::mjcf::{Actuators, MjcfOptions, MujocoOptions, to_mjcf};
-use hyq_physics::urdf_export::{CapsuleAs, UrdfOptions, to_urdf};
-use hyq_physics::{Collision, Shape, mjcf, urdf_export};
+use hyq_formats::mjcf::{Actuators, MjcfOptions, MujocoOptions, to_mjcf};
+use hyq_formats::urdf::{CapsuleAs, UrdfOptions, to_urdf};
+use hyq_formats::{mjcf, urdf};
+use hyq_physics::{Collision, Shape};
 use serde::Serialize;
 
 use crate::Failure;
@@ -375,7 +376,7 @@ fn render(args: &ModelArgs, model: &RobotModel, config: &EnvConfig) -> Result<St
                     CapsuleChoice::Cylinder => CapsuleAs::Cylinder,
                 },
             };
-            to_urdf(model, &options).map_err(|e: urdf_export::UrdfExportError| Failure {
+            to_urdf(model, &options).map_err(|e: urdf::UrdfExportError| Failure {
                 status: 1,
                 message: e.to_string(),
             })

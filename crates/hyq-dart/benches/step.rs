@@ -4,14 +4,14 @@
 //! random joint targets redrawn every 10 sub-steps (feet landing and lifting, joints at their
 //! limits), the cost of `set_state` (which installs a fresh collision detector), and of a
 //! randomised episode's reset (`reset_with_dynamics`: other masses, damping and friction with
-//! the spawn state). The workloads are hyq-physics' `SubstepWorkloads`, which the MuJoCo
+//! the spawn state). The workloads are hyq-conformance's `SubstepWorkloads`, which the MuJoCo
 //! backend's bench times too.
 //!
 //! Run: `cargo bench -p hyq-dart --bench step`.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use hyq_dart::{DartBackend, DartOptions};
-use hyq_physics::conformance::fixtures::{Robot, SubstepWorkloads};
+use hyq_conformance::fixtures::{Robot, SubstepWorkloads};
 
 fn step(c: &mut Criterion) {
     let robot = Robot::bundled("hyq");

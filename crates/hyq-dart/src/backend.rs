@@ -390,9 +390,6 @@ impl Backend for DartBackend {
         };
         let spawn = backend.model.spawn_state();
         backend.set_state(&spawn)?;
-        if let Some(reason) = backend.blocked.take() {
-            return Err(backend_error(reason));
-        }
         Ok(backend)
     }
 
@@ -404,25 +401,23 @@ impl Backend for DartBackend {
         &self.params
     }
 
-    fn apply_state(&mut self, state: &RobotState) {
+    fn apply_state(&mut self, state: &RobotState) -> Result<(), PhysicsError> {
         self.contacts.fill(false);
-        match self
+        let result = self
             .sim
-            .set_state(&base_state(&state.trunk), &state.q, &state.qd)
-        {
-            Ok(()) => self.blocked = None,
-            // The state was validated, so DART refusing it is unexpected; the trait gives this
-            // method no error channel, so the next step reports it.
-            Err(e) => self.blocked = Some(format!("the last set_state failed: {e}")),
-        }
+            .set_state(&base_state(&state.trunk), &state.q, &state.qd);
+        // A state DART refuses after validation leaves the world unusable: it refuses to step
+        // until a state is given that DART takes.
+        self.blocked = result
+            .as_ref()
+            .err()
+            .map(|e| format!("the last set_state failed: {e}"));
         self.refresh_poses();
+        Ok(result?)
     }
 
-    fn apply_joint_torques(&mut self, torques: &[f64]) {
-        if let Err(e) = self.sim.set_joint_torques(torques) {
-            // Lengths and finiteness were validated by the caller; see `apply_state`.
-            self.blocked = Some(format!("set_joint_torques failed: {e}"));
-        }
+    fn apply_joint_torques(&mut self, torques: &[f64]) -> Result<(), PhysicsError> {
+        Ok(self.sim.set_joint_torques(torques)?)
     }
 
     fn step(&mut self) -> Result<(), PhysicsError> {
@@ -496,12 +491,15 @@ impl Backend for DartBackend {
         self.sim.total_mass()
     }
 
-    fn apply_dynamics(&mut self, dynamics: &Dynamics) {
-        self.refused_dynamics = self.give_dynamics(dynamics).err().map(|e| {
-            // The dynamics were validated, so DART refusing them is unexpected; the trait gives
-            // this method no error channel, so the next step reports it.
-            format!("DART refused the dynamics: {e}")
-        });
+    fn apply_dynamics(&mut self, dynamics: &Dynamics) -> Result<(), PhysicsError> {
+        let result = self.give_dynamics(dynamics);
+        // Dynamics DART refuses after validation may be half given: the world refuses to step
+        // until dynamics it takes are given.
+        self.refused_dynamics = result
+            .as_ref()
+            .err()
+            .map(|e| format!("DART refused the dynamics: {e}"));
+        Ok(result?)
     }
 
     fn body_mass_properties(&self, link: usize) -> MassProperties {
@@ -514,11 +512,8 @@ impl Backend for DartBackend {
         }
     }
 
-    fn apply_trunk_velocity_change(&mut self, dv: &Vector3<f64>) {
-        if let Err(e) = self.sim.add_base_velocity([dv.x, dv.y, dv.z]) {
-            // The change was validated (finite); see `apply_state`.
-            self.blocked = Some(format!("the trunk push failed: {e}"));
-        }
+    fn apply_trunk_velocity_change(&mut self, dv: &Vector3<f64>) -> Result<(), PhysicsError> {
+        Ok(self.sim.add_base_velocity([dv.x, dv.y, dv.z])?)
     }
 
     fn terrain(&self) -> &Terrain {
@@ -536,11 +531,7 @@ impl Backend for DartBackend {
             }
         }
         self.terrain = terrain.clone();
-        self.apply_state(&state);
-        match &self.blocked {
-            Some(reason) => Err(backend_error(reason.clone())),
-            None => Ok(()),
-        }
+        self.apply_state(&state)
     }
 }
 

@@ -4,11 +4,11 @@
 //! manifolds between steps; `set_state` replaces the detector, which is what makes a reused
 //! world replay a fresh one.
 //!
-//! The bodies are hyq-physics' `conformance::determinism`, run here on the bundled HyQ.
+//! The bodies are hyq-conformance's `determinism`, run here on the bundled HyQ.
 
 use hyq_dart::{DartBackend, DartOptions};
-use hyq_physics::conformance::determinism;
-use hyq_physics::conformance::fixtures::Robot;
+use hyq_conformance::determinism;
+use hyq_conformance::fixtures::Robot;
 
 fn hyq() -> Robot {
     Robot::bundled("hyq")

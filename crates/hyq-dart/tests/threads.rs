@@ -2,11 +2,11 @@
 //! trajectory it gives alone on one thread: the worlds share no mutable state (DART's Bullet
 //! detector has no global state on the step path, unlike its ODE detector).
 //!
-//! The bodies are hyq-physics' `conformance::threads`, run here on the bundled HyQ.
+//! The bodies are hyq-conformance's `threads`, run here on the bundled HyQ.
 
 use hyq_dart::{DartBackend, DartOptions};
-use hyq_physics::conformance::fixtures::Robot;
-use hyq_physics::conformance::threads;
+use hyq_conformance::fixtures::Robot;
+use hyq_conformance::threads;
 
 fn hyq() -> Robot {
     Robot::bundled("hyq")

@@ -164,17 +164,19 @@ impl Backend for ScriptedBackend {
         &self.params
     }
 
-    fn apply_state(&mut self, state: &RobotState) {
+    fn apply_state(&mut self, state: &RobotState) -> Result<(), PhysicsError> {
         self.q.copy_from_slice(&state.q);
         self.qd.copy_from_slice(&state.qd);
         self.trunk = state.trunk;
         self.torques.fill(0.0);
         self.contacts.fill(false);
         self.substep = 0;
+        Ok(())
     }
 
-    fn apply_joint_torques(&mut self, torques: &[f64]) {
+    fn apply_joint_torques(&mut self, torques: &[f64]) -> Result<(), PhysicsError> {
         self.torques.copy_from_slice(torques);
+        Ok(())
     }
 
     fn step(&mut self) -> Result<(), PhysicsError> {
@@ -240,16 +242,18 @@ impl Backend for ScriptedBackend {
         self.dynamics.total_mass()
     }
 
-    fn apply_dynamics(&mut self, dynamics: &Dynamics) {
+    fn apply_dynamics(&mut self, dynamics: &Dynamics) -> Result<(), PhysicsError> {
         self.dynamics.clone_from(dynamics);
+        Ok(())
     }
 
     fn body_mass_properties(&self, link: usize) -> MassProperties {
         self.dynamics.bodies[link]
     }
 
-    fn apply_trunk_velocity_change(&mut self, dv: &Vector3<f64>) {
+    fn apply_trunk_velocity_change(&mut self, dv: &Vector3<f64>) -> Result<(), PhysicsError> {
         self.trunk.linvel += dv;
+        Ok(())
     }
 
     fn terrain(&self) -> &Terrain {

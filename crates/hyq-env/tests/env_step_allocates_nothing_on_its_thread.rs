@@ -64,11 +64,11 @@ impl Backend for Tallied {
     fn params(&self) -> &PhysicsParams {
         self.inner.params()
     }
-    fn apply_state(&mut self, state: &RobotState) {
-        self.inner.apply_state(state);
+    fn apply_state(&mut self, state: &RobotState) -> Result<(), PhysicsError> {
+        self.inner.apply_state(state)
     }
-    fn apply_joint_torques(&mut self, torques: &[f64]) {
-        self.inner.apply_joint_torques(torques);
+    fn apply_joint_torques(&mut self, torques: &[f64]) -> Result<(), PhysicsError> {
+        self.inner.apply_joint_torques(torques)
     }
     fn step(&mut self) -> Result<(), PhysicsError> {
         let (count, r) = allocations(|| self.inner.step());
@@ -94,14 +94,14 @@ impl Backend for Tallied {
     fn total_mass(&self) -> f64 {
         self.inner.total_mass()
     }
-    fn apply_dynamics(&mut self, dynamics: &Dynamics) {
-        self.inner.apply_dynamics(dynamics);
+    fn apply_dynamics(&mut self, dynamics: &Dynamics) -> Result<(), PhysicsError> {
+        self.inner.apply_dynamics(dynamics)
     }
     fn body_mass_properties(&self, link: usize) -> MassProperties {
         self.inner.body_mass_properties(link)
     }
-    fn apply_trunk_velocity_change(&mut self, dv: &Vector3<f64>) {
-        self.inner.apply_trunk_velocity_change(dv);
+    fn apply_trunk_velocity_change(&mut self, dv: &Vector3<f64>) -> Result<(), PhysicsError> {
+        self.inner.apply_trunk_velocity_change(dv)
     }
     fn terrain(&self) -> &Terrain {
         self.inner.terrain()

@@ -206,9 +206,9 @@ fn trot(model: &RobotModel) -> Verdict {
 }
 
 fn exports(model: &RobotModel) -> Verdict {
-    let mjcf = hyq_physics::mjcf::to_mjcf(model, &hyq_physics::mjcf::MjcfOptions::default())
+    let mjcf = hyq_formats::mjcf::to_mjcf(model, &hyq_formats::mjcf::MjcfOptions::default())
         .map_err(|e| format!("MJCF of an accepted model: {e}"))?;
-    let urdf = hyq_physics::urdf_export::to_urdf(model, &Default::default())
+    let urdf = hyq_formats::urdf::to_urdf(model, &Default::default())
         .map_err(|e| format!("URDF of an accepted model: {e}"))?;
     for (what, text) in [("MJCF", &mjcf.xml), ("URDF", &urdf)] {
         if text

@@ -5,14 +5,14 @@
 //! limits; reset to the spawn state when the trunk touches the ground, as an episode would
 //! end), the cost of `set_state` (which resets all of MuJoCo's data), and of a randomised
 //! episode's reset (`reset_with_dynamics`: other masses, damping and friction with the
-//! spawn state). The workloads are hyq-physics' `SubstepWorkloads`, which the DART backend's
+//! spawn state). The workloads are hyq-conformance's `SubstepWorkloads`, which the DART backend's
 //! bench times too.
 //!
 //! Run: `cargo bench -p hyq-mujoco --bench step`.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use hyq_mujoco::{MujocoBackend, MujocoOptions};
-use hyq_physics::conformance::fixtures::{Robot, SubstepWorkloads};
+use hyq_conformance::fixtures::{Robot, SubstepWorkloads};
 
 fn step(c: &mut Criterion) {
     let robot = Robot::bundled("hyq");

@@ -22,7 +22,7 @@ use std::time::Instant;
 
 use cpu_time::ProcessTime;
 use hyq_mujoco::{MujocoBackend, MujocoOptions};
-use hyq_physics::conformance::fixtures::Rng;
+use hyq_conformance::fixtures::Rng;
 use hyq_physics::na::{Isometry3, Vector3};
 use hyq_physics::{Actuator, Backend, PdScratch, PhysicsParams, RobotModel, pd_substep};
 

@@ -1,6 +1,6 @@
 //! [`MujocoBackend`]: the `hyq-physics` [`Backend`] trait on a MuJoCo 4.0 world.
 //!
-//! The world is compiled from the MJCF that [`hyq_physics::mjcf`] writes for the shared
+//! The world is compiled from the MJCF that [`hyq_formats::mjcf`] writes for the shared
 //! [`RobotModel`] (same bodies, masses, inertias, joint frames, limits, damping and shapes as
 //! every other backend), without actuators: the shared PD actuator
 //! ([`hyq_physics::pd_substep`]) computes the joint torques, and the backend writes them into
@@ -17,7 +17,7 @@
 
 use std::sync::Arc;
 
-use hyq_physics::mjcf::{Actuators, Mjcf, MjcfOptions, to_mjcf};
+use hyq_formats::mjcf::{Actuators, Mjcf, MjcfOptions, to_mjcf};
 use hyq_physics::na::{Isometry3, Quaternion, Translation3, UnitQuaternion, Vector3};
 use hyq_physics::{
     Backend, Dynamics, MassProperties, PhysicsError, PhysicsParams, RobotModel, RobotState,
@@ -128,7 +128,9 @@ pub struct MujocoBackend {
 
 impl MujocoBackend {
     /// Gives the compiled world the dynamics `dynamics` (see [`Backend::apply_dynamics`]).
-    fn give_dynamics(&mut self, dynamics: &Dynamics) {
+    /// Dynamics MuJoCo refuses after validation may be half given: the world then refuses to
+    /// step until dynamics it takes are given.
+    fn give_dynamics(&mut self, dynamics: &Dynamics) -> Result<(), PhysicsError> {
         // A body whose values are the model's own gets MuJoCo's compiled values back bit for
         // bit (MuJoCo diagonalised the tensor when it compiled the model).
         let nominal: Vec<bool> = dynamics
@@ -156,18 +158,17 @@ impl MujocoBackend {
                 ]
             })
             .collect();
-        self.refused_dynamics = self
-            .world
-            .set_dynamics(
-                dynamics.ground_friction,
-                &nominal,
-                &bodies,
-                &dynamics.joint_damping,
-            )
+        let result = self.world.set_dynamics(
+            dynamics.ground_friction,
+            &nominal,
+            &bodies,
+            &dynamics.joint_damping,
+        );
+        self.refused_dynamics = result
+            .as_ref()
             .err()
-            // The dynamics were validated, so MuJoCo refusing them is unexpected; the trait
-            // gives this method no error channel, so the next step reports it.
             .map(|e| format!("MuJoCo refused the dynamics: {e}"));
+        Ok(result?)
     }
 
     /// Contacts in MuJoCo's current list whose shapes touch or penetrate the ground (all robot
@@ -208,9 +209,6 @@ impl Backend for MujocoBackend {
         };
         let spawn = backend.model.spawn_state();
         backend.set_state(&spawn)?;
-        if let Some(reason) = backend.blocked.take() {
-            return Err(backend_error(reason));
-        }
         Ok(backend)
     }
 
@@ -222,7 +220,7 @@ impl Backend for MujocoBackend {
         &self.params
     }
 
-    fn apply_state(&mut self, state: &RobotState) {
+    fn apply_state(&mut self, state: &RobotState) -> Result<(), PhysicsError> {
         self.contacts.fill(false);
         let t = &state.trunk;
         let p = t.pose.translation.vector;
@@ -232,16 +230,19 @@ impl Backend for MujocoBackend {
         let w = r.inverse() * t.angvel;
         let pose = [p.x, p.y, p.z, q.w, q.i, q.j, q.k];
         let vel = [t.linvel.x, t.linvel.y, t.linvel.z, w.x, w.y, w.z];
-        match self.world.set_state(&pose, &vel, &state.q, &state.qd) {
-            Ok(()) => self.blocked = None,
-            // The state was validated, so MuJoCo refusing it is unexpected; the trait gives this
-            // method no error channel, so the next step reports it.
-            Err(e) => self.blocked = Some(format!("the last set_state failed: {e}")),
-        }
+        let result = self.world.set_state(&pose, &vel, &state.q, &state.qd);
+        // A state MuJoCo refuses after validation leaves the world unusable: it refuses to
+        // step until a state is given that MuJoCo takes.
+        self.blocked = result
+            .as_ref()
+            .err()
+            .map(|e| format!("the last set_state failed: {e}"));
+        Ok(result?)
     }
 
-    fn apply_joint_torques(&mut self, torques: &[f64]) {
+    fn apply_joint_torques(&mut self, torques: &[f64]) -> Result<(), PhysicsError> {
         self.world.set_joint_torques(torques);
+        Ok(())
     }
 
     fn step(&mut self) -> Result<(), PhysicsError> {
@@ -315,9 +316,10 @@ impl Backend for MujocoBackend {
         self.world.total_mass()
     }
 
-    fn apply_dynamics(&mut self, dynamics: &Dynamics) {
-        self.give_dynamics(dynamics);
+    fn apply_dynamics(&mut self, dynamics: &Dynamics) -> Result<(), PhysicsError> {
+        self.give_dynamics(dynamics)?;
         self.dynamics = Some(dynamics.clone());
+        Ok(())
     }
 
     fn body_mass_properties(&self, link: usize) -> MassProperties {
@@ -331,11 +333,8 @@ impl Backend for MujocoBackend {
         }
     }
 
-    fn apply_trunk_velocity_change(&mut self, dv: &Vector3<f64>) {
-        if let Err(e) = self.world.add_root_velocity(&[dv.x, dv.y, dv.z]) {
-            // The change was validated (finite); see `apply_state`.
-            self.blocked = Some(format!("the trunk push failed: {e}"));
-        }
+    fn apply_trunk_velocity_change(&mut self, dv: &Vector3<f64>) -> Result<(), PhysicsError> {
+        Ok(self.world.add_root_velocity(&[dv.x, dv.y, dv.z])?)
     }
 
     fn terrain(&self) -> &Terrain {
@@ -351,13 +350,9 @@ impl Backend for MujocoBackend {
         self.world = World::new(&mjcf.xml, &layout(&self.model, &mjcf))?;
         self.terrain = terrain.clone();
         if let Some(d) = self.dynamics.clone() {
-            self.give_dynamics(&d);
+            self.give_dynamics(&d)?;
         }
-        self.apply_state(&state);
-        match self.blocked.as_ref().or(self.refused_dynamics.as_ref()) {
-            Some(reason) => Err(backend_error(reason.clone())),
-            None => Ok(()),
-        }
+        self.apply_state(&state)
     }
 }
 

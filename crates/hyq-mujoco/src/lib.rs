@@ -1,7 +1,7 @@
 //! The MuJoCo 4.0 physics backend: MuJoCo's C library (from the `mujoco-core` wheel on PyPI,
 //! set up by `cargo xtask setup mujoco`), called through a small C shim.
 //!
-//! The robot reaches MuJoCo as the MJCF text that [`hyq_physics::mjcf`] generates from the
+//! The robot reaches MuJoCo as the MJCF text that [`hyq_formats::mjcf`] generates from the
 //! shared robot model (the same masses, inertias, joint frames, limits, damping and primitive
 //! shapes every backend simulates), compiled from memory. The joint torques come from the
 //! shared actuator; MuJoCo adds none of its own.

@@ -2,7 +2,7 @@
 //! generator in hyq-physics so that `hyq model --format mjcf` writes the same settings without
 //! building MuJoCo), and why they are what they are (the crate's README, settings table).
 
-pub use hyq_physics::mjcf::MujocoOptions;
+pub use hyq_formats::mjcf::MujocoOptions;
 
 #[cfg(test)]
 mod tests {
@@ -12,7 +12,7 @@ mod tests {
 
     use super::*;
     use hyq_physics::PhysicsError;
-    use hyq_physics::mjcf::{Cone, Integrator, Solver};
+    use hyq_formats::mjcf::{Cone, Integrator, Solver};
 
     #[test]
     fn options_parse_from_toml_and_reject_unknown_keys() {

@@ -5,11 +5,11 @@
 //! forces, warning counters); `set_state` resets all of it (`mj_resetData`), which is what makes
 //! a reused world replay a fresh one.
 //!
-//! The bodies are hyq-physics' `conformance::determinism`, run here on the bundled HyQ.
+//! The bodies are hyq-conformance's `determinism`, run here on the bundled HyQ.
 
 use hyq_mujoco::{MujocoBackend, MujocoOptions};
-use hyq_physics::conformance::determinism;
-use hyq_physics::conformance::fixtures::Robot;
+use hyq_conformance::determinism;
+use hyq_conformance::fixtures::Robot;
 
 fn hyq() -> Robot {
     Robot::bundled("hyq")

@@ -11,7 +11,7 @@
 
 use hyq_mujoco::raw::{Layout, StepError, World, layout};
 use hyq_mujoco::{MujocoBackend, MujocoOptions, world_mjcf};
-use hyq_physics::conformance::fixtures::{Robot, build_default, first_difference, random_pd_run};
+use hyq_conformance::fixtures::{Robot, build_default, first_difference, random_pd_run};
 use hyq_physics::{Backend, PhysicsError, PhysicsParams, bundled};
 
 /// The backend's world of the bundled HyQ at its spawn state.

@@ -8,8 +8,8 @@
 
 use hyq_mujoco::raw::{World, layout};
 use hyq_mujoco::{MujocoBackend, MujocoOptions};
-use hyq_physics::conformance::fixtures::Rng;
-use hyq_physics::mjcf::{Actuators, MjcfOptions, to_mjcf};
+use hyq_conformance::fixtures::Rng;
+use hyq_formats::mjcf::{Actuators, MjcfOptions, to_mjcf};
 use hyq_physics::{Actuator, Backend, PdScratch, PhysicsParams, bundled, pd_substep};
 
 /// A world compiled from the generator's MJCF with `actuators`, at the spawn state, with the

@@ -3,12 +3,12 @@
 //! error handling is per thread. Worlds are also built on several threads at once (MuJoCo's
 //! model compiler keeps process-wide state; the crate compiles one model at a time).
 //!
-//! The bodies shared with the other backends are hyq-physics' `conformance::threads`, run
+//! The bodies shared with the other backends are hyq-conformance's `threads`, run
 //! here on the bundled HyQ; building on several threads at once is MuJoCo's own concern.
 
 use hyq_mujoco::{MujocoBackend, MujocoOptions};
-use hyq_physics::conformance::fixtures::{Robot, build_default, first_difference, random_pd_run};
-use hyq_physics::conformance::threads;
+use hyq_conformance::fixtures::{Robot, build_default, first_difference, random_pd_run};
+use hyq_conformance::threads;
 
 fn hyq() -> Robot {
     Robot::bundled("hyq")

@@ -27,7 +27,7 @@
 use crate::backend::{Backend, check_finite_joint_values, check_joint_values};
 use crate::error::PhysicsError;
 use crate::model::RobotModel;
-use crate::randomize::ActuatorScales;
+use crate::dynamics::ActuatorScales;
 
 /// The speed (rad/s) below which joint friction is proportional to speed (step 4 of the law):
 /// 0.01 rad/s is a thousandth of a walking joint's typical speed, so friction is at its full
@@ -287,8 +287,7 @@ pub fn apply_pd_to_valid_targets<B: Backend>(
     backend.joint_velocities(&mut scratch.qd);
     actuator.fill_torques(targets, &scratch.q, &scratch.qd, &mut scratch.tau);
     check_finite_joint_values(backend.model(), "torque", &scratch.tau)?;
-    backend.apply_joint_torques(&scratch.tau);
-    Ok(())
+    backend.apply_joint_torques(&scratch.tau)
 }
 
 /// One actuated physics sub-step: reads `q` and `q̇`, computes the actuator torques for

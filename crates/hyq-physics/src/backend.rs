@@ -1,5 +1,5 @@
-//! The physics seam: the [`Backend`] trait every simulator implements, and the plain data that
-//! crosses it ([`PhysicsParams`], [`RobotState`], [`TrunkState`]).
+//! The physics seam: the [`Backend`] trait every simulator implements. The plain data that
+//! crosses it ([`PhysicsParams`], [`RobotState`], [`TrunkState`]) is `crate::state`'s.
 //!
 //! A backend simulates one robot ([`RobotModel`]) on the ground (world frame: x forward, y left,
 //! z up): flat at z = 0 as built, or a height field ([`Terrain`]) once given one. It advances one physics sub-step at a time under joint torques the
@@ -15,170 +15,14 @@ use std::sync::Arc;
 
 use nalgebra::{Isometry3, Vector3};
 use serde::de::DeserializeOwned;
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 
-use crate::bounds::short;
 use crate::error::PhysicsError;
 use crate::inertia::MassProperties;
 use crate::model::RobotModel;
-use crate::randomize::Dynamics;
+use crate::dynamics::Dynamics;
+use crate::state::{PhysicsParams, RobotState, TrunkState};
 use crate::terrain::Terrain;
-
-/// Engine-independent physics settings (`[physics]` in an environment's TOML).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct PhysicsParams {
-    /// Length of one physics sub-step (s) (default: 0.001).
-    pub dt: f64,
-    /// Gravity in the world frame (m/s²) (default: [0, 0, -9.81]).
-    pub gravity: [f64; 3],
-    /// Coulomb friction coefficient between any robot shape and the ground (default: 1.0, the
-    /// upstream foot `lateral_friction` and Gazebo `mu`). Contacts are inelastic.
-    pub ground_friction: f64,
-    /// A tracked shape within this distance (m) of the ground, or penetrating it, counts as
-    /// touching it even when it carries no load (default: 0.001).
-    pub contact_distance: f64,
-}
-
-impl Default for PhysicsParams {
-    fn default() -> Self {
-        Self {
-            dt: 0.001,
-            gravity: [0.0, 0.0, -9.81],
-            ground_friction: 1.0,
-            contact_distance: 0.001,
-        }
-    }
-}
-
-impl PhysicsParams {
-    /// Checks every field; the error names the first invalid one.
-    pub fn validate(&self) -> Result<(), PhysicsError> {
-        let bad = |field: &'static str, value: String, reason: &'static str| {
-            Err(PhysicsError::InvalidParam {
-                field,
-                value,
-                reason,
-            })
-        };
-        if !(self.dt.is_finite() && self.dt > 0.0 && self.dt <= 0.1) {
-            return bad("dt", short(self.dt), "must be in (0, 0.1] s");
-        }
-        if !self.gravity.iter().all(|g| g.is_finite()) {
-            return bad("gravity", format!("{:?}", self.gravity), "must be finite");
-        }
-        if !(self.ground_friction.is_finite() && self.ground_friction >= 0.0) {
-            return bad(
-                "ground_friction",
-                short(self.ground_friction),
-                "must be finite and non-negative",
-            );
-        }
-        if !(self.contact_distance.is_finite() && self.contact_distance >= 0.0) {
-            return bad(
-                "contact_distance",
-                short(self.contact_distance),
-                "must be finite and non-negative (m)",
-            );
-        }
-        Ok(())
-    }
-}
-
-/// Pose and velocity of the trunk, world frame.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TrunkState {
-    /// Pose of the trunk's URDF link frame (not its centre of mass).
-    pub pose: Isometry3<f64>,
-    /// Linear velocity of the trunk frame's origin (m/s).
-    pub linvel: Vector3<f64>,
-    /// Angular velocity (rad/s).
-    pub angvel: Vector3<f64>,
-}
-
-impl TrunkState {
-    /// The trunk at rest at `pose`.
-    pub fn at_rest(pose: Isometry3<f64>) -> Self {
-        Self {
-            pose,
-            linvel: Vector3::zeros(),
-            angvel: Vector3::zeros(),
-        }
-    }
-}
-
-/// The full state of the robot: trunk pose and velocity plus joint angles and speeds.
-#[derive(Debug, Clone, PartialEq)]
-pub struct RobotState {
-    /// The trunk (the free-floating root).
-    pub trunk: TrunkState,
-    /// Joint angles (rad), profile order.
-    pub q: Vec<f64>,
-    /// Joint speeds (rad/s), profile order.
-    pub qd: Vec<f64>,
-}
-
-impl RobotState {
-    /// The first non-finite value, named, if any.
-    pub fn first_non_finite(&self, model: &RobotModel) -> Option<(String, f64)> {
-        let t = &self.trunk;
-        let q = t.pose.rotation.quaternion();
-        let named: [(&str, f64); 13] = [
-            ("trunk position x", t.pose.translation.x),
-            ("trunk position y", t.pose.translation.y),
-            ("trunk position z", t.pose.translation.z),
-            ("trunk orientation w", q.w),
-            ("trunk orientation x", q.i),
-            ("trunk orientation y", q.j),
-            ("trunk orientation z", q.k),
-            ("trunk linear velocity x", t.linvel.x),
-            ("trunk linear velocity y", t.linvel.y),
-            ("trunk linear velocity z", t.linvel.z),
-            ("trunk angular velocity x", t.angvel.x),
-            ("trunk angular velocity y", t.angvel.y),
-            ("trunk angular velocity z", t.angvel.z),
-        ];
-        if let Some((name, v)) = named.iter().find(|(_, v)| !v.is_finite()) {
-            return Some(((*name).to_owned(), *v));
-        }
-        let joint_name = |i: usize| model.joints().get(i).map_or("?", |j| j.name.as_str());
-        if let Some((i, v)) = self.q.iter().enumerate().find(|(_, v)| !v.is_finite()) {
-            return Some((format!("angle of joint {}", joint_name(i)), *v));
-        }
-        if let Some((i, v)) = self.qd.iter().enumerate().find(|(_, v)| !v.is_finite()) {
-            return Some((format!("speed of joint {}", joint_name(i)), *v));
-        }
-        None
-    }
-
-    /// Checks lengths, finiteness and that the orientation is a unit quaternion.
-    pub fn validate(&self, model: &RobotModel) -> Result<(), PhysicsError> {
-        let n = model.num_joints();
-        for (what, got) in [
-            ("joint angles", self.q.len()),
-            ("joint speeds", self.qd.len()),
-        ] {
-            if got != n {
-                return Err(PhysicsError::WrongLength {
-                    what,
-                    expected: n,
-                    got,
-                });
-            }
-        }
-        if let Some((what, value)) = self.first_non_finite(model) {
-            return Err(PhysicsError::NonFinite { what, value });
-        }
-        let norm = self.trunk.pose.rotation.quaternion().norm();
-        if (norm - 1.0).abs() > 1e-6 {
-            return Err(PhysicsError::InvalidState {
-                what: "trunk orientation".into(),
-                reason: format!("quaternion norm {norm} is not 1"),
-            });
-        }
-        Ok(())
-    }
-}
 
 /// A physics engine simulating one robot on the ground: flat as built, or a height field.
 ///
@@ -216,14 +60,20 @@ pub trait Backend: Sized + Send + 'static {
     /// start, contact cache or pending torque survives, so what follows depends only on the
     /// state and the inputs, bitwise. Contacts read as all false until the next step.
     ///
+    /// Errors if the engine refuses the state after all (it was validated, so this is the
+    /// engine's limit, not the caller's mistake); the world then refuses to step until a state
+    /// is given that it takes.
+    ///
     /// Callers use [`Backend::set_state`], which validates first.
-    fn apply_state(&mut self, state: &RobotState);
+    fn apply_state(&mut self, state: &RobotState) -> Result<(), PhysicsError>;
 
     /// Stores joint torques (N·m, profile order, already validated) for the next
     /// [`Backend::step`] only.
     ///
+    /// Errors if the engine refuses them (see [`Backend::apply_state`]).
+    ///
     /// Callers use [`Backend::set_joint_torques`], which validates first.
-    fn apply_joint_torques(&mut self, torques: &[f64]);
+    fn apply_joint_torques(&mut self, torques: &[f64]) -> Result<(), PhysicsError>;
 
     /// Advances one physics sub-step of `params().dt` under the stored torques, then clears
     /// them (a step with no torques set is a step with zero torques).
@@ -269,7 +119,7 @@ pub trait Backend: Sized + Send + 'static {
     fn total_mass(&self) -> f64;
 
     // ---------------------------------------------------------------------------------------
-    // Per-episode dynamics and pushes (domain randomisation, see `crate::randomize`). A world
+    // Per-episode dynamics and pushes (domain randomisation, see `crate::dynamics`). A world
     // is built with the model's dynamics; these change them, and push the trunk.
     // ---------------------------------------------------------------------------------------
 
@@ -279,8 +129,11 @@ pub trait Backend: Sized + Send + 'static {
     /// [`Backend::apply_state`] is unspecified (an engine may have to move internal frames);
     /// that call must follow before a step.
     ///
+    /// Errors if the engine refuses them after all; the world then refuses to step until
+    /// dynamics it takes are given.
+    ///
     /// Callers use [`Backend::set_dynamics`], which validates first and re-applies the state.
-    fn apply_dynamics(&mut self, dynamics: &Dynamics);
+    fn apply_dynamics(&mut self, dynamics: &Dynamics) -> Result<(), PhysicsError>;
 
     /// The mass properties of body `link` (index as in [`RobotModel::links`]) as the engine
     /// holds them, in the body's link frame: what [`Backend::apply_dynamics`] gave it, read
@@ -295,8 +148,10 @@ pub trait Backend: Sized + Send + 'static {
     /// steps (warm starts, contacts) as they are: a push, not a reset. The whole robot moves
     /// with the trunk, since joint speeds are relative.
     ///
+    /// Errors if the engine refuses it (see [`Backend::apply_state`]).
+    ///
     /// Callers use [`Backend::push_trunk`], which validates first.
-    fn apply_trunk_velocity_change(&mut self, dv: &Vector3<f64>);
+    fn apply_trunk_velocity_change(&mut self, dv: &Vector3<f64>) -> Result<(), PhysicsError>;
 
     /// Validates `dynamics` against the model ([`Dynamics::validate`]), gives them to the
     /// world ([`Backend::apply_dynamics`]) and puts it back into the state it was in (the
@@ -308,9 +163,8 @@ pub trait Backend: Sized + Send + 'static {
         if state.validate(self.model()).is_err() {
             state = self.model().spawn_state();
         }
-        self.apply_dynamics(dynamics);
-        self.apply_state(&state);
-        Ok(())
+        self.apply_dynamics(dynamics)?;
+        self.apply_state(&state)
     }
 
     /// Validates `dynamics` and `state`, then gives the world those dynamics and puts it into
@@ -325,9 +179,8 @@ pub trait Backend: Sized + Send + 'static {
     ) -> Result<(), PhysicsError> {
         dynamics.validate(self.model())?;
         state.validate(self.model())?;
-        self.apply_dynamics(dynamics);
-        self.apply_state(state);
-        Ok(())
+        self.apply_dynamics(dynamics)?;
+        self.apply_state(state)
     }
 
     /// Adds `dv` (m/s, world frame, finite) to the trunk's linear velocity now (see
@@ -339,8 +192,7 @@ pub trait Backend: Sized + Send + 'static {
                 value: *v,
             });
         }
-        self.apply_trunk_velocity_change(dv);
-        Ok(())
+        self.apply_trunk_velocity_change(dv)
     }
 
     // -------------------------------------------------------------------------------------
@@ -375,16 +227,14 @@ pub trait Backend: Sized + Send + 'static {
     /// [`Backend::apply_state`]).
     fn set_state(&mut self, state: &RobotState) -> Result<(), PhysicsError> {
         state.validate(self.model())?;
-        self.apply_state(state);
-        Ok(())
+        self.apply_state(state)
     }
 
     /// Validates joint torques (one finite value per joint, N·m, profile order) and stores them
     /// for the next [`Backend::step`] only.
     fn set_joint_torques(&mut self, torques: &[f64]) -> Result<(), PhysicsError> {
         check_joint_values(self.model(), "joint torques", "torque", torques)?;
-        self.apply_joint_torques(torques);
-        Ok(())
+        self.apply_joint_torques(torques)
     }
 
     /// Reads the whole state into `out`, resizing its joint vectors to the number of joints

@@ -9,17 +9,15 @@
 //!   joint torques, advance one sub-step, read joint and trunk state and real ground contacts.
 //! - [`actuator`]: the joint PD law with effort and velocity limits, evaluated every sub-step in
 //!   shared code ([`pd_substep`]), so every backend is driven identically.
-//! - [`randomize`]: per-episode variations of the physics as plain data (ground friction,
+//! - [`state`]: the plain data that crosses the seam: the engine-independent
+//!   [`PhysicsParams`] and the robot's [`RobotState`].
+//! - [`dynamics`]: per-episode variations of the physics as plain data (ground friction,
 //!   masses, damping, the actuator's gains, limits and delay) with the rules that keep every
 //!   drawn world physical; backends take them through [`Backend::set_dynamics`] and push the
-//!   trunk with [`Backend::push_trunk`].
-//! - [`mjcf`]: the robot as MuJoCo's XML model format, pure text generation (no MuJoCo
-//!   needed), for the MuJoCo backend and for MuJoCo-from-Python benchmarks alike.
+//!   trunk with [`Backend::push_trunk`]. The environment draws them (nothing here is random).
 //! - [`terrain`]: the ground: flat, or a height field from one grid of heights (generated
 //!   rough ground, slopes and stairs, or a user's `.npy` or PNG file), the surface every backend
 //!   builds from it, and how far a shape is above it.
-//! - [`urdf_export`]: the loaded robot written back as URDF (fixed links lumped, primitive
-//!   shapes only), for engines and tools outside the project that read URDF.
 //! - [`bounds`]: the one table of bounds every number of a robot is checked against, so that
 //!   everything derived from it stays finite (in f64 and in f32); [`input`]: the size-capped
 //!   reader every loader of a user's file goes through, and the checks made before a parser
@@ -27,37 +25,34 @@
 //! - [`bundled`]: the robots shipped in `assets/` (HyQ, the default, and ANYmal C), usable from
 //!   any directory, and [`resolve_robot`], which every front end uses to turn a robot choice
 //!   (a bundled name or a profile path) into a model.
-//! - `conformance` (cargo feature `conformance`): the test bodies every backend must pass on
-//!   any robot, instantiated with `hyq_physics::conformance_tests!(Backend)` (or with options
-//!   and a robot) in a backend's `tests/conformance.rs`.
 //!
-//! Nothing here knows HyQ: robot names and counts come from the profile.
+//! Nothing here knows HyQ or any physics engine: robot names and counts come from the profile.
+//! Beside this crate, `hyq-formats` writes a loaded robot as MJCF or URDF, and
+//! `hyq-conformance` holds the test kit every backend runs.
 
 pub mod actuator;
 pub mod backend;
 pub mod bounds;
 pub mod bundled;
-#[cfg(feature = "conformance")]
-pub mod conformance;
+pub mod dynamics;
 pub mod error;
 pub mod inertia;
 pub mod input;
-pub mod mjcf;
 pub mod model;
 pub mod profile;
-pub mod randomize;
+pub mod state;
 pub mod terrain;
-pub mod urdf_export;
 
 pub use actuator::{Actuator, PdScratch, apply_pd, apply_pd_to_valid_targets, pd_substep};
-pub use backend::{Backend, PhysicsParams, RobotState, TrunkState, check_joint_values};
+pub use backend::{Backend, check_joint_values};
 pub use bundled::resolve as resolve_robot;
 pub use error::{ModelError, PhysicsError, one_line, printable};
 pub use inertia::MassProperties;
 pub use model::{Collision, Joint, Link, RobotModel, Shape, TrackedBody};
 pub use model::{Gait, GaitLeg};
 pub use profile::Profile;
-pub use randomize::{ActuatorScales, Dynamics, DynamicsDraw, TargetDelay};
+pub use dynamics::{ActuatorScales, Dynamics, DynamicsDraw, TargetDelay};
+pub use state::{PhysicsParams, RobotState, TrunkState};
 
 pub use terrain::{HeightGrid, Terrain, TerrainError};
 

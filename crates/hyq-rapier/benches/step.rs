@@ -5,7 +5,7 @@
 use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use hyq_physics::conformance::fixtures::{Rng, Robot, SubstepWorkloads};
+use hyq_conformance::fixtures::{Rng, Robot, SubstepWorkloads};
 use hyq_physics::{Actuator, Backend, PdScratch, PhysicsParams, bundled, pd_substep};
 use hyq_rapier::{RapierBackend, RapierOptions};
 

@@ -18,7 +18,7 @@ use std::collections::hash_map::DefaultHasher;
 use std::hash::Hasher;
 use std::time::Instant;
 
-use hyq_physics::conformance::fixtures::Rng;
+use hyq_conformance::fixtures::Rng;
 use hyq_physics::{Actuator, Backend, PdScratch, PhysicsError, PhysicsParams, bundled, pd_substep};
 use hyq_rapier::{RapierBackend, RapierOptions};
 

@@ -285,7 +285,7 @@ impl Backend for RapierBackend {
                 .collect(),
             gate_limits: true,
         };
-        backend.apply_state(&spawn);
+        backend.apply_state(&spawn)?;
         Ok(backend)
     }
 
@@ -297,7 +297,7 @@ impl Backend for RapierBackend {
         &self.params
     }
 
-    fn apply_state(&mut self, state: &RobotState) {
+    fn apply_state(&mut self, state: &RobotState) -> Result<(), PhysicsError> {
         self.world.clone_from(&self.pristine);
         self.torques.fill(0.0);
         self.contacts.fill(false);
@@ -334,10 +334,12 @@ impl Backend for RapierBackend {
         for (j, &dof) in self.joint_dofs.iter().enumerate() {
             v[dof] = state.qd[j] as Real;
         }
+        Ok(())
     }
 
-    fn apply_joint_torques(&mut self, torques: &[f64]) {
+    fn apply_joint_torques(&mut self, torques: &[f64]) -> Result<(), PhysicsError> {
         self.torques.copy_from_slice(torques);
+        Ok(())
     }
 
     fn step(&mut self) -> Result<(), PhysicsError> {
@@ -438,16 +440,17 @@ impl Backend for RapierBackend {
             .sum()
     }
 
-    fn apply_dynamics(&mut self, dynamics: &Dynamics) {
+    fn apply_dynamics(&mut self, dynamics: &Dynamics) -> Result<(), PhysicsError> {
         self.give_dynamics(dynamics);
         self.dynamics = Some(dynamics.clone());
+        Ok(())
     }
 
     fn body_mass_properties(&self, link: usize) -> MassProperties {
         dynamics::read(&self.world.bodies[self.bodies[link]], link, &self.trunk_com)
     }
 
-    fn apply_trunk_velocity_change(&mut self, dv: &Vector3<f64>) {
+    fn apply_trunk_velocity_change(&mut self, dv: &Vector3<f64>) -> Result<(), PhysicsError> {
         // Invariant: see `multibody()`.
         #[allow(clippy::expect_used)]
         let mb = self
@@ -461,6 +464,7 @@ impl Backend for RapierBackend {
         for k in 0..3 {
             v[k] += dv[k] as Real;
         }
+        Ok(())
     }
 
     fn terrain(&self) -> &Terrain {
@@ -487,8 +491,7 @@ impl Backend for RapierBackend {
         if let Some(d) = self.dynamics.clone() {
             self.give_dynamics(&d);
         }
-        self.apply_state(&state);
-        Ok(())
+        self.apply_state(&state)
     }
 }
 

@@ -3,16 +3,16 @@
 //! ballistic free fall, standing, collapse, joint limits, real contacts, determinism, resets,
 //! input validation), on HyQ (the default) and on ANYmal C.
 
-hyq_physics::conformance_tests!(hyq_rapier::RapierBackend);
+hyq_conformance::conformance_tests!(hyq_rapier::RapierBackend);
 
 mod terrain {
-    hyq_physics::terrain_conformance_tests!(hyq_rapier::RapierBackend);
+    hyq_conformance::terrain_conformance_tests!(hyq_rapier::RapierBackend);
 }
 
 mod anymal_c {
-    use hyq_physics::conformance::fixtures::Robot;
+    use hyq_conformance::fixtures::Robot;
 
-    hyq_physics::conformance_tests!(
+    hyq_conformance::conformance_tests!(
         hyq_rapier::RapierBackend,
         hyq_rapier::RapierOptions::default(),
         Robot::bundled("anymal_c")

@@ -3,9 +3,9 @@
 //! changes rapier's internal substeps, so every invariant must hold at each documented setting.
 
 mod one_iteration {
-    use hyq_physics::conformance::fixtures::Robot;
+    use hyq_conformance::fixtures::Robot;
 
-    hyq_physics::conformance_tests!(
+    hyq_conformance::conformance_tests!(
         hyq_rapier::RapierBackend,
         hyq_rapier::RapierOptions {
             solver_iterations: 1,
@@ -16,9 +16,9 @@ mod one_iteration {
 }
 
 mod four_iterations {
-    use hyq_physics::conformance::fixtures::Robot;
+    use hyq_conformance::fixtures::Robot;
 
-    hyq_physics::conformance_tests!(
+    hyq_conformance::conformance_tests!(
         hyq_rapier::RapierBackend,
         hyq_rapier::RapierOptions {
             solver_iterations: 4,

@@ -8,8 +8,7 @@ use nalgebra::{Isometry3, Unit, Vector3};
 
 use super::index::UrdfIndex;
 use super::profile_values;
-use super::tree::BodyBuild;
-use super::{Joint, Link};
+use super::{BodyBuild, Joint, Link};
 use crate::bounds::{self, Bound, short};
 use crate::error::ModelError;
 use crate::profile::{JointEntry, Profile};

@@ -32,9 +32,9 @@ use std::path::Path;
 
 use nalgebra::{Isometry3, Matrix3, Unit, UnitQuaternion, Vector3};
 
-use crate::backend::{RobotState, TrunkState};
 use crate::bounds;
 use crate::error::{ModelError, PhysicsError};
+use crate::inertia::MassProperties;
 use crate::input;
 use crate::profile::{ObservationBounds, Profile};
 pub use gait::{Gait, GaitLeg};
@@ -118,6 +118,20 @@ impl Shape {
             }
         }
     }
+}
+
+/// A body under construction: what the tree walk (`tree.rs`) makes of a URDF link and the links
+/// lumped into it, which `parts.rs` fills and `joints.rs` turns into a [`Link`].
+struct BodyBuild {
+    name: String,
+    parent: Option<usize>,
+    /// Index of the URDF joint attaching the body to its parent.
+    urdf_joint: Option<usize>,
+    /// The joint frame in the parent body's frame.
+    joint_origin: Isometry3<f64>,
+    mass: MassProperties,
+    collisions: Vec<Collision>,
+    lumped: Vec<String>,
 }
 
 /// A collision shape attached to a body.
@@ -438,20 +452,6 @@ impl RobotModel {
         self.total_mass
     }
 
-    /// The spawn state: trunk level at the spawn height above the world origin, joints at the
-    /// standing pose, everything at rest.
-    pub fn spawn_state(&self) -> RobotState {
-        RobotState {
-            trunk: TrunkState {
-                pose: Isometry3::translation(0.0, 0.0, self.spawn_height),
-                linvel: Vector3::zeros(),
-                angvel: Vector3::zeros(),
-            },
-            q: self.standing.clone(),
-            qd: vec![0.0; self.joints.len()],
-        }
-    }
-
     /// Forward kinematics: the world pose of every body frame (index as in
     /// [`RobotModel::links`]) for a trunk pose and joint angles (profile order). No allocation.
     ///
@@ -503,10 +503,13 @@ impl RobotModel {
         (a.transpose() * about_origin * a)[(0, 0)]
     }
 
-    /// A copy with the given joints' damping (N·m·s/rad) replaced: the conformance suite's
-    /// damping test on a robot whose URDF damps none of its joints.
-    #[cfg(feature = "conformance")]
-    pub(crate) fn with_joint_damping(&self, damping: &[(usize, f64)]) -> Self {
+    /// A copy with the given joints' damping (N·m·s/rad) replaced, as `(joint index, damping)`
+    /// pairs: a robot whose URDF damps none of its joints, damped (the conformance kit's
+    /// damping test uses it).
+    ///
+    /// # Panics
+    /// If a joint index is out of range.
+    pub fn with_joint_damping(&self, damping: &[(usize, f64)]) -> Self {
         let mut copy = self.clone();
         for &(j, d) in damping {
             copy.joints[j].damping = d;
@@ -514,18 +517,22 @@ impl RobotModel {
         copy
     }
 
-    /// A copy with the bodies' mass properties and the joints' damping of `dynamics` (one
-    /// per body and per joint): the conformance suite builds a world from it to check that a
-    /// world given these dynamics in place behaves as one built with them.
-    #[cfg(feature = "conformance")]
-    pub(crate) fn with_dynamics(&self, dynamics: &crate::randomize::Dynamics) -> Self {
+    /// A copy with every body's mass properties and every joint's damping replaced (one per
+    /// body, as in [`RobotModel::links`], and one per joint; extra entries are ignored): the
+    /// conformance kit builds a world from the model a [`crate::Dynamics`] describes to check
+    /// that a world given those dynamics in place behaves as one built with them.
+    pub fn with_mass_properties(
+        &self,
+        bodies: &[MassProperties],
+        joint_damping: &[f64],
+    ) -> Self {
         let mut copy = self.clone();
-        for (link, body) in copy.links.iter_mut().zip(&dynamics.bodies) {
+        for (link, body) in copy.links.iter_mut().zip(bodies) {
             link.mass = body.mass;
             link.com = body.com;
             link.inertia = body.inertia;
         }
-        for (joint, &damping) in copy.joints.iter_mut().zip(&dynamics.joint_damping) {
+        for (joint, &damping) in copy.joints.iter_mut().zip(joint_damping) {
             joint.damping = damping;
         }
         copy.total_mass = copy.links.iter().map(|l| l.mass).sum();

@@ -3,8 +3,7 @@
 
 use nalgebra::{Isometry3, Matrix3, Translation3, UnitQuaternion, Vector3};
 
-use super::tree::BodyBuild;
-use super::{Collision, Shape};
+use super::{BodyBuild, Collision, Shape};
 use crate::bounds;
 use crate::error::ModelError;
 use crate::inertia::MassProperties;

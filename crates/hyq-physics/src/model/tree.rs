@@ -6,26 +6,13 @@ use std::collections::{HashMap, HashSet};
 
 use nalgebra::Isometry3;
 
-use super::Collision;
+use super::BodyBuild;
 use super::index::UrdfIndex;
 use super::joints::is_movable;
 use super::parts::{add_link_to_body, check_pose, urdf_pose};
 use crate::bounds;
 use crate::error::ModelError;
 use crate::inertia::{MassProperties, check_inertia};
-
-/// A body under construction.
-pub(super) struct BodyBuild {
-    pub(super) name: String,
-    pub(super) parent: Option<usize>,
-    /// Index of the URDF joint attaching the body to its parent.
-    pub(super) urdf_joint: Option<usize>,
-    /// The joint frame in the parent body's frame.
-    pub(super) joint_origin: Isometry3<f64>,
-    pub(super) mass: MassProperties,
-    pub(super) collisions: Vec<Collision>,
-    pub(super) lumped: Vec<String>,
-}
 
 /// The bodies of the tree, parents before children, and where each URDF link went.
 pub(super) struct Tree {

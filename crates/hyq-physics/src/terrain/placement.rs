@@ -5,7 +5,7 @@
 use nalgebra::{Isometry3, Matrix3, UnitQuaternion, Vector3};
 
 use super::Terrain;
-use crate::backend::RobotState;
+use crate::state::RobotState;
 use crate::model::RobotModel;
 
 /// A robot's state put down on the ground (see [`place`]).

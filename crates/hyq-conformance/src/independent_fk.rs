@@ -7,8 +7,8 @@ use std::collections::HashMap;
 use nalgebra::Isometry3;
 
 use super::fixtures::Robot;
-use crate::backend::RobotState;
-use crate::model::RobotModel;
+use hyq_physics::RobotState;
+use hyq_physics::model::RobotModel;
 
 type Mat4 = [[f64; 4]; 4];
 

@@ -1,15 +1,17 @@
-//! The backend conformance suite: test bodies written once, generic over any [`Backend`].
+//! The backend conformance kit: test bodies written once, generic over any
+//! [`Backend`](hyq_physics::Backend), that every physics engine of the project must pass.
 //!
-//! A backend crate runs all of them with one line in its `tests/conformance.rs`:
+//! A backend crate takes this crate as a dev-dependency and runs the whole suite with one line
+//! in its `tests/conformance.rs`:
 //!
 //! ```text
-//! hyq_physics::conformance_tests!(hyq_rapier::RapierBackend);
+//! hyq_conformance::conformance_tests!(hyq_rapier::RapierBackend);
 //! // or, with engine options:
-//! hyq_physics::conformance_tests!(hyq_rapier::RapierBackend, hyq_rapier::RapierOptions::default());
+//! hyq_conformance::conformance_tests!(hyq_rapier::RapierBackend, hyq_rapier::RapierOptions::default());
 //! // or on another robot, in its own module:
 //! mod anymal_c {
-//!     use hyq_physics::conformance::fixtures::Robot;
-//!     hyq_physics::conformance_tests!(
+//!     use hyq_conformance::fixtures::Robot;
+//!     hyq_conformance::conformance_tests!(
 //!         hyq_rapier::RapierBackend,
 //!         hyq_rapier::RapierOptions::default(),
 //!         Robot::bundled("anymal_c")
@@ -17,21 +19,19 @@
 //! }
 //! ```
 //!
-//! and enables this module with `hyq-physics = { …, features = ["conformance"] }` in its
-//! dev-dependencies. Every test takes the robot ([`fixtures::Robot`], the bundled HyQ by
-//! default) and derives its numbers from the model, the URDF text or physics, never from a
-//! particular engine or robot: a second engine or robot passes the suite unchanged or has a
-//! real difference to explain. Where a check depends on a robot property (a damped joint, how
-//! a limp robot comes to rest), the test derives what to check from the model and says what it
-//! checked; nothing is skipped.
+//! Every test takes the robot ([`fixtures::Robot`], the bundled HyQ by default) and derives its
+//! numbers from the model, the URDF text or physics, never from a particular engine or robot: a
+//! second engine or robot passes the suite unchanged or has a real difference to explain. Where
+//! a check depends on a robot property (a damped joint, how a limp robot comes to rest), the
+//! test derives what to check from the model and says what it checked; nothing is skipped.
 //!
 //! Each `pub fn` below states the invariant it checks. Tolerances are stated where they are
 //! used, with the reason for their size.
-
+//!
 //! The suite is split like the concerns it checks: `kinematics.rs`, `contacts.rs`,
 //! `dynamics.rs`, `randomization.rs` (randomised dynamics, pushes, the actuator's scales and
-//! delay) and `api_contract.rs` hold the tests; [`fixtures`] the shared helpers (also
-//! used by the backends' own tests and benches); `independent_fk.rs` a hand-written reading of
+//! delay) and `api_contract.rs` hold the tests; [`fixtures`] the shared helpers (also used by
+//! the backends' own tests, benches and examples); `independent_fk.rs` a hand-written reading of
 //! the URDF for the forward-kinematics test.
 //!
 //! The terrain tests ([`terrain`]: a ball and a block on height fields, the robot on a slope
@@ -43,6 +43,15 @@
 //! (`tests/determinism.rs`, `tests/threads.rs`: one `#[test]` per body, the file saying why its
 //! engine keeps the contract) rather than through the macro, which runs once per robot: the
 //! DART and MuJoCo crates run them on HyQ.
+//!
+//! The kit is a crate of its own, not a module of hyq-physics behind a cargo feature: the crate
+//! that defines the trait stays one build for every user, and the kit depends on it like any
+//! engine does.
+
+/// The crate the kit tests against, re-exported for the macros (`$crate::hyq_physics::…`), so
+/// a backend's test file needs no `use` of its own.
+#[doc(hidden)]
+pub use hyq_physics;
 
 mod api_contract;
 mod contacts;
@@ -97,14 +106,14 @@ macro_rules! terrain_conformance_tests {
     ($backend:ty) => {
         $crate::terrain_conformance_tests!(
             $backend,
-            <$backend as $crate::Backend>::Options::default()
+            <$backend as $crate::hyq_physics::Backend>::Options::default()
         );
     };
     ($backend:ty, $options:expr) => {
         $crate::terrain_conformance_tests!(
             $backend,
             $options,
-            $crate::conformance::fixtures::Robot::bundled($crate::bundled::DEFAULT)
+            $crate::fixtures::Robot::bundled($crate::hyq_physics::bundled::DEFAULT)
         );
     };
     ($backend:ty, $options:expr, $robot:expr) => {
@@ -131,18 +140,18 @@ macro_rules! terrain_conformance_tests {
 ///   [`fixtures::Robot`] (e.g. `Robot::bundled("anymal_c")`, `Robot::from_profile(path)`),
 ///   evaluated per test.
 ///
-/// Each test calls `hyq_physics::conformance::<test>::<Backend>(&robot, &options)`; to run the
+/// Each test calls `hyq_conformance::<test>::<Backend>(&robot, &options)`; to run the
 /// suite on two robots, instantiate it in two modules.
 #[macro_export]
 macro_rules! conformance_tests {
     ($backend:ty) => {
-        $crate::conformance_tests!($backend, <$backend as $crate::Backend>::Options::default());
+        $crate::conformance_tests!($backend, <$backend as $crate::hyq_physics::Backend>::Options::default());
     };
     ($backend:ty, $options:expr) => {
         $crate::conformance_tests!(
             $backend,
             $options,
-            $crate::conformance::fixtures::Robot::bundled($crate::bundled::DEFAULT)
+            $crate::fixtures::Robot::bundled($crate::hyq_physics::bundled::DEFAULT)
         );
     };
     ($backend:ty, $options:expr, $robot:expr) => {
@@ -182,7 +191,7 @@ macro_rules! conformance_tests {
             fn $name() {
                 let options = $options;
                 let robot = $robot;
-                $crate::conformance::$name::<$backend>(&robot, &options);
+                $crate::$name::<$backend>(&robot, &options);
             }
         )*
     };

@@ -20,7 +20,7 @@
 
 use nalgebra::Vector3;
 
-use crate::backend::PhysicsParams;
+use crate::state::PhysicsParams;
 use crate::error::PhysicsError;
 use crate::inertia::{MassProperties, check_inertia};
 use crate::model::RobotModel;

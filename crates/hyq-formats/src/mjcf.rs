@@ -38,7 +38,7 @@
 //!
 //! Joint Coulomb friction (the URDF's `<dynamics friction>`) is not written: the joints keep
 //! MuJoCo's `frictionloss="0"`. In the project every backend leaves joint friction to the
-//! shared actuator ([`crate::actuator`]), which adds it to the joint torques it computes, so a
+//! shared actuator ([`hyq_physics::actuator`]), which adds it to the joint torques it computes, so a
 //! model that also had MuJoCo apply it would count it twice. A user who simulates the written
 //! model on its own (with `<position>` or `<motor>` actuators) gets no joint friction; the
 //! bundled robots' URDFs give none (`friction="0"`).
@@ -62,9 +62,10 @@ use std::fmt::Write as _;
 use nalgebra::{Isometry3, Matrix3};
 use serde::{Deserialize, Serialize};
 
-use crate::backend::PhysicsParams;
-use crate::model::{RobotModel, Shape};
-use crate::terrain::{HeightGrid, Terrain};
+use crate::xml::{attr, nums};
+use hyq_physics::PhysicsParams;
+use hyq_physics::{RobotModel, Shape};
+use hyq_physics::{HeightGrid, Terrain};
 
 /// MuJoCo's numerical integrator (`<option integrator>`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -130,7 +131,7 @@ impl Solver {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Actuators {
     /// No actuator: the caller applies joint torques itself (`mjData.qfrc_applied`), e.g.
-    /// from the shared PD actuator ([`crate::actuator`]), which also applies the velocity-limit
+    /// from the shared PD actuator ([`hyq_physics::actuator`]), which also applies the velocity-limit
     /// rule.
     None,
     /// One `<motor>` per joint, profile order: the control is the joint torque (N·m), clamped
@@ -212,18 +213,18 @@ impl MujocoOptions {
 
     /// Checks every field as a key of `[physics.mujoco]`; the error names the first invalid
     /// one (`mujoco.<field>`).
-    pub fn validate(&self) -> Result<(), crate::PhysicsError> {
+    pub fn validate(&self) -> Result<(), hyq_physics::PhysicsError> {
         self.check().map_err(|e| match e {
             MjcfError::InvalidOption {
                 field,
                 value,
                 reason,
-            } => crate::PhysicsError::InvalidParam {
+            } => hyq_physics::PhysicsError::InvalidParam {
                 field: table_key(field),
                 value,
                 reason,
             },
-            other => crate::PhysicsError::Backend {
+            other => hyq_physics::PhysicsError::Backend {
                 backend: "mujoco",
                 message: other.to_string(),
             },
@@ -318,7 +319,7 @@ pub struct Mjcf {
     pub bodies: Vec<String>,
     /// Joint names, in profile order ([`RobotModel::joints`]).
     pub joints: Vec<String>,
-    /// Shape (geom) names: `geoms[link][i]` is shape `i` of [`crate::Link::collisions`].
+    /// Shape (geom) names: `geoms[link][i]` is shape `i` of [`hyq_physics::Link::collisions`].
     pub geoms: Vec<Vec<String>>,
     /// Actuator names in profile order (empty with [`Actuators::None`]).
     pub actuators: Vec<String>,
@@ -429,35 +430,6 @@ impl MujocoOptions {
         }
         Ok(())
     }
-}
-
-/// Escapes text for an XML attribute value in double quotes (the URDF writer's too).
-pub(crate) fn attr(text: &str) -> String {
-    let mut out = String::with_capacity(text.len());
-    for c in text.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            '\'' => out.push_str("&apos;"),
-            c => out.push(c),
-        }
-    }
-    out
-}
-
-/// Numbers separated by spaces, each in shortest round-trip form (the URDF writer's too).
-pub(crate) fn nums(values: &[f64]) -> String {
-    let mut out = String::new();
-    for (i, v) in values.iter().enumerate() {
-        if i > 0 {
-            out.push(' ');
-        }
-        // Writing to a String cannot fail.
-        let _ = write!(out, "{v}");
-    }
-    out
 }
 
 fn pos_quat(pose: &Isometry3<f64>) -> String {
@@ -786,7 +758,6 @@ fn geom_type_size(shape: &Shape) -> Option<(&'static str, String)> {
         } => ("cylinder", nums(&[radius, half_length])),
         // `Shape` is non-exhaustive: a shape added to the model later must be mapped here
         // before MuJoCo can simulate it.
-        #[allow(unreachable_patterns)]
         _ => return None,
     })
 }
@@ -863,7 +834,7 @@ mod tests {
     #![allow(clippy::unwrap_used)]
 
     use super::*;
-    use crate::bundled;
+    use hyq_physics::bundled;
 
     /// The value of attribute `name` in the first element of `line` that has it.
     fn attr_of<'a>(line: &'a str, name: &str) -> Option<&'a str> {
@@ -958,6 +929,7 @@ mod tests {
                         radius,
                         half_length,
                     } => vec![radius, half_length],
+                    _ => panic!("{}: a shape this test does not know", m.geoms[i][k]),
                 };
                 assert_eq!(size, expected, "{}", m.geoms[i][k]);
                 assert_eq!(

@@ -6,7 +6,7 @@
 //! The runs are [`random_pd_run`]s with targets anywhere inside the joint limits.
 
 use super::fixtures::{Robot, build_default, first_difference, random_pd_run};
-use crate::backend::Backend;
+use hyq_physics::Backend;
 
 /// Sub-steps of each compared run.
 pub const STEPS: usize = 1500;

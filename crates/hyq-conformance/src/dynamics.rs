@@ -9,9 +9,9 @@ use super::fixtures::{
     Rng, Robot, build, engine_poses, fk_poses, read_contacts, read_q, read_qd, set, standing_at,
     step_pd, step_zero, steps_for, zero_gravity,
 };
-use crate::actuator::{Actuator, PdScratch};
-use crate::backend::{Backend, PhysicsParams};
-use crate::model::RobotModel;
+use hyq_physics::actuator::{Actuator, PdScratch};
+use hyq_physics::{Backend, PhysicsParams};
+use hyq_physics::model::RobotModel;
 
 /// In zero gravity, away from the ground, internal joint torques cannot move the centre of
 /// mass: it keeps its initial velocity (straight line) while the robot tumbles and flails for

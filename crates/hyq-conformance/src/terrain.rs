@@ -15,12 +15,12 @@ use super::fixtures::{
     Rng, Robot, build, build_default, first_difference, random_pd_trajectory, read_contacts, set,
     step_pd, step_zero, steps_for,
 };
-use crate::actuator::{Actuator, PdScratch};
-use crate::backend::{Backend, PhysicsParams, RobotState};
-use crate::model::RobotModel;
-use crate::terrain::generate::{Climb, Extent, Relief, Rough, Slope, Stairs, generate};
-use crate::terrain::placement::place;
-use crate::terrain::{HeightGrid, Terrain};
+use hyq_physics::actuator::{Actuator, PdScratch};
+use hyq_physics::{Backend, PhysicsParams, RobotState};
+use hyq_physics::model::RobotModel;
+use hyq_physics::terrain::generate::{Climb, Extent, Relief, Rough, Slope, Stairs, generate};
+use hyq_physics::terrain::placement::place;
+use hyq_physics::terrain::{HeightGrid, Terrain};
 
 /// The probe robots' URDF, with `SHAPE` and `INERTIA` to fill in.
 const PROBE_URDF: &str = r#"<?xml version="1.0"?>
@@ -287,9 +287,9 @@ fn block_slide<B: Backend>(
         },
         ..PhysicsParams::default()
     };
-    let dynamics = crate::randomize::Dynamics {
+    let dynamics = hyq_physics::dynamics::Dynamics {
         ground_friction: friction,
-        ..crate::randomize::Dynamics::nominal(&block.model, &params)
+        ..hyq_physics::dynamics::Dynamics::nominal(&block.model, &params)
     };
     let mut b: B = build(&block, &params, options);
     let give = |b: &mut B| {
@@ -364,7 +364,7 @@ pub fn the_fields_friction_is_the_ground_friction<B: Backend>(
 pub fn a_new_ground_keeps_the_worlds_dynamics<B: Backend>(robot: &Robot, options: &B::Options) {
     let model = Arc::clone(&robot.model);
     let params = PhysicsParams::default();
-    let mut dynamics = crate::randomize::Dynamics::nominal(&model, &params);
+    let mut dynamics = hyq_physics::dynamics::Dynamics::nominal(&model, &params);
     dynamics.ground_friction = 0.6;
     dynamics.bodies[0].mass += 7.5;
     dynamics.bodies[0].com.x += 0.02;

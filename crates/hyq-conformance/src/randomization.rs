@@ -9,10 +9,10 @@ use nalgebra::{Matrix3, Vector3};
 use super::fixtures::{
     Robot, build, build_default, read_contacts, read_q, set, step_pd, steps_for, varied_dynamics,
 };
-use crate::actuator::{Actuator, PdScratch, apply_pd};
-use crate::backend::{Backend, PhysicsParams, RobotState};
-use crate::model::RobotModel;
-use crate::randomize::{ActuatorScales, Dynamics, DynamicsDraw, TargetDelay};
+use hyq_physics::actuator::{Actuator, PdScratch, apply_pd};
+use hyq_physics::{Backend, PhysicsParams, RobotState};
+use hyq_physics::model::RobotModel;
+use hyq_physics::dynamics::{ActuatorScales, Dynamics, DynamicsDraw, TargetDelay};
 
 /// The gravity the suite's worlds use (m/s²).
 const G: f64 = 9.81;
@@ -146,7 +146,7 @@ pub fn in_place_dynamics_match_a_world_built_with_them<B: Backend>(
         ..params.clone()
     };
     let mut built = B::build(
-        Arc::new(model.with_dynamics(&dynamics)),
+        Arc::new(model.with_mass_properties(&dynamics.bodies, &dynamics.joint_damping)),
         &built_params,
         options,
     )

@@ -24,8 +24,8 @@ use std::fmt::Write as _;
 
 use nalgebra::{Isometry3, Rotation3, UnitQuaternion, Vector3};
 
-use crate::mjcf::{attr, nums};
-use crate::model::{Joint, Link, RobotModel, Shape};
+use crate::xml::{attr, nums};
+use hyq_physics::{Joint, Link, RobotModel, Shape};
 
 /// How a capsule shape is written: URDF's schema has no capsule element.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -187,7 +187,6 @@ fn geometry(shape: &Shape, options: &UrdfOptions) -> Option<String> {
         },
         // `Shape` is non-exhaustive: a shape added to the model later must be mapped here
         // before it can be written.
-        #[allow(unreachable_patterns)]
         _ => return None,
     })
 }
@@ -223,8 +222,8 @@ mod tests {
     #![allow(clippy::unwrap_used)]
 
     use super::*;
-    use crate::bundled;
-    use crate::profile::Profile;
+    use hyq_physics::bundled;
+    use hyq_physics::Profile;
 
     fn reload(text: &str) -> RobotModel {
         let profile = Profile::from_toml_str(bundled::HYQ_PROFILE, "bundled profile").unwrap();

@@ -10,8 +10,8 @@ use super::fixtures::{
     standing_at, step_pd, step_zero, zero_gravity,
 };
 use super::independent_fk::{foot_centres_from, independent_foot_centres, max_distance};
-use crate::actuator::{Actuator, PdScratch};
-use crate::backend::{Backend, RobotState, TrunkState};
+use hyq_physics::actuator::{Actuator, PdScratch};
+use hyq_physics::{Backend, RobotState, TrunkState};
 
 /// The robot's mass is the sum of every URDF link's mass (read independently from the URDF
 /// text), in the model and in the engine.
