@@ -35,57 +35,25 @@ use hyq_physics::{
     Actuator, Backend, PdScratch, PhysicsError, RobotModel, RobotState, TargetDelay, TrunkState,
     apply_pd_to_valid_targets,
 };
-use hyq_spec::distance::{MIN_START_GOAL_DISTANCE, StartGoalDistance};
+use hyq_spec::distance::StartGoalDistance;
 use hyq_spec::observation::trunk_acceleration;
 use hyq_spec::robot::Bounds;
 use hyq_spec::{
-    Clipping, EpisodeError, EpisodeRules, JointDescription, JointRange, Observation,
+    Clipping, EpisodeRules, JointDescription, JointRange, Observation,
     ObservationError, ObservationLayout, RewardBreakdown, RobotDescription, StepOutcome,
-    StepSnapshot, TaskConfig, TrunkDescription, roll_pitch_yaw,
+    StepSnapshot, TrunkDescription, roll_pitch_yaw,
 };
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use thiserror::Error;
 
-use crate::action::{ActionError, ActionScalar, ActionSpace};
+use crate::action::{ActionScalar, ActionSpace};
 use crate::config::{ConfigError, EnvConfig, ObservationExtra, in_world, outside_world_reason};
 use crate::divergence::Divergence;
-use crate::goal::{GoalSampler, sample_reset_state};
+use crate::error::EnvError;
+use crate::goal::{GoalSampler, episode_rules, sample_reset_state};
 use crate::info::{Reason, Reasons, StepInfo};
 use crate::randomize::{EpisodeDraw, RandomizeInfo, Randomizer, check_for_robot};
 use crate::terrain::Ground;
-
-/// Why the environment refused a call. Every variant names what was wrong.
-#[derive(Debug, Error)]
-pub enum EnvError {
-    /// `step` was called before the first `reset`.
-    #[error("step called before reset: call reset first")]
-    NotReset,
-    /// `step` was called after the episode ended, without a reset.
-    #[error(
-        "step called after episode {episode} ended at t = {t} ({reasons:?}) without reset: call reset"
-    )]
-    EpisodeOver {
-        /// The episode that ended.
-        episode: u64,
-        /// The step at which it ended.
-        t: u64,
-        /// Why it ended.
-        reasons: Reasons,
-    },
-    /// The action was refused; the environment did not change.
-    #[error(transparent)]
-    Action(#[from] ActionError),
-    /// The configuration is invalid for this robot or backend.
-    #[error(transparent)]
-    Config(#[from] ConfigError),
-    /// The episode's goal or start cannot be used by the rules (e.g. a goal at the start).
-    #[error(transparent)]
-    Episode(#[from] EpisodeError),
-    /// The backend could not be built, or refused a reset state.
-    #[error(transparent)]
-    Physics(#[from] PhysicsError),
-}
 
 /// Options for one [`Env::reset`] (Gymnasium's `options`). Everything unset follows the
 /// configuration.
@@ -254,32 +222,6 @@ pub struct Env<B: Backend> {
 
     timing_on: bool,
     timing: StepTiming,
-}
-
-/// The rules of an episode from `initial` to `goal`, which must be at least
-/// [`MIN_START_GOAL_DISTANCE`] apart even when r_n and r_e, which divide by K, are off: the
-/// environment reports D_n = D / K on every step (in the info and the record), so K must be a
-/// usable divisor. Returns the rules and K.
-pub(crate) fn episode_rules(
-    task: &TaskConfig,
-    initial: Point3<f64>,
-    goal: Point3<f64>,
-) -> Result<(EpisodeRules, StartGoalDistance), EnvError> {
-    let rules = EpisodeRules::new(task, initial, goal)?;
-    match rules.start_goal_distance() {
-        Some(k) => Ok((rules, k)),
-        None => Err(ConfigError::Invalid {
-            key: "goal".into(),
-            value: format!("{:?}", [goal.x, goal.y, goal.z]),
-            expected: format!(
-                "is {:?} m from the initial position {:?}: D_n = D / K is reported every step, \
-                 so K must be at least {MIN_START_GOAL_DISTANCE:e} m (move the goal)",
-                (goal - initial).norm(),
-                [initial.x, initial.y, initial.z]
-            ),
-        }
-        .into()),
-    }
 }
 
 /// The error for a reset option (`what`) at `point`, outside the world.

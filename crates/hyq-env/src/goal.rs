@@ -16,14 +16,15 @@
 
 use hyq_physics::na::{Isometry3, Point3, Translation3, UnitQuaternion, Vector3};
 use hyq_physics::{RobotModel, RobotState, TrunkState};
-use hyq_spec::TaskConfig;
+use hyq_spec::distance::{MIN_START_GOAL_DISTANCE, StartGoalDistance};
+use hyq_spec::{EpisodeRules, TaskConfig};
 use rand::RngExt;
 use rand_chacha::ChaCha8Rng;
 
 use hyq_physics::bounds::short;
 
 use crate::config::{ConfigError, EnvConfig, GoalMode, ResetConfig, WORLD_HALF_EXTENT_M};
-use crate::env::{EnvError, episode_rules};
+use crate::error::EnvError;
 
 /// Draws (or computes) each episode's goal from the configuration.
 #[derive(Clone, Debug, PartialEq)]
@@ -156,5 +157,31 @@ pub fn sample_reset_state(
         },
         qd: vec![0.0; q.len()],
         q,
+    }
+}
+
+/// The rules of an episode from `initial` to `goal`, which must be at least
+/// [`MIN_START_GOAL_DISTANCE`] apart even when r_n and r_e, which divide by K, are off: the
+/// environment reports D_n = D / K on every step (in the info and the record), so K must be a
+/// usable divisor. Returns the rules and K.
+pub(crate) fn episode_rules(
+    task: &TaskConfig,
+    initial: Point3<f64>,
+    goal: Point3<f64>,
+) -> Result<(EpisodeRules, StartGoalDistance), EnvError> {
+    let rules = EpisodeRules::new(task, initial, goal)?;
+    match rules.start_goal_distance() {
+        Some(k) => Ok((rules, k)),
+        None => Err(ConfigError::Invalid {
+            key: "goal".into(),
+            value: format!("{:?}", [goal.x, goal.y, goal.z]),
+            expected: format!(
+                "is {:?} m from the initial position {:?}: D_n = D / K is reported every step, \
+                 so K must be at least {MIN_START_GOAL_DISTANCE:e} m (move the goal)",
+                (goal - initial).norm(),
+                [initial.x, initial.y, initial.z]
+            ),
+        }
+        .into()),
     }
 }

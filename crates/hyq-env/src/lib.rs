@@ -42,7 +42,8 @@
 //! | [`env`](mod@env) | [`Env`]: reset, step, the sub-step loop, divergence, timing |
 //! | [`config`] | [`EnvConfig`] and its tables, one file each; reading, validation, messages |
 //! | [`action`] | [`ActionSpace`]: checking actions and mapping them to joint targets |
-//! | [`goal`] | goal sampling and the reset state |
+//! | [`error`] | [`EnvError`]: why the environment refused a call |
+//! | [`goal`] | goal sampling, the reset state and the rules of an episode from its start to its goal |
 //! | [`info`] | [`StepInfo`], [`Reason`], [`Reasons`]; [`INFO_KEYS`], the info's schema |
 //! | [`divergence`] | [`Divergence`]: why a step diverged, the text of the info's `divergence` |
 //! | [`policy`] | [`Stand`], [`RandomPolicy`], [`Trot`] |
@@ -63,6 +64,7 @@ pub mod action;
 pub mod config;
 pub mod divergence;
 pub mod env;
+pub mod error;
 pub mod goal;
 pub mod info;
 pub mod mlp;
@@ -84,9 +86,10 @@ pub use config::{
 };
 pub use divergence::Divergence;
 pub use env::{
-    DEFAULT_SEED, Env, EnvError, Reset, ResetOptions, Step, StepTiming, observation_layout_for,
+    DEFAULT_SEED, Env, Reset, ResetOptions, Step, StepTiming, observation_layout_for,
     observation_layout_of,
 };
+pub use error::EnvError;
 pub use hyq_spec::TermSums;
 pub use info::{INFO_KEYS, InfoKey, InfoValue, Reason, Reasons, StepInfo, VectorLen};
 pub use mlp::{MlpError, MlpMetadata, MlpPolicy};

@@ -24,7 +24,8 @@ use thiserror::Error;
 
 use crate::action::ActionScalar;
 use crate::config::EnvConfig;
-use crate::env::{Env, EnvError, ResetOptions};
+use crate::env::{Env, ResetOptions};
+use crate::error::EnvError;
 use crate::info::StepInfo;
 
 /// The most envs a [`VecEnv`] holds (`hyq bench --num-envs`, Python's `num_envs`): 4096 HyQ
