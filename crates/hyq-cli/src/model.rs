@@ -25,10 +25,10 @@ use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
 use hyq_env::EnvConfig;
-use hyq_physics::RobotModel;
 use hyq_formats::mjcf::{Actuators, MjcfOptions, MujocoOptions, to_mjcf};
 use hyq_formats::urdf::{CapsuleAs, UrdfOptions, to_urdf};
 use hyq_formats::{mjcf, urdf};
+use hyq_physics::RobotModel;
 use hyq_physics::{Collision, Shape};
 use serde::Serialize;
 

@@ -9,8 +9,8 @@ use super::fixtures::{
     Rng, Robot, build_default, first_difference, random_pd_trajectory, set, step_zero,
 };
 use hyq_physics::actuator::{Actuator, PdScratch, pd_substep};
-use hyq_physics::{Backend, PhysicsParams, RobotState};
 use hyq_physics::error::PhysicsError;
+use hyq_physics::{Backend, PhysicsParams, RobotState};
 
 /// Two worlds built alike and driven alike produce bitwise-identical trajectories (joint
 /// state, trunk state and contacts at every step).

@@ -9,8 +9,8 @@ use super::fixtures::{
     Robot, build, clearances, read_contacts, set, standing_at, step_pd, step_zero, steps_for,
 };
 use hyq_physics::actuator::{Actuator, PdScratch};
-use hyq_physics::{Backend, PhysicsParams, RobotState};
 use hyq_physics::model::RobotModel;
+use hyq_physics::{Backend, PhysicsParams, RobotState};
 
 /// Dropped level from rest with zero torques, the trunk follows z₀ − g t²/2 until a foot
 /// touches (within the O(dt) term of a first-order integrator, g·dt·t/2), does not drift or

@@ -12,8 +12,8 @@ use std::sync::Arc;
 use super::fixtures::{
     Robot, build, build_default, first_difference, random_pd_run, set, step_zero,
 };
-use hyq_physics::{Backend, PhysicsParams};
 use hyq_physics::error::PhysicsError;
+use hyq_physics::{Backend, PhysicsParams};
 
 /// Sub-steps of each compared run (2 s at the default time step).
 pub const STEPS: usize = 2000;

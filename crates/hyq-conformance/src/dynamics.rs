@@ -10,8 +10,8 @@ use super::fixtures::{
     step_pd, step_zero, steps_for, zero_gravity,
 };
 use hyq_physics::actuator::{Actuator, PdScratch};
-use hyq_physics::{Backend, PhysicsParams};
 use hyq_physics::model::RobotModel;
+use hyq_physics::{Backend, PhysicsParams};
 
 /// In zero gravity, away from the ground, internal joint torques cannot move the centre of
 /// mass: it keeps its initial velocity (straight line) while the robot tumbles and flails for

@@ -12,12 +12,12 @@ use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 use hyq_physics::actuator::{Actuator, PdScratch, pd_substep};
-use hyq_physics::{Backend, PhysicsParams, RobotState};
 use hyq_physics::bundled;
+use hyq_physics::dynamics::{Dynamics, DynamicsDraw};
 use hyq_physics::error::PhysicsError;
 use hyq_physics::model::RobotModel;
 use hyq_physics::profile::Profile;
-use hyq_physics::dynamics::{Dynamics, DynamicsDraw};
+use hyq_physics::{Backend, PhysicsParams, RobotState};
 
 /// The robot a conformance test runs on: its model, and the URDF text and profile it was
 /// built from (the tests that check the model against the URDF read them independently).

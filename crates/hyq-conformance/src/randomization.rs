@@ -10,9 +10,9 @@ use super::fixtures::{
     Robot, build, build_default, read_contacts, read_q, set, step_pd, steps_for, varied_dynamics,
 };
 use hyq_physics::actuator::{Actuator, PdScratch, apply_pd};
-use hyq_physics::{Backend, PhysicsParams, RobotState};
-use hyq_physics::model::RobotModel;
 use hyq_physics::dynamics::{ActuatorScales, Dynamics, DynamicsDraw, TargetDelay};
+use hyq_physics::model::RobotModel;
+use hyq_physics::{Backend, PhysicsParams, RobotState};
 
 /// The gravity the suite's worlds use (m/s²).
 const G: f64 = 9.81;

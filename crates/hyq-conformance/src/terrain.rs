@@ -16,11 +16,11 @@ use super::fixtures::{
     step_pd, step_zero, steps_for,
 };
 use hyq_physics::actuator::{Actuator, PdScratch};
-use hyq_physics::{Backend, PhysicsParams, RobotState};
 use hyq_physics::model::RobotModel;
 use hyq_physics::terrain::generate::{Climb, Extent, Relief, Rough, Slope, Stairs, generate};
 use hyq_physics::terrain::placement::place;
 use hyq_physics::terrain::{HeightGrid, Terrain};
+use hyq_physics::{Backend, PhysicsParams, RobotState};
 
 /// The probe robots' URDF, with `SHAPE` and `INERTIA` to fill in.
 const PROBE_URDF: &str = r#"<?xml version="1.0"?>

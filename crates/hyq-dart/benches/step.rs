@@ -10,8 +10,8 @@
 //! Run: `cargo bench -p hyq-dart --bench step`.
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use hyq_dart::{DartBackend, DartOptions};
 use hyq_conformance::fixtures::{Robot, SubstepWorkloads};
+use hyq_dart::{DartBackend, DartOptions};
 
 fn step(c: &mut Criterion) {
     let robot = Robot::bundled("hyq");

@@ -6,9 +6,9 @@
 //!
 //! The bodies are hyq-conformance's `determinism`, run here on the bundled HyQ.
 
-use hyq_dart::{DartBackend, DartOptions};
 use hyq_conformance::determinism;
 use hyq_conformance::fixtures::Robot;
+use hyq_dart::{DartBackend, DartOptions};
 
 fn hyq() -> Robot {
     Robot::bundled("hyq")

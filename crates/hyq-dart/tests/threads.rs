@@ -4,9 +4,9 @@
 //!
 //! The bodies are hyq-conformance's `threads`, run here on the bundled HyQ.
 
-use hyq_dart::{DartBackend, DartOptions};
 use hyq_conformance::fixtures::Robot;
 use hyq_conformance::threads;
+use hyq_dart::{DartBackend, DartOptions};
 
 fn hyq() -> Robot {
     Robot::bundled("hyq")

@@ -39,9 +39,9 @@ use hyq_spec::distance::StartGoalDistance;
 use hyq_spec::observation::trunk_acceleration;
 use hyq_spec::robot::Bounds;
 use hyq_spec::{
-    Clipping, EpisodeRules, JointDescription, JointRange, Observation,
-    ObservationError, ObservationLayout, RewardBreakdown, RobotDescription, StepOutcome,
-    StepSnapshot, TrunkDescription, roll_pitch_yaw,
+    Clipping, EpisodeRules, JointDescription, JointRange, Observation, ObservationError,
+    ObservationLayout, RewardBreakdown, RobotDescription, StepOutcome, StepSnapshot,
+    TrunkDescription, roll_pitch_yaw,
 };
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;

@@ -64,8 +64,8 @@ use serde::{Deserialize, Serialize};
 
 use crate::xml::{attr, nums};
 use hyq_physics::PhysicsParams;
-use hyq_physics::{RobotModel, Shape};
 use hyq_physics::{HeightGrid, Terrain};
+use hyq_physics::{RobotModel, Shape};
 
 /// MuJoCo's numerical integrator (`<option integrator>`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]

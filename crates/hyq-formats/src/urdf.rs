@@ -222,8 +222,8 @@ mod tests {
     #![allow(clippy::unwrap_used)]
 
     use super::*;
-    use hyq_physics::bundled;
     use hyq_physics::Profile;
+    use hyq_physics::bundled;
 
     fn reload(text: &str) -> RobotModel {
         let profile = Profile::from_toml_str(bundled::HYQ_PROFILE, "bundled profile").unwrap();

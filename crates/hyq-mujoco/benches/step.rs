@@ -11,8 +11,8 @@
 //! Run: `cargo bench -p hyq-mujoco --bench step`.
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use hyq_mujoco::{MujocoBackend, MujocoOptions};
 use hyq_conformance::fixtures::{Robot, SubstepWorkloads};
+use hyq_mujoco::{MujocoBackend, MujocoOptions};
 
 fn step(c: &mut Criterion) {
     let robot = Robot::bundled("hyq");

@@ -21,8 +21,8 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use cpu_time::ProcessTime;
-use hyq_mujoco::{MujocoBackend, MujocoOptions};
 use hyq_conformance::fixtures::Rng;
+use hyq_mujoco::{MujocoBackend, MujocoOptions};
 use hyq_physics::na::{Isometry3, Vector3};
 use hyq_physics::{Actuator, Backend, PdScratch, PhysicsParams, RobotModel, pd_substep};
 

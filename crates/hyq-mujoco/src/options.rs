@@ -11,8 +11,8 @@ mod tests {
     #![allow(clippy::unwrap_used)]
 
     use super::*;
-    use hyq_physics::PhysicsError;
     use hyq_formats::mjcf::{Cone, Integrator, Solver};
+    use hyq_physics::PhysicsError;
 
     #[test]
     fn options_parse_from_toml_and_reject_unknown_keys() {

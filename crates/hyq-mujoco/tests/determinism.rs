@@ -7,9 +7,9 @@
 //!
 //! The bodies are hyq-conformance's `determinism`, run here on the bundled HyQ.
 
-use hyq_mujoco::{MujocoBackend, MujocoOptions};
 use hyq_conformance::determinism;
 use hyq_conformance::fixtures::Robot;
+use hyq_mujoco::{MujocoBackend, MujocoOptions};
 
 fn hyq() -> Robot {
     Robot::bundled("hyq")

@@ -9,9 +9,9 @@
 //!   such an error prints it and exits the process);
 //! - the same error while compiling is the model being refused, with MuJoCo's text.
 
+use hyq_conformance::fixtures::{Robot, build_default, first_difference, random_pd_run};
 use hyq_mujoco::raw::{Layout, StepError, World, layout};
 use hyq_mujoco::{MujocoBackend, MujocoOptions, world_mjcf};
-use hyq_conformance::fixtures::{Robot, build_default, first_difference, random_pd_run};
 use hyq_physics::{Backend, PhysicsError, PhysicsParams, bundled};
 
 /// The backend's world of the bundled HyQ at its spawn state.

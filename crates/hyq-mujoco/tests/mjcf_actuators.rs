@@ -6,10 +6,10 @@
 //! - `<position>` servos with the model's gains, driven with the standing pose as targets, stand
 //!   HyQ where the shared PD actuator does (the same law, evaluated by MuJoCo inside its step).
 
-use hyq_mujoco::raw::{World, layout};
-use hyq_mujoco::{MujocoBackend, MujocoOptions};
 use hyq_conformance::fixtures::Rng;
 use hyq_formats::mjcf::{Actuators, MjcfOptions, to_mjcf};
+use hyq_mujoco::raw::{World, layout};
+use hyq_mujoco::{MujocoBackend, MujocoOptions};
 use hyq_physics::{Actuator, Backend, PdScratch, PhysicsParams, bundled, pd_substep};
 
 /// A world compiled from the generator's MJCF with `actuators`, at the spawn state, with the

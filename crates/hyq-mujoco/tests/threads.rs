@@ -6,9 +6,9 @@
 //! The bodies shared with the other backends are hyq-conformance's `threads`, run
 //! here on the bundled HyQ; building on several threads at once is MuJoCo's own concern.
 
-use hyq_mujoco::{MujocoBackend, MujocoOptions};
 use hyq_conformance::fixtures::{Robot, build_default, first_difference, random_pd_run};
 use hyq_conformance::threads;
+use hyq_mujoco::{MujocoBackend, MujocoOptions};
 
 fn hyq() -> Robot {
     Robot::bundled("hyq")

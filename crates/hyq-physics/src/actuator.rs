@@ -25,9 +25,9 @@
 //! way, and every torque of an environment goes through this law.
 
 use crate::backend::{Backend, check_finite_joint_values, check_joint_values};
+use crate::dynamics::ActuatorScales;
 use crate::error::PhysicsError;
 use crate::model::RobotModel;
-use crate::dynamics::ActuatorScales;
 
 /// The speed (rad/s) below which joint friction is proportional to speed (step 4 of the law):
 /// 0.01 rad/s is a thousandth of a walking joint's typical speed, so friction is at its full

@@ -14,13 +14,13 @@ use std::fmt::Debug;
 use std::sync::Arc;
 
 use nalgebra::{Isometry3, Vector3};
-use serde::de::DeserializeOwned;
 use serde::Serialize;
+use serde::de::DeserializeOwned;
 
+use crate::dynamics::Dynamics;
 use crate::error::PhysicsError;
 use crate::inertia::MassProperties;
 use crate::model::RobotModel;
-use crate::dynamics::Dynamics;
 use crate::state::{PhysicsParams, RobotState, TrunkState};
 use crate::terrain::Terrain;
 

@@ -20,10 +20,10 @@
 
 use nalgebra::Vector3;
 
-use crate::state::PhysicsParams;
 use crate::error::PhysicsError;
 use crate::inertia::{MassProperties, check_inertia};
 use crate::model::RobotModel;
+use crate::state::PhysicsParams;
 
 /// The physics a backend simulates beyond the model's geometry, for one episode: the ground's
 /// friction, each body's mass properties and each joint's damping. [`Dynamics::nominal`] is

@@ -521,11 +521,7 @@ impl RobotModel {
     /// body, as in [`RobotModel::links`], and one per joint; extra entries are ignored): the
     /// conformance kit builds a world from the model a [`crate::Dynamics`] describes to check
     /// that a world given those dynamics in place behaves as one built with them.
-    pub fn with_mass_properties(
-        &self,
-        bodies: &[MassProperties],
-        joint_damping: &[f64],
-    ) -> Self {
+    pub fn with_mass_properties(&self, bodies: &[MassProperties], joint_damping: &[f64]) -> Self {
         let mut copy = self.clone();
         for (link, body) in copy.links.iter_mut().zip(bodies) {
             link.mass = body.mass;

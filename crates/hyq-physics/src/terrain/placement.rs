@@ -5,8 +5,8 @@
 use nalgebra::{Isometry3, Matrix3, UnitQuaternion, Vector3};
 
 use super::Terrain;
-use crate::state::RobotState;
 use crate::model::RobotModel;
+use crate::state::RobotState;
 
 /// A robot's state put down on the ground (see [`place`]).
 #[derive(Debug, Clone, PartialEq)]
