@@ -1,7 +1,7 @@
 //! Compiles the C shim against MuJoCo 4.0.0's own headers and records where the library is.
 //!
 //! MuJoCo comes from `cargo xtask setup mujoco`, which unpacks the library and headers into
-//! `target/mujoco` (or `$MUJOCO_DIR`). If they are missing, or are another version, the build
+//! `mujoco` in the target directory (or `$MUJOCO_DIR`). If they are missing, or are another version, the build
 //! stops with one message that gives that command, rather than producing a crate that cannot
 //! work. The library is not linked: the shim opens it at run time (see `src/world.rs`), from
 //! the path recorded here unless `MUJOCO_DIR` is set when the program runs.
@@ -25,15 +25,23 @@ fn fail(reason: &str) -> ! {
     exit(1);
 }
 
+/// `$MUJOCO_DIR`, else `mujoco` in the workspace's target directory (`$CARGO_TARGET_DIR`,
+/// relative to the workspace root as cargo reads it, else `target/`): where `cargo xtask setup
+/// mujoco` puts it.
 fn mujoco_dir() -> PathBuf {
-    match std::env::var_os("MUJOCO_DIR") {
-        Some(dir) if !dir.is_empty() => PathBuf::from(dir),
-        _ => Path::new(env!("CARGO_MANIFEST_DIR")).join("../../target/mujoco"),
+    if let Some(dir) = std::env::var_os("MUJOCO_DIR").filter(|d| !d.is_empty()) {
+        return PathBuf::from(dir);
+    }
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    match std::env::var_os("CARGO_TARGET_DIR").filter(|d| !d.is_empty()) {
+        Some(target) => root.join(target).join("mujoco"),
+        None => root.join("target/mujoco"),
     }
 }
 
 fn main() {
     println!("cargo:rerun-if-env-changed=MUJOCO_DIR");
+    println!("cargo:rerun-if-env-changed=CARGO_TARGET_DIR");
     println!("cargo:rerun-if-changed=csrc/hyq_mujoco.c");
     println!("cargo:rerun-if-changed=csrc/hyq_mujoco.h");
     println!("cargo:rerun-if-changed=csrc/testing/mujoco_3_3_7.c");

@@ -26,8 +26,8 @@ pub fn codegen(args: &[String]) -> Result<(), String> {
         [flag] if flag == "--check" => true,
         _ => return Err("usage: cargo xtask codegen [--check]".into()),
     };
-    let root = crate::stages::workspace_root();
-    let mut command = crate::stages::cargo(&root);
+    let root = crate::workspace::workspace_root();
+    let mut command = crate::workspace::cargo(&root);
     command.args([
         "test",
         "--quiet",
@@ -388,7 +388,7 @@ mod tests {
     /// `HYQ_CODEGEN=write` (`cargo xtask codegen`), it writes them instead.
     #[test]
     fn generated_sections_are_fresh() {
-        let root = crate::stages::workspace_root();
+        let root = crate::workspace::workspace_root();
         let stale = stale(&root).unwrap_or_else(|e| panic!("{e}"));
         if std::env::var(WRITE_VAR).as_deref() == Ok("write") {
             for (file, text) in &stale {

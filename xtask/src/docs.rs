@@ -8,7 +8,7 @@
 
 #[cfg(test)]
 mod tests {
-    use crate::stages::{workspace_members, workspace_root};
+    use crate::workspace::{workspace_members, workspace_root};
 
     fn read(name: &str) -> String {
         let path = workspace_root().join(name);
@@ -205,7 +205,7 @@ mod tests {
     /// Whether the file at `path` (from the repository root) defines a function `name`, Rust or
     /// Python; panics naming the page's reference when the file is missing.
     fn check_test_exists(file: &str, name: &str) {
-        let path = crate::stages::workspace_root().join(file);
+        let path = crate::workspace::workspace_root().join(file);
         let source = std::fs::read_to_string(&path).unwrap_or_else(|e| {
             panic!("docs/spec.md names `{file}::{name}`, but {file} cannot be read ({e}); paths are from the repository root")
         });

@@ -5,7 +5,7 @@
 //! where the crate's tests replay it from then on. `cargo xtask test` runs the same targets
 //! briefly (a fixed seed and case count, in hyq-fuzz's tests).
 
-use crate::stages::{run_cargo, workspace_root};
+use crate::workspace::{run_cargo, workspace_root};
 
 /// Runs the fuzz targets (see the module docs); an error when one found a failing input.
 pub fn fuzz(args: &[String]) -> Result<(), String> {

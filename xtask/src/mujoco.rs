@@ -9,7 +9,8 @@
 //!    the same file is fetched whatever Python runs pip), pip checking it against the sha256
 //!    pinned here (`--require-hashes`);
 //! 2. unpacks the library, the headers and the licence files into the MuJoCo directory:
-//!    `$MUJOCO_DIR` if set, else `target/mujoco` in the workspace, laid out as MuJoCo's own
+//!    `$MUJOCO_DIR` if set, else `mujoco` in the workspace's target directory
+//!    (`$CARGO_TARGET_DIR` or `target/`), laid out as MuJoCo's own
 //!    release archives are (`lib/libmujoco.so.4.0.0`, `include/mujoco/mujoco.h`), so a
 //!    directory unpacked from an official release works too;
 //! 3. checks the result the way the backend's build script does (header version 4.0.0).
@@ -19,7 +20,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use crate::stages::workspace_root;
+use crate::workspace::workspace_root;
 
 /// The MuJoCo version the backend is written against.
 pub const VERSION: &str = "4.0.0";
@@ -53,11 +54,11 @@ const PIP_INSTALL: &str = "sudo apt-get install -y python3 python3-pip";
 /// The command that sets MuJoCo up.
 pub const SETUP_COMMAND: &str = "cargo xtask setup mujoco";
 
-/// The MuJoCo directory: `$MUJOCO_DIR`, else `target/mujoco` in the workspace.
+/// The MuJoCo directory: `$MUJOCO_DIR`, else `mujoco` in the workspace's target directory.
 pub fn mujoco_dir(root: &Path) -> PathBuf {
     match std::env::var_os("MUJOCO_DIR") {
         Some(dir) if !dir.is_empty() => PathBuf::from(dir),
-        _ => root.join("target").join("mujoco"),
+        _ => crate::workspace::target_dir(root).join("mujoco"),
     }
 }
 

@@ -11,7 +11,7 @@
 use std::path::Path;
 use std::process::Command;
 
-use crate::stages::{run_cargo, workspace_root};
+use crate::workspace::{run_cargo, workspace_root};
 
 /// The folders whose files the commands write.
 const OUTPUTS: [&str; 2] = ["docs/comparison", "docs/media"];
@@ -56,7 +56,7 @@ pub fn regen_reports(args: &[String]) -> Result<(), String> {
         return Err("building hyq failed".into());
     }
     // Where cargo put it: `$CARGO_TARGET_DIR` when set, as for every xtask build.
-    let hyq = crate::vendor::target_dir(&root)
+    let hyq = crate::workspace::target_dir(&root)
         .join(if dev { "debug" } else { "release" })
         .join("hyq");
     for words in &commands {

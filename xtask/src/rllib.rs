@@ -9,7 +9,8 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use crate::stages::{venv_command, venv_python};
+use crate::python::{venv_command, venv_python};
+use crate::workspace::run;
 
 /// The optional stages `--with` names.
 const OPTIONAL: [&str; 2] = ["rllib", "train"];
@@ -40,20 +41,7 @@ pub fn split_with(args: &[String]) -> Result<(Vec<String>, Vec<String>), String>
 fn rllib_venv(root: &Path) -> PathBuf {
     std::env::var_os("HYQ_RLLIB_VENV")
         .map(PathBuf::from)
-        .unwrap_or_else(|| root.join("target").join("rllib-venv"))
-}
-
-/// Runs `command`, echoing it; fails on a non-zero exit (the training stage uses it too).
-pub(crate) fn run(command: &mut Command, what: &str) -> Result<(), String> {
-    println!("\n$ {what}");
-    let status = command
-        .status()
-        .map_err(|e| format!("cannot run {what}: {e}"))?;
-    if status.success() {
-        Ok(())
-    } else {
-        Err(format!("`{what}` failed ({status})"))
-    }
+        .unwrap_or_else(|| crate::workspace::target_dir(root).join("rllib-venv"))
 }
 
 /// The stage: builds the venv if needed, installs the package into it, runs the example for

@@ -8,7 +8,8 @@
 //! The test suite runs a short soak (5·10³ steps, `crates/hyq-cli/tests`); this is the long one.
 
 use crate::cli::{positive, value};
-use crate::stages::{engine_missing, run_cargo, workspace_root};
+use crate::stages::engine_missing;
+use crate::workspace::{run_cargo, workspace_root};
 
 /// The soak's settings.
 #[derive(Clone, Debug, PartialEq, Eq)]

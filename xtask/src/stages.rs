@@ -10,6 +10,8 @@ use std::time::{Duration, Instant};
 use hyq_engines::{ENGINES, Engine, Needs, Probe};
 
 use crate::mujoco;
+use crate::python::{PYTHON_INSTALL, PYTHON_MIN, pytest_passed_count, venv_command, venv_python};
+use crate::workspace::{cargo, passed_count, workspace_members, workspace_root};
 
 /// A part of the test run that needs something a fresh machine may lack.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
@@ -73,12 +75,6 @@ pub fn engine_missing(engine: &Engine, root: &Path) -> Option<String> {
     ))
 }
 
-/// The install line printed when Python 3 (with venv and pip) is missing.
-pub const PYTHON_INSTALL: &str = "sudo apt-get install -y python3 python3-venv python3-pip";
-
-/// The oldest CPython the pinned test requirements install on (numpy 2.4 needs 3.11).
-pub const PYTHON_MIN: (u32, u32) = (3, 11);
-
 /// What happened to one stage.
 enum Outcome {
     Passed { tests: u64 },
@@ -111,64 +107,6 @@ fn parse_required(args: &[String]) -> Result<Vec<Part>, String> {
         }
     }
     Ok(required)
-}
-
-/// The workspace root (xtask lives one level below it).
-pub fn workspace_root() -> PathBuf {
-    let manifest = Path::new(env!("CARGO_MANIFEST_DIR"));
-    manifest
-        .parent()
-        .map(Path::to_path_buf)
-        .unwrap_or_else(|| manifest.to_path_buf())
-}
-
-/// The package names listed as workspace members that exist on disk.
-pub fn workspace_members(root: &Path) -> Result<Vec<String>, String> {
-    let text = std::fs::read_to_string(root.join("Cargo.toml"))
-        .map_err(|e| format!("cannot read the workspace Cargo.toml: {e}"))?;
-    let manifest: toml::Table =
-        toml::from_str(&text).map_err(|e| format!("the workspace Cargo.toml is invalid: {e}"))?;
-    let members = manifest
-        .get("workspace")
-        .and_then(|w| w.get("members"))
-        .and_then(|m| m.as_array())
-        .ok_or("the workspace Cargo.toml has no [workspace] members list")?;
-    let mut names = Vec::new();
-    for member in members {
-        let dir = member
-            .as_str()
-            .ok_or("a workspace member is not a string")?;
-        let crate_toml = std::fs::read_to_string(root.join(dir).join("Cargo.toml"))
-            .map_err(|e| format!("workspace member `{dir}` has no readable Cargo.toml: {e}"))?;
-        let crate_manifest: toml::Table = toml::from_str(&crate_toml)
-            .map_err(|e| format!("`{dir}/Cargo.toml` is invalid: {e}"))?;
-        let name = crate_manifest
-            .get("package")
-            .and_then(|p| p.get("name"))
-            .and_then(|n| n.as_str())
-            .ok_or_else(|| format!("`{dir}/Cargo.toml` has no package name"))?;
-        names.push(name.to_string());
-    }
-    Ok(names)
-}
-
-/// A `cargo` command (the one running xtask, `$CARGO`, else `cargo` from `PATH`) to be run in
-/// the workspace root `root`.
-pub fn cargo(root: &Path) -> Command {
-    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".to_string());
-    let mut command = Command::new(cargo);
-    command.current_dir(root);
-    command
-}
-
-/// Prints `$ cargo args`, then runs it in the workspace root `root` with its output on the
-/// terminal, and returns its exit status.
-pub fn run_cargo(root: &Path, args: &[String]) -> Result<ExitStatus, String> {
-    println!("$ cargo {}", args.join(" "));
-    cargo(root)
-        .args(args)
-        .status()
-        .map_err(|e| format!("cannot start cargo: {e}"))
 }
 
 /// Runs `cargo` with `args` in the workspace root, streaming its output, and returns how many
@@ -204,22 +142,6 @@ fn stream_stdout(
         }
     }
     child.wait().map_err(|e| format!("waiting for {name}: {e}"))
-}
-
-/// The number of passed tests on a libtest summary line (`test result: ok. 12 passed; ...`).
-pub fn passed_count(line: &str) -> u64 {
-    let Some(rest) = line.trim().strip_prefix("test result:") else {
-        return 0;
-    };
-    rest.split(';')
-        .filter_map(|part| {
-            part.trim()
-                .trim_start_matches("ok.")
-                .trim()
-                .strip_suffix(" passed")
-        })
-        .filter_map(|n| n.trim().parse::<u64>().ok())
-        .sum()
 }
 
 /// One stage of `cargo xtask test`: its name, what happened to it and how long it took.
@@ -344,7 +266,7 @@ fn engine_stage(engine: &Engine, members: &[String], root: &Path) -> Result<Outc
 fn python_venv(root: &Path) -> PathBuf {
     std::env::var_os("HYQ_VENV")
         .map(PathBuf::from)
-        .unwrap_or_else(|| root.join("target").join("py-venv"))
+        .unwrap_or_else(|| crate::workspace::target_dir(root).join("py-venv"))
 }
 
 /// The Python stage's venv, created if missing, or why the stage cannot run (with the install
@@ -396,11 +318,6 @@ fn python_tools(root: &Path) -> Result<PathBuf, String> {
     Ok(venv)
 }
 
-/// The Python interpreter of the virtual environment at `venv`.
-pub fn venv_python(venv: &Path) -> PathBuf {
-    venv.join("bin").join("python")
-}
-
 /// Runs `program args` in `dir` with the venv activated, failing on a non-zero exit.
 fn run_in_venv(venv: &Path, dir: &Path, program: &Path, args: &[&str]) -> Result<(), String> {
     println!("\n$ {} {}", program.display(), args.join(" "));
@@ -417,21 +334,6 @@ fn run_in_venv(venv: &Path, dir: &Path, program: &Path, args: &[&str]) -> Result
             args.join(" ")
         ))
     }
-}
-
-/// A command run in `dir` as if the venv were activated (maturin finds the venv through
-/// `VIRTUAL_ENV`).
-pub(crate) fn venv_command(venv: &Path, dir: &Path, program: &Path) -> Command {
-    let mut command = Command::new(program);
-    let path = std::env::var_os("PATH").unwrap_or_default();
-    let mut paths = vec![venv.join("bin")];
-    paths.extend(std::env::split_paths(&path));
-    command
-        .current_dir(dir)
-        .env("VIRTUAL_ENV", venv)
-        .env("PATH", std::env::join_paths(paths).unwrap_or(path))
-        .env("PIP_DISABLE_PIP_VERSION_CHECK", "1");
-    command
 }
 
 /// The cargo features the Python package is built with, comma-separated: those of `engines`
@@ -487,7 +389,7 @@ fn python_stage(root: &Path, venv: &Path, engines: &[&Engine]) -> Result<u64, St
     // these tests, on the default engine, do not see). `cargo build -p hyq-cli` here would
     // unify the crates' features in yet another way (no dev-dependencies) and compile the
     // physics crates and everything above them once more.
-    let cli = crate::vendor::target_dir(root).join("debug").join("hyq");
+    let cli = crate::workspace::target_dir(root).join("debug").join("hyq");
     if !cli.is_file() {
         return Err(format!(
             "{} is missing: the first stage's `cargo test` builds it for hyq-cli's tests",
@@ -513,32 +415,6 @@ fn python_stage(root: &Path, venv: &Path, engines: &[&Engine]) -> Result<u64, St
         return Err(format!("pytest failed ({status})"));
     }
     passed.ok_or_else(|| "pytest printed no summary line".to_string())
-}
-
-/// The number of passed tests on pytest's closing summary line, or `None` if `line` is not one.
-/// The line is `49 passed in 3.70s` with `-q`, `==== 1 failed, 48 passed, 2 warnings in 3.70s
-/// ====` otherwise, and `no tests ran in 0.01s` when nothing ran (0 passed).
-pub(crate) fn pytest_passed_count(line: &str) -> Option<u64> {
-    let body = line.trim().trim_matches('=').trim();
-    let (counts, time) = body.rsplit_once(" in ")?;
-    if !time.starts_with(|c: char| c.is_ascii_digit()) || !time.contains('s') {
-        return None;
-    }
-    if counts == "no tests ran" {
-        return Some(0);
-    }
-    let mut passed = 0;
-    for part in counts.split(", ") {
-        let (n, word) = part.split_once(' ')?;
-        let n: u64 = n.parse().ok()?;
-        if !word.chars().all(|c| c.is_ascii_lowercase()) {
-            return None;
-        }
-        if word == "passed" {
-            passed = n;
-        }
-    }
-    Some(passed)
 }
 
 /// The crates whose feature of an engine's name runs some of their tests on that engine too (the

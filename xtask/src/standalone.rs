@@ -24,7 +24,7 @@ use std::fmt;
 use std::path::Path;
 use std::process::Command;
 
-use crate::stages::workspace_root;
+use crate::workspace::workspace_root;
 
 /// The page `§` citations resolve against.
 const SPEC_PAGE: &str = "docs/spec.md";

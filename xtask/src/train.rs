@@ -11,13 +11,13 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use crate::rllib::run;
-use crate::stages::{pytest_passed_count, venv_command, venv_python};
+use crate::python::{pytest_passed_count, venv_command, venv_python};
+use crate::workspace::run;
 
 fn train_venv(root: &Path) -> PathBuf {
     std::env::var_os("HYQ_TRAIN_VENV")
         .map(PathBuf::from)
-        .unwrap_or_else(|| root.join("target").join("train-venv"))
+        .unwrap_or_else(|| crate::workspace::target_dir(root).join("train-venv"))
 }
 
 /// The stage: builds the venv if needed, installs the package into it and runs pytest on

@@ -20,7 +20,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use crate::stages::{cargo, workspace_root};
+use crate::workspace::{cargo, workspace_root};
 
 /// The vendored crate.
 const CRATE: &str = "rapier3d";
@@ -140,14 +140,7 @@ struct Expected {
 
 /// Where the check unpacks and builds: `vendor-check` in the target directory.
 fn work_dir(root: &Path) -> PathBuf {
-    target_dir(root).join("vendor-check")
-}
-
-/// The workspace's target directory (`$CARGO_TARGET_DIR` or `target/`).
-pub(crate) fn target_dir(root: &Path) -> PathBuf {
-    std::env::var_os("CARGO_TARGET_DIR")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| root.join("target"))
+    crate::workspace::target_dir(root).join("vendor-check")
 }
 
 fn reset_dir(dir: &Path) -> Result<(), String> {
@@ -533,7 +526,7 @@ fn hunk_header(header: &str) -> Option<(usize, usize, usize)> {
 fn run_vendored_tests(root: &Path) -> Result<u64, String> {
     let manifest = root.join("vendor").join(CRATE).join("Cargo.toml");
     let manifest = manifest.to_string_lossy().into_owned();
-    let target = target_dir(root).join("vendor-rapier3d");
+    let target = crate::workspace::target_dir(root).join("vendor-rapier3d");
     let mut passed = 0;
     let lib: Vec<&str> = vec![
         "test",
@@ -569,7 +562,10 @@ fn run_vendored_tests(root: &Path) -> Result<u64, String> {
                 out.status
             ));
         }
-        passed += stdout.lines().map(crate::stages::passed_count).sum::<u64>();
+        passed += stdout
+            .lines()
+            .map(crate::workspace::passed_count)
+            .sum::<u64>();
     }
     Ok(passed)
 }

@@ -46,7 +46,7 @@ pub fn parse(args: &[String], root: &Path, env_venv: Option<PathBuf>) -> Result<
         steps: 3000,
         vec_steps: 1500,
         anchor_steps: 3000,
-        venv: env_venv.unwrap_or_else(|| root.join(DEFAULT_VENV)),
+        venv: env_venv.unwrap_or_else(|| crate::workspace::target_dir(root).join(DEFAULT_VENV)),
         dart: true,
         mujoco: true,
     };
@@ -70,10 +70,12 @@ pub fn parse(args: &[String], root: &Path, env_venv: Option<PathBuf>) -> Result<
     if out.venv.is_relative() {
         out.venv = root.join(&out.venv);
     }
-    if out.venv.starts_with(root) && !out.venv.starts_with(root.join("target")) {
+    // The repository's `target/` is git-ignored whatever the target directory is.
+    let ignored = [root.join("target"), crate::workspace::target_dir(root)];
+    if out.venv.starts_with(root) && !ignored.iter().any(|dir| out.venv.starts_with(dir)) {
         return Err(format!(
-            "--venv {}: the anchors' virtual environment must be under the repository's \
-             target/ or outside the repository ({}), not among its files",
+            "--venv {}: the anchors' virtual environment must be under target/, the \
+             target directory or outside the repository ({}), not among its files",
             out.venv.display(),
             root.display()
         ));

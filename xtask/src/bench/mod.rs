@@ -41,6 +41,7 @@
 //! hyq-engines.
 
 mod args;
+mod command;
 mod plan;
 mod report;
 mod run;
@@ -55,16 +56,16 @@ use args::parse;
 use report::{Host, markdown};
 use stats::Rep;
 
-use crate::stages::workspace_root;
+use crate::workspace::workspace_root;
 
 /// The anchor harness, relative to the workspace root.
 pub const ANCHORS_DIR: &str = "bench/anchors";
 
-/// Where the anchors' models are written, relative to the workspace root.
-pub const MODELS_DIR: &str = "target/anchor-models";
+/// Where the anchors' models are written, in the target directory.
+pub const MODELS_DIR: &str = "anchor-models";
 
-/// The anchors' default virtual environment, relative to the workspace root (git-ignored).
-pub const DEFAULT_VENV: &str = "target/anchor-venv";
+/// The anchors' default virtual environment, in the target directory (git-ignored).
+pub const DEFAULT_VENV: &str = "anchor-venv";
 
 /// `cargo xtask bench-vs-anchors`: prepares (the anchors' Python, the release build, the
 /// models), measures every repetition, then reports.
@@ -89,7 +90,7 @@ pub fn bench_vs_anchors(args: &[String]) -> Result<(), String> {
         println!("  {}", line.join(", "));
         reps.push(r);
     }
-    host.load_end = run::shell("cut -d' ' -f1-3 /proc/loadavg");
+    host.load_end = command::shell("cut -d' ' -f1-3 /proc/loadavg");
 
     let report = markdown(&host, &reps);
     println!("\n{report}");

@@ -5,7 +5,7 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 use super::args::BenchArgs;
-use super::run::run;
+use super::command::run;
 use crate::cli::strings;
 
 /// One measured figure, sampled once per repetition.

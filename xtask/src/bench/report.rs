@@ -4,8 +4,8 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
+use super::command::{run, shell};
 use super::plan::Series;
-use super::run::{run, shell};
 use super::stats::{Goal, Rep, TARGETS, evaluate, samples, summary};
 use crate::cli::strings;
 
@@ -173,9 +173,10 @@ fn markdown_targets(s: &mut String, reps: &[Rep]) {
     }
 }
 
-/// Writes the report and the raw measurements into `target/`.
+/// Writes the report and the raw measurements into the target directory (`$CARGO_TARGET_DIR`
+/// or `target/`).
 pub(super) fn write_reports(root: &Path, report: &str, raw: &str) -> Result<(), String> {
-    let target = root.join("target");
+    let target = crate::workspace::target_dir(root);
     std::fs::create_dir_all(&target)
         .map_err(|e| format!("cannot create {}: {e}", target.display()))?;
     for (name, text) in [

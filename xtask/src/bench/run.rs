@@ -2,11 +2,11 @@
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 use serde_json::Value;
 
 use super::args::BenchArgs;
+use super::command::run;
 use super::plan::{AnchorRun, HyqBackend, Measure, SEQUENCE, Series};
 use super::plan::{anchor_modules, measurable_backends};
 use super::report::{Host, python_versions};
@@ -14,7 +14,7 @@ use super::stats::Rep;
 use super::venv::{PYTHON_ENV, read_pins, setup_venv};
 use super::{ANCHORS_DIR, MODELS_DIR};
 use crate::cli::strings;
-use crate::stages::run_cargo;
+use crate::workspace::run_cargo;
 
 /// What the repetitions run: the anchors' Python and directory, the release `hyq`, the models,
 /// the backends this machine measures and which anchor modules import.
@@ -48,8 +48,10 @@ impl Setup {
         if !status.success() {
             return Err(format!("the release build of hyq failed ({status})"));
         }
-        let hyq = root.join("target").join("release").join("hyq");
-        let models = root.join(MODELS_DIR);
+        let hyq = crate::workspace::target_dir(root)
+            .join("release")
+            .join("hyq");
+        let models = crate::workspace::target_dir(root).join(MODELS_DIR);
         write_models(&hyq, root, &models)?;
 
         let modules = anchor_modules(&python, &anchors, args, &mut host.notes)?;
@@ -229,50 +231,6 @@ pub fn parse_anchor(stdout: &str, anchor: &str, case: &str, key: &str) -> Result
         "no result for anchor {anchor:?}, case {case:?} in: {}",
         stdout.trim()
     ))
-}
-
-/// The last non-empty line of a program's error output (a Python traceback ends with the
-/// error itself), for one-line messages.
-pub(super) fn last_line(text: &str) -> &str {
-    text.lines()
-        .map(str::trim)
-        .rfind(|l| !l.is_empty())
-        .unwrap_or("")
-}
-
-/// Runs `program args` in `dir` with `env`, returning its stdout; a failure is one line naming
-/// the command and the last line of its error output.
-pub(super) fn run(
-    program: &Path,
-    args: &[String],
-    dir: &Path,
-    env: &[(&str, &str)],
-) -> Result<String, String> {
-    let shown = format!("{} {}", program.display(), args.join(" "));
-    let out = Command::new(program)
-        .args(args)
-        .current_dir(dir)
-        .envs(env.iter().copied())
-        .output()
-        .map_err(|e| format!("cannot start `{shown}`: {e}"))?;
-    if !out.status.success() {
-        return Err(format!(
-            "`{shown}` failed ({}): {}",
-            out.status,
-            last_line(&String::from_utf8_lossy(&out.stderr))
-        ));
-    }
-    Ok(String::from_utf8_lossy(&out.stdout).into_owned())
-}
-
-/// The trimmed stdout of the shell command `line` (`""` when it cannot run).
-pub(super) fn shell(line: &str) -> String {
-    Command::new("sh")
-        .args(["-c", line])
-        .output()
-        .ok()
-        .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
-        .unwrap_or_default()
 }
 
 /// Writes the anchors' models with the release `hyq` into `dir`: MJCF with position servos,

@@ -4,23 +4,22 @@ use std::path::{Path, PathBuf};
 
 use super::ANCHORS_DIR;
 use super::args::*;
+use super::command::last_line;
 use super::plan::*;
 use super::report::*;
 use super::run::*;
 use super::stats::*;
 use super::venv::*;
 use crate::cli::strings;
-use crate::stages::workspace_root;
+use crate::workspace::workspace_root;
 
 #[test]
 fn defaults_and_arguments_parse_and_bad_ones_are_named() {
     let root = Path::new("/nonexistent/repo");
     let d = parse(&[], root, None).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(d.reps, 5);
-    assert_eq!(
-        d.venv,
-        PathBuf::from("/nonexistent/repo/target/anchor-venv")
-    );
+    let target = crate::workspace::target_dir(root);
+    assert_eq!(d.venv, target.join("anchor-venv"));
     assert!(d.dart && d.mujoco);
     let from_env =
         parse(&[], root, Some("/nonexistent/cache/venv".into())).unwrap_or_else(|e| panic!("{e}"));

@@ -5,9 +5,9 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use super::ANCHORS_DIR;
-use super::run::run;
+use super::command::run;
 use crate::cli::strings;
-use crate::stages::{PYTHON_INSTALL, PYTHON_MIN, venv_python};
+use crate::python::{PYTHON_INSTALL, PYTHON_MIN, venv_python};
 
 /// The pinned `name==version` lines of a requirements file (comments and blank lines skipped);
 /// any other line is an error naming it.
