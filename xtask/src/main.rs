@@ -12,14 +12,17 @@ mod codegen;
 mod docs;
 mod fuzz;
 mod mujoco;
+mod python;
 mod regen;
 mod rllib;
+mod shape;
 mod soak;
 mod stages;
 #[cfg(test)]
 mod standalone;
 mod train;
 mod vendor;
+mod workspace;
 
 use std::process::ExitCode;
 
