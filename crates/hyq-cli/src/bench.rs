@@ -50,9 +50,8 @@ use serde::Serialize;
 
 use crate::Failure;
 use crate::backend::with_backend;
-use crate::options::{EnvArgs, make_env, read_mlp, usage};
+use crate::options::{EnvArgs, PolicyChoice, make_env, read_mlp, usage};
 use crate::output::{print, print_json_line};
-use crate::run::PolicyChoice;
 
 /// Actions drawn ahead of the timed region at a time.
 pub const BLOCK: usize = 1000;

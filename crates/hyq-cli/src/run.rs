@@ -29,52 +29,6 @@ use crate::output::{OutputFile, print, print_json_line, print_line, progress_bar
 use crate::plot::LivePlots;
 use crate::table::Table;
 
-/// The policies `hyq run` can drive the robot with (`--policy stand|random|trot|mlp:FILE`).
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum PolicyChoice {
-    /// Hold the standing pose.
-    Stand,
-    /// Uniform random actions in the action space (seeded by --seed).
-    Random,
-    /// hyq-env's scripted open-loop trot along +x.
-    Trot,
-    /// A trained MLP read from a `hyq-mlp-policy` safetensors file (hyq-env's `mlp` module),
-    /// run in the environment it was trained in unless a key is set by the user.
-    Mlp(PathBuf),
-}
-
-impl std::str::FromStr for PolicyChoice {
-    type Err = String;
-
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        match s {
-            "stand" => Ok(Self::Stand),
-            "random" => Ok(Self::Random),
-            "trot" => Ok(Self::Trot),
-            _ => match s.strip_prefix("mlp:") {
-                Some("") => {
-                    Err("mlp: needs a file, e.g. mlp:assets/policies/hyq_walk.safetensors".into())
-                }
-                Some(file) => Ok(Self::Mlp(PathBuf::from(file))),
-                None => Err(format!(
-                    "{s:?} is not a policy: expected stand, random, trot or mlp:FILE"
-                )),
-            },
-        }
-    }
-}
-
-impl std::fmt::Display for PolicyChoice {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            Self::Stand => f.write_str("stand"),
-            Self::Random => f.write_str("random"),
-            Self::Trot => f.write_str("trot"),
-            Self::Mlp(file) => write!(f, "mlp:{}", file.display()),
-        }
-    }
-}
-
 /// `hyq run` arguments.
 #[derive(Debug, Args)]
 pub struct RunArgs {

@@ -19,7 +19,8 @@
 //! | [`attitude`] | §1, Figure 2 | roll, pitch, yaw from a quaternion (intrinsic Z-Y-X) |
 //! | [`distance`] | §1 Table 1, §4.2 | D^t, K, D_n^t |
 //! | [`config`] | §2 | [`TaskConfig`]: the user variables, validated |
-//! | [`observation`] | §3 | [`SPEC_TABLE`], [`ObservationLayout`], [`Observation`] |
+//! | [`observation`] | §3 | [`ObservationLayout`], [`Observation`] |
+//! | [`table`] | §3 | [`SPEC_TABLE`]: the spec's observation table verbatim |
 //! | [`robot`] | (§3, §6.2) | [`RobotDescription`]: joints, feet, trunk bounds |
 //! | [`reward`] | §4, eqs. (1)–(5) | r_b, r_n, r_e (continuous R_e), r_reach |
 //! | [`penalty`] | §5 | m_yaw, m_pitch, opt-in m_height, fixed penalties |
@@ -71,6 +72,7 @@ pub mod printed;
 pub mod reward;
 pub mod robot;
 pub mod step;
+pub mod table;
 pub mod termination;
 pub mod terms;
 

@@ -7,7 +7,7 @@
 //! table states it.
 
 use crate::nomenclature::{HyqJoint, Leg};
-use crate::observation::SPEC_TABLE;
+use crate::table::SPEC_TABLE;
 use crate::termination::joint_limit::{JointRange, JointRangeError};
 use std::collections::HashSet;
 use thiserror::Error;
