@@ -23,12 +23,12 @@ use hyq_compare::{
     ComparisonSpec, DEFAULT_ONE_STEP_STATES, Ledger, MARKDOWN_FILE, Plan, PolicyPlan, PolicyReport,
     PolicySpec, Report, Scenario, check_seconds, compare_all, parse_override, prepare_output_dir,
 };
+use hyq_env::TerrainKind;
 
 use crate::Failure;
 use crate::backend::{BackendChoice, not_built, with_backend};
-use crate::options::{ConfigArgs, RobotArgs, TrainedPolicy, check_mlp, usage};
+use crate::options::{ConfigArgs, PolicyChoice, RobotArgs, TrainedPolicy, check_mlp, usage};
 use crate::output;
-use crate::run::PolicyChoice;
 
 /// Episodes per backend of a policy comparison unless `--episodes` says otherwise: enough to
 /// see the spread of a noisy reset, few enough for a quick look.
@@ -107,8 +107,14 @@ pub struct CompareArgs {
     /// defaults (rough: ±5 cm bumps 0.4 m apart, seed 0; slope: 10° rising towards the goal;
     /// stairs: 10 cm steps 30 cm deep from 1 m ahead), tuned further with --set. The ledger's
     /// entries measured on that ground judge the scenarios (docs/terrain.md).
-    #[arg(long, value_name = "KIND", value_parser = ["flat", "rough", "slope", "stairs"])]
+    #[arg(long, value_name = "KIND", value_parser = generated_terrains())]
     terrain: Option<String>,
+}
+
+/// `--terrain`'s values: every ground kind a name alone builds (hyq-env's list of them).
+fn generated_terrains() -> clap::builder::PossibleValuesParser {
+    let kinds = TerrainKind::ALL.into_iter().filter(|k| k.is_generated());
+    clap::builder::PossibleValuesParser::new(kinds.map(TerrainKind::as_str))
 }
 
 impl CompareArgs {

@@ -33,6 +33,7 @@ use std::fmt;
 use std::path::Path;
 use std::str::FromStr;
 
+use hyq_env::TerrainKind;
 use hyq_physics::input;
 use serde::{Deserialize, Serialize};
 
@@ -244,8 +245,10 @@ fn flat() -> String {
     "flat".to_owned()
 }
 
-/// The grounds an entry may name (`terrain.kind`'s values).
-const TERRAINS: [&str; 5] = ["flat", "rough", "slope", "stairs", "heightfield"];
+/// The grounds an entry may name: `terrain.kind`'s values, from the configuration's own list.
+fn terrains() -> impl Iterator<Item = &'static str> {
+    TerrainKind::ALL.into_iter().map(TerrainKind::as_str)
+}
 
 /// The TOML parser's own words and the line, without the excerpt of the file it draws (which
 /// holds whatever the file holds), control characters escaped.
@@ -335,11 +338,11 @@ impl Ledger {
             if k.backends.iter().any(|b| b.trim().is_empty()) {
                 return Err(bad(format!("{at}: a backend name is empty")));
             }
-            if !TERRAINS.contains(&k.terrain.as_str()) {
+            if !terrains().any(|t| t == k.terrain) {
                 return Err(bad(format!(
                     "{at}: unknown terrain {:?} (one of {})",
                     k.terrain,
-                    TERRAINS.join(", ")
+                    terrains().collect::<Vec<_>>().join(", ")
                 )));
             }
             let entry = Known {

@@ -205,7 +205,7 @@ pub fn run_episode<B: Backend>(
             break;
         }
     }
-    if let (Some(r), Some((_, pushes))) = (traj.randomize.as_mut(), env.push()) {
+    if let (Some(r), Some((_, pushes))) = (traj.randomize.as_mut(), env.last_push()) {
         r.pushes = pushes;
     }
     // The last sample has no step after it: repeat the last step's targets so that every

@@ -942,7 +942,7 @@ impl<B: Backend> Env<B> {
 
     /// The velocity (m/s, world) the last step's push added to the trunk (zeros when it had
     /// none), and the pushes so far this episode, when pushes are on.
-    pub fn push(&self) -> Option<([f64; 3], u64)> {
+    pub fn last_push(&self) -> Option<([f64; 3], u64)> {
         let r = self.robustness.as_deref()?;
         r.randomizer
             .config()

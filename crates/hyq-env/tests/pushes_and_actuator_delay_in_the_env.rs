@@ -26,7 +26,7 @@ fn pushes_come_every_interval_and_move_the_trunk() {
         let step = env.step(&stand).unwrap_or_else(|e| panic!("{e}"));
         let t = step.info.t;
         still.step(&stand).unwrap_or_else(|e| panic!("{e}"));
-        let (pushed, count) = env.push().expect("pushes are on");
+        let (pushed, count) = env.last_push().expect("pushes are on");
         if pushed != [0.0; 3] {
             pushed_at.push(t);
             let speed = (pushed[0].powi(2) + pushed[1].powi(2)).sqrt();

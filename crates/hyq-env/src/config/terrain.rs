@@ -132,6 +132,22 @@ impl TerrainKind {
             TerrainKind::Heightfield => "heightfield",
         }
     }
+
+    /// Every kind, in declaration order: the one list of them (the comparison ledger's grounds
+    /// and `hyq compare --terrain`'s values are read from it).
+    pub const ALL: [TerrainKind; 5] = [
+        TerrainKind::Flat,
+        TerrainKind::Rough,
+        TerrainKind::Slope,
+        TerrainKind::Stairs,
+        TerrainKind::Heightfield,
+    ];
+
+    /// Whether the kind is made from the `[terrain]` table's keys alone (every kind but a
+    /// user's height file), so that a name is all a command needs to build it.
+    pub const fn is_generated(self) -> bool {
+        !matches!(self, TerrainKind::Heightfield)
+    }
 }
 
 /// Which way stairs go; see [`TerrainConfig::stairs`].
