@@ -54,6 +54,7 @@
 pub use hyq_physics;
 
 mod api_contract;
+pub mod contact_audit;
 mod contacts;
 pub mod determinism;
 mod dynamics;
