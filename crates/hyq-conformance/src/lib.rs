@@ -38,6 +38,12 @@
 //! and across a stair edge, changes of ground) have a macro of their own,
 //! `terrain_conformance_tests!`, which each backend instantiates once, beside the suite.
 //!
+//! The contact audit ([`contact_audit`]: a sled on four of the robot's foot spheres and one
+//! loaded foot, on inclines either side of atan μ, pushed sideways, dropped and spun, each
+//! figure beside its rigid-body Coulomb answer) has a macro of its own,
+//! `contact_audit_tests!`, which each backend instantiates per robot with what it holds each
+//! figure to: the physics answer within a tolerance, or its known deviation and why.
+//!
 //! Beside the suite, [`determinism`] and [`threads`] hold longer runs (thousands of sub-steps
 //! each, on several threads) that a backend crate calls from tests of its own
 //! (`tests/determinism.rs`, `tests/threads.rs`: one `#[test]` per body, the file saying why its
@@ -54,6 +60,7 @@
 pub use hyq_physics;
 
 mod api_contract;
+pub mod contact_audit;
 mod contacts;
 pub mod determinism;
 mod dynamics;

@@ -32,12 +32,21 @@ use crate::sim::{
 /// 10 s, in which HyQ covers well under 50 m) but no larger.
 pub const GROUND_HALF_EXTENT_M: f64 = 100.0;
 
-/// DART-specific settings (`[physics.dart]`). DART's solver has no setting the project exposes
-/// yet: the collision detector (Bullet), the LCP solver (Dantzig) and DART's contact and
-/// joint-limit constraint parameters (its defaults) are fixed; see the crate's README for why.
+/// DART-specific settings (`[physics.dart]`). The collision detector (Bullet), the LCP solver
+/// (Dantzig) and DART's contact and joint-limit constraint parameters (its defaults) are fixed;
+/// see the crate's README for why.
 #[derive(Debug, Clone, Default, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct DartOptions {}
+#[serde(deny_unknown_fields, default)]
+pub struct DartOptions {
+    /// Lay every contact's friction pyramid along the world's x and y axes (each shape's
+    /// first friction direction is world x) (default: false, DART's own choice). DART bounds
+    /// friction along two tangent directions separately; by default it builds them from the
+    /// contact normal, which for a foot on flat ground is tilted by rounding in a direction
+    /// that varies from contact to contact, so a sliding foot feels anywhere between μN and
+    /// √2 μN. With world axes it feels μN along x or y, as Coulomb friction says, and √2 μN
+    /// along the diagonals (docs/backend-comparison.md, "Contact audit").
+    pub world_friction_axes: bool,
+}
 
 /// A tracked collision shape, for the geometric half of the contact test.
 #[derive(Debug, Clone)]
@@ -102,6 +111,7 @@ fn pose(iso: &Isometry3<f64>) -> Pose {
 fn describe(
     model: &RobotModel,
     params: &PhysicsParams,
+    options: &DartOptions,
 ) -> Result<(Vec<BodyDesc>, Vec<ShapeDesc>, WorldDesc), PhysicsError> {
     let mut tracked_of = std::collections::HashMap::new();
     for (t, body) in model.tracked().iter().enumerate() {
@@ -164,6 +174,7 @@ fn describe(
         gravity: params.gravity,
         friction: params.ground_friction,
         restitution: 0.0,
+        world_friction_axes: options.world_friction_axes,
         ground_height: 0.0,
         ground_half_extent: GROUND_HALF_EXTENT_M,
         num_tracked: u32::try_from(model.tracked().len())
@@ -355,10 +366,10 @@ impl Backend for DartBackend {
     fn build(
         model: Arc<RobotModel>,
         params: &PhysicsParams,
-        _options: &Self::Options,
+        options: &Self::Options,
     ) -> Result<Self, PhysicsError> {
         params.validate()?;
-        let (bodies, shapes, world) = describe(&model, params)?;
+        let (bodies, shapes, world) = describe(&model, params, options)?;
         let sim = Sim::new(&bodies, &shapes, &world)?;
         let tracked_shapes = model
             .tracked()
@@ -601,5 +612,10 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(err.contains("detector"), "{err}");
+        assert!(
+            toml::from_str::<DartOptions>("world_friction_axes = true")
+                .unwrap()
+                .world_friction_axes
+        );
     }
 }

@@ -103,6 +103,10 @@ pub(crate) mod ffi {
         friction: f64,
         /// Restitution coefficient of every shape, ground included (in [0, 1]).
         restitution: f64,
+        /// Every shape's first friction direction is the world's x axis, so each contact's
+        /// friction pyramid lies along world x and y; false leaves DART's default (directions
+        /// built from the contact normal).
+        world_friction_axes: bool,
         /// The ground is a static box whose top face is the plane z = `ground_height`.
         ground_height: f64,
         /// Half the side of the ground box (m), > 0.

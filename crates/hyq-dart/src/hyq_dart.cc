@@ -101,6 +101,17 @@ T* require_ptr(T* ptr, const std::string& what) {
   return ptr;
 }
 
+// Makes world x the shape's first friction direction, so that DART's friction
+// pyramid for any contact it takes part in lies along world x and y. Without
+// it DART builds the directions from the contact normal (the cross product
+// with world z), which for a nearly vertical normal points wherever rounding
+// tilts it.
+void use_world_friction_axes(dart::dynamics::ShapeNode* node) {
+  auto* dynamics = node->getDynamicsAspect();
+  dynamics->setFirstFrictionDirection(Eigen::Vector3d::UnitX());
+  dynamics->setFirstFrictionDirectionFrame(dart::dynamics::Frame::World());
+}
+
 bool finite3(const std::array<double, 3>& v) {
   return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
 }
@@ -231,6 +242,7 @@ struct Sim::Impl {
   dart::dynamics::WeldJoint* ground_joint = nullptr;
   double friction = 0.0;
   double restitution = 0.0;
+  bool world_friction_axes = false;
   double ground_height = 0.0;
   double ground_half_extent = 0.0;
   // The height field, if the ground is one, and its heights as given.
@@ -284,6 +296,9 @@ struct Sim::Impl {
     require_ptr(node, "ground ShapeNode");
     node->getDynamicsAspect()->setFrictionCoeff(friction);
     node->getDynamicsAspect()->setRestitutionCoeff(restitution);
+    if (world_friction_axes) {
+      use_world_friction_axes(node);
+    }
     return node;
   }
 
@@ -496,6 +511,9 @@ std::unique_ptr<Sim> new_sim(rust::Slice<const BodyDesc> bodies,
     sn->setRelativeTransform(shape_tf);
     sn->getDynamicsAspect()->setFrictionCoeff(desc.friction);
     sn->getDynamicsAspect()->setRestitutionCoeff(desc.restitution);
+    if (desc.world_friction_axes) {
+      use_world_friction_axes(sn);
+    }
     if (s.tracked >= 0) {
       impl->tracked_shapes.emplace_back(sn, static_cast<std::size_t>(s.tracked));
     }
@@ -511,6 +529,7 @@ std::unique_ptr<Sim> new_sim(rust::Slice<const BodyDesc> bodies,
   impl->ground_body = require_ptr(ground_pair.second, "ground BodyNode");
   impl->friction = desc.friction;
   impl->restitution = desc.restitution;
+  impl->world_friction_axes = desc.world_friction_axes;
   impl->ground_height = desc.ground_height;
   impl->ground_half_extent = desc.ground_half_extent;
   impl->attach_ground_box();

@@ -217,6 +217,7 @@ mod tests {
             gravity: [0.0, 0.0, -9.81],
             friction: 1.0,
             restitution: 0.0,
+            world_friction_axes: false,
             ground_height: 0.0,
             ground_half_extent: 50.0,
             num_tracked,

@@ -1,0 +1,158 @@
+//! The contact audit (hyq-conformance's `contact_audit`) on DART, on the feet of both bundled
+//! robots. DART's contacts are rigid (an exact boxed LCP): it meets the answers that depend on
+//! the normal force alone (no creep, no bounce, under a micrometre of penetration, a free
+//! spin on a point contact). Its friction is not a round cone: the LCP bounds the friction
+//! along two tangent directions separately (a pyramid), and DART builds those directions from
+//! the contact normal, which for a sphere on the ground is tilted by rounding in a direction
+//! that varies from contact to contact. So the friction a sliding foot feels lies between μN
+//! and √2 μN depending on how its direction falls in that basis: the sled sticks 5° above
+//! atan μ (its effective μ there is about 1.3 μ; it slides at 40° as if μ were 0.65), breaks
+//! away at about 1.2 μN whichever way it is pushed, and spins down 28 % faster than Coulomb
+//! friction allows. The tests hold each to its measured value so that a change is seen.
+//!
+//! The basis is a setting: `[physics.dart] world_friction_axes = true` (off by default, so the
+//! default environment stays bit for bit the spec's) lays every pyramid along world x and y,
+//! and DART then meets every answer along x; the pyramid itself is DART's nature (DART 6.12 has
+//! no round cone), so along the diagonal friction reaches √2 μN
+//! (docs/backend-comparison.md, "Contact audit").
+//!
+//! `cargo test -p hyq-dart --test contact_audit -- --nocapture` prints the figures.
+
+use hyq_conformance::contact_audit::Expect;
+use hyq_conformance::fixtures::Robot;
+
+const PYRAMID: &str = "DART's friction pyramid, its basis built from the contact normal";
+
+mod hyq {
+    use super::*;
+    hyq_conformance::contact_audit_tests!(
+        hyq_dart::DartBackend,
+        hyq_dart::DartOptions::default(),
+        Robot::bundled("hyq"),
+        {
+            sled_sticks_below_atan_mu => Expect::Physics { tolerance: 0.01 },
+            sled_slides_above_atan_mu =>
+                Expect::Deviates { value: 0.0, tolerance: 0.02, why: PYRAMID },
+            sled_slides_along_the_diagonal =>
+                Expect::Deviates { value: 0.058, tolerance: 0.02, why: PYRAMID },
+            sled_breaks_away_at_mu_n =>
+                Expect::Deviates { value: 1.259, tolerance: 0.02, why: PYRAMID },
+            sled_breaks_away_along_the_diagonal =>
+                Expect::Deviates { value: 1.223, tolerance: 0.02, why: PYRAMID },
+            dropped_foot_does_not_bounce => Expect::Physics { tolerance: 0.05 },
+            foot_at_rest_does_not_penetrate => Expect::Physics { tolerance: 0.01 },
+            loaded_foot_spins_freely => Expect::Physics { tolerance: 1e-4 },
+            sled_spin_slows_at_mu_n_d =>
+                Expect::Deviates { value: 29.56, tolerance: 0.3, why: PYRAMID },
+        }
+    );
+}
+
+mod anymal_c {
+    use super::*;
+    hyq_conformance::contact_audit_tests!(
+        hyq_dart::DartBackend,
+        hyq_dart::DartOptions::default(),
+        Robot::bundled("anymal_c"),
+        {
+            sled_sticks_below_atan_mu => Expect::Physics { tolerance: 0.01 },
+            sled_slides_above_atan_mu =>
+                Expect::Deviates { value: 0.0, tolerance: 0.02, why: PYRAMID },
+            sled_slides_along_the_diagonal =>
+                Expect::Deviates { value: 0.0, tolerance: 0.02, why: PYRAMID },
+            sled_breaks_away_at_mu_n =>
+                Expect::Deviates { value: 1.216, tolerance: 0.02, why: PYRAMID },
+            sled_breaks_away_along_the_diagonal =>
+                Expect::Deviates { value: 1.188, tolerance: 0.02, why: PYRAMID },
+            dropped_foot_does_not_bounce => Expect::Physics { tolerance: 0.05 },
+            foot_at_rest_does_not_penetrate => Expect::Physics { tolerance: 0.01 },
+            loaded_foot_spins_freely => Expect::Physics { tolerance: 1e-4 },
+            sled_spin_slows_at_mu_n_d =>
+                Expect::Deviates { value: 29.84, tolerance: 0.3, why: PYRAMID },
+        }
+    );
+}
+
+/// `[physics.dart] world_friction_axes = true`: each contact's pyramid along world x and y.
+fn world_axes() -> hyq_dart::DartOptions {
+    hyq_dart::DartOptions {
+        world_friction_axes: true,
+    }
+}
+
+const WORLD_PYRAMID: &str =
+    "DART's friction pyramid on world x and y bounds friction at √2 μN along the diagonal";
+
+/// With the pyramid laid along world x and y, DART meets every answer along x (the sled
+/// slides at g (sin θ − μ cos θ) and breaks away at μN) and its pyramid shows undisturbed
+/// along the diagonal: breakaway at √2 μN, and no slide 5° above atan μ.
+mod world_axes {
+    use super::*;
+
+    mod hyq {
+        use super::*;
+        hyq_conformance::contact_audit_tests!(
+            hyq_dart::DartBackend,
+            world_axes(),
+            Robot::bundled("hyq"),
+            {
+                sled_sticks_below_atan_mu => Expect::Physics { tolerance: 0.01 },
+                sled_slides_above_atan_mu => Expect::Physics { tolerance: 0.02 },
+                sled_slides_along_the_diagonal =>
+                    Expect::Deviates { value: 0.0, tolerance: 0.02, why: WORLD_PYRAMID },
+                sled_breaks_away_at_mu_n => Expect::Physics { tolerance: 0.02 },
+                sled_breaks_away_along_the_diagonal =>
+                    Expect::Deviates { value: 1.414, tolerance: 0.02, why: WORLD_PYRAMID },
+                dropped_foot_does_not_bounce => Expect::Physics { tolerance: 0.05 },
+                foot_at_rest_does_not_penetrate => Expect::Physics { tolerance: 0.01 },
+                loaded_foot_spins_freely => Expect::Physics { tolerance: 1e-4 },
+                sled_spin_slows_at_mu_n_d =>
+                    Expect::Deviates { value: 29.14, tolerance: 0.3, why: WORLD_PYRAMID },
+            }
+        );
+    }
+
+    mod anymal_c {
+        use super::*;
+        hyq_conformance::contact_audit_tests!(
+            hyq_dart::DartBackend,
+            world_axes(),
+            Robot::bundled("anymal_c"),
+            {
+                sled_sticks_below_atan_mu => Expect::Physics { tolerance: 0.01 },
+                sled_slides_above_atan_mu => Expect::Physics { tolerance: 0.02 },
+                sled_slides_along_the_diagonal =>
+                    Expect::Deviates { value: 0.0, tolerance: 0.02, why: WORLD_PYRAMID },
+                sled_breaks_away_at_mu_n => Expect::Physics { tolerance: 0.02 },
+                sled_breaks_away_along_the_diagonal =>
+                    Expect::Deviates { value: 1.415, tolerance: 0.02, why: WORLD_PYRAMID },
+                dropped_foot_does_not_bounce => Expect::Physics { tolerance: 0.05 },
+                foot_at_rest_does_not_penetrate => Expect::Physics { tolerance: 0.01 },
+                loaded_foot_spins_freely => Expect::Physics { tolerance: 1e-4 },
+                sled_spin_slows_at_mu_n_d =>
+                    Expect::Deviates { value: 29.16, tolerance: 0.3, why: WORLD_PYRAMID },
+            }
+        );
+    }
+}
+
+/// Prints the audit's rows (robot, figure, unit, physics, DART) for the docs' table, with the
+/// default options and with world friction axes.
+#[test]
+fn prints_the_contact_audit_table() {
+    for (label, options) in [
+        ("default", hyq_dart::DartOptions::default()),
+        ("world_axes", world_axes()),
+    ] {
+        for name in ["hyq", "anymal_c"] {
+            let rows = hyq_conformance::contact_audit::table::<hyq_dart::DartBackend>(
+                &Robot::bundled(name),
+                &options,
+            );
+            for r in &rows {
+                println!("{label} {r}");
+            }
+            assert_eq!(rows.len(), 9, "one row per audit");
+        }
+    }
+}
