@@ -15,5 +15,7 @@
 //! writes them on a build without MuJoCo's library, which that crate needs to compile.
 
 pub mod mjcf;
+pub mod mjcf_read;
+pub mod robots;
 pub mod urdf;
 mod xml;

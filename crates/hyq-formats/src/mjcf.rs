@@ -706,11 +706,17 @@ fn write_body(
             let a = joint.axis;
             let _ = writeln!(
                 x,
-                "{inner}<joint name=\"{}\" type=\"hinge\" axis=\"{}\" range=\"{}\" damping=\"{}\"/>",
+                "{inner}<joint name=\"{}\" type=\"hinge\" axis=\"{}\" range=\"{}\" damping=\"{}\"{}/>",
                 attr(&out.joints[j]),
                 nums(&[a.x, a.y, a.z]),
                 nums(&[joint.lower, joint.upper]),
-                nums(&[joint.damping])
+                nums(&[joint.damping]),
+                // Written only when set, so a URDF robot's MJCF is unchanged.
+                if joint.armature > 0.0 {
+                    format!(" armature=\"{}\"", nums(&[joint.armature]))
+                } else {
+                    String::new()
+                }
             );
         }
     }

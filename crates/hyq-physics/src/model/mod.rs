@@ -201,6 +201,10 @@ pub struct Joint {
     /// Coulomb joint friction (N·m, URDF `<dynamics friction>`), applied by the shared
     /// actuator (see [`crate::actuator`]), so identically on every backend.
     pub friction: f64,
+    /// Armature (kg·m²): rotor inertia added to the joint's inertia about its axis. URDF has
+    /// none (0); an MJCF robot's `armature` sets it ([`RobotModel::with_joint_armature`]).
+    /// The MuJoCo backend honours it; rapier and DART have no such term and leave it out.
+    pub armature: f64,
 }
 
 /// A set of collision shapes whose ground contact is reported (a foot, or the trunk).
@@ -305,6 +309,35 @@ impl RobotModel {
         })?;
         check_counts(&robot)?;
         Self::from_urdf_robot(&robot, profile)
+    }
+
+    /// Builds a robot from an already parsed URDF description and a parsed profile: what a
+    /// reader of another robot format (MJCF, in `hyq-formats`) hands over after converting its
+    /// file. The description's links, joints and collision shapes are counted against
+    /// [`crate::bounds`] first, as for URDF text.
+    pub fn from_urdf_model(robot: &urdf_rs::Robot, profile: &Profile) -> Result<Self, ModelError> {
+        check_counts(robot)?;
+        Self::from_urdf_robot(robot, profile)
+    }
+
+    /// A copy with the given joints' armature (kg·m²) set, as `(joint index, armature)` pairs,
+    /// each checked against [`bounds::JOINT_ARMATURE`].
+    ///
+    /// # Panics
+    /// If a joint index is out of range.
+    pub fn with_joint_armature(&self, armature: &[(usize, f64)]) -> Result<Self, ModelError> {
+        let mut copy = self.clone();
+        for &(j, a) in armature {
+            let joint = &mut copy.joints[j];
+            joint.armature =
+                bounds::JOINT_ARMATURE
+                    .check(a)
+                    .map_err(|reason| ModelError::InvalidJoint {
+                        joint: joint.urdf_name.clone(),
+                        reason: format!("armature: {reason}"),
+                    })?;
+        }
+        Ok(copy)
     }
 
     /// Builds the model phase by phase: the profile's own values, the URDF's index and root,
