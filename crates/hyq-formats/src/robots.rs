@@ -74,10 +74,26 @@ pub fn go1_mjcf() -> Result<MjcfRobot, MjcfReadError> {
     mjcf_read::read_str(GO1_MJCF, "bundled assets/go1/go1.xml")
 }
 
+/// The bundled Go1's profile.
+pub fn go1_profile() -> Result<Profile, ModelError> {
+    Profile::from_toml_str(GO1_PROFILE, "bundled assets/go1/profile.toml")
+}
+
+/// The bundled Go1 as URDF text: the description its model is built from
+/// ([`MjcfRobot::urdf_description`]), before fixed bodies are lumped; what the conformance
+/// kit's checks against a URDF read independently.
+pub fn go1_urdf() -> Result<String, RobotError> {
+    let robot = go1_mjcf()?.urdf_description()?;
+    urdf_rs::write_to_string(&robot).map_err(|e| {
+        RobotError::Mjcf(MjcfReadError(format!(
+            "bundled Go1: its URDF description does not write: {e}"
+        )))
+    })
+}
+
 /// Builds the bundled Go1 afresh (see [`by_name`] for the shared instance).
 pub fn load_go1() -> Result<RobotModel, RobotError> {
-    let profile = Profile::from_toml_str(GO1_PROFILE, "bundled assets/go1/profile.toml")?;
-    Ok(go1_mjcf()?.model(&profile)?)
+    Ok(go1_mjcf()?.model(&go1_profile()?)?)
 }
 
 /// Bundled robot `name` (any of [`NAMES`]), parsed once per process and shared; `None` if

@@ -73,20 +73,8 @@ fn actuator(
     if gear.first().is_none_or(|g| *g == 0.0) || gear.iter().skip(1).any(|g| *g != 0.0) {
         return Err(a.error("attribute `gear`: one non-zero ratio is read"));
     }
-    let range = |name: &str, limited: &str| -> Result<Option<[f64; 2]>, MjcfReadError> {
-        let r = a.nums(name, Some(2))?.map(|r| [r[0], r[1]]);
-        let on = a.tristate(limited)?.unwrap_or(r.is_some());
-        match (on, r) {
-            (false, _) => Ok(None),
-            (true, None) => Err(a.error(format!("`{limited}` but no `{name}`"))),
-            (true, Some([lo, hi])) if lo >= hi => Err(a.error(format!(
-                "attribute `{name}`: lower {lo} is not below upper {hi}"
-            ))),
-            (true, r) => Ok(r),
-        }
-    };
-    let force_range = range("forcerange", "forcelimited")?;
-    let mut ctrl_range = range("ctrlrange", "ctrllimited")?;
+    let force_range = limited_range(&a, "forcerange", "forcelimited")?;
+    let mut ctrl_range = limited_range(&a, "ctrlrange", "ctrllimited")?;
     let kind = if e.tag == "position" {
         if gear[0] != 1.0 {
             return Err(a.error("attribute `gear`: a position servo is read with gear 1 only"));
@@ -116,6 +104,24 @@ fn actuator(
         force_range,
         ctrl_range,
     })
+}
+
+/// A range attribute and its `…limited` switch (`auto`: limited when the range is given).
+fn limited_range(
+    a: &Attrs<'_>,
+    name: &str,
+    limited: &str,
+) -> Result<Option<[f64; 2]>, MjcfReadError> {
+    let r = a.nums(name, Some(2))?.map(|r| [r[0], r[1]]);
+    let on = a.tristate(limited)?.unwrap_or(r.is_some());
+    match (on, r) {
+        (false, _) => Ok(None),
+        (true, None) => Err(a.error(format!("`{limited}` but no `{name}`"))),
+        (true, Some([lo, hi])) if lo >= hi => Err(a.error(format!(
+            "attribute `{name}`: lower {lo} is not below upper {hi}"
+        ))),
+        (true, r) => Ok(r),
+    }
 }
 
 /// The `<key>`s of the `<keyframe>` elements; `nq` and `nu` are the lengths of a full `qpos`

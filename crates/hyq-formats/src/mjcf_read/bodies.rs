@@ -149,6 +149,33 @@ impl<'a> Walk<'a> {
         in_parent: &Isometry3<f64>,
     ) -> Result<String, MjcfReadError> {
         let a = Attrs::new(b, &[]);
+        let (name, class) = self.body_header(b, &a, inherited)?;
+        let body_frame = in_parent * a.frame(&self.compiler)?;
+        let joint = self.body_joint(b, class, parent.is_none())?;
+        // The link frame is the joint frame: the body frame moved to the joint's position.
+        let shift = Isometry3::from_parts(
+            Translation3::from(joint.as_ref().map_or(Vector3::zeros(), |j| j.pos)),
+            UnitQuaternion::identity(),
+        );
+        let to_link = shift.inverse();
+        let link = self.link(b, &name, class, &to_link)?;
+        self.robot.links.push(link);
+        if let Some(parent) = parent {
+            self.push_joint(&name, parent, &(body_frame * shift), joint)?;
+        }
+        for child in b.children.iter().filter(|c| c.tag == "body") {
+            self.body(child, Some(&name), class, &to_link)?;
+        }
+        Ok(name)
+    }
+
+    /// A body's name and the class its children take; refuses what a body cannot be here.
+    fn body_header<'b>(
+        &self,
+        b: &'b Elem,
+        a: &Attrs<'_>,
+        inherited: &'b str,
+    ) -> Result<(String, &'b str), MjcfReadError> {
         a.check_known(
             &[
                 "name",
@@ -159,6 +186,8 @@ impl<'a> Walk<'a> {
                 "xyaxes",
                 "zaxis",
                 "childclass",
+                "mocap",
+                "gravcomp",
             ],
             &["user"],
         )?;
@@ -181,16 +210,20 @@ impl<'a> Walk<'a> {
             }
             None => inherited,
         };
-        let body_frame = in_parent * a.frame(&self.compiler)?;
-        let joint = self.body_joint(b, class, parent.is_none())?;
-        // The link frame is the joint frame: the body frame moved to the joint's position.
-        let shift = Isometry3::from_parts(
-            Translation3::from(joint.as_ref().map_or(Vector3::zeros(), |j| j.pos)),
-            UnitQuaternion::identity(),
-        );
-        let to_link = shift.inverse();
+        Ok((name, class))
+    }
+
+    /// The link of a body: its inertial and colliding geoms in the link frame (`to_link` maps
+    /// the body frame into it).
+    fn link(
+        &mut self,
+        b: &Elem,
+        name: &str,
+        class: &str,
+        to_link: &Isometry3<f64>,
+    ) -> Result<urdf_rs::Link, MjcfReadError> {
         let mut link = urdf_rs::Link {
-            name: name.clone(),
+            name: name.to_owned(),
             inertial: urdf_rs::Inertial::default(),
             visual: Vec::new(),
             collision: Vec::new(),
@@ -203,10 +236,10 @@ impl<'a> Walk<'a> {
                         return Err(child.error("a second <inertial> in the body"));
                     }
                     has_inertial = true;
-                    link.inertial = self.inertial(child, &to_link)?;
+                    link.inertial = self.inertial(child, to_link)?;
                 }
                 "geom" => {
-                    if let Some(c) = self.geom(child, class, &to_link)? {
+                    if let Some(c) = self.geom(child, class, to_link)? {
                         link.collision.push(c);
                     }
                 }
@@ -221,14 +254,7 @@ impl<'a> Walk<'a> {
                  computed here, so give the body an <inertial>",
             ));
         }
-        self.robot.links.push(link);
-        if let Some(parent) = parent {
-            self.push_joint(&name, parent, &(body_frame * shift), joint)?;
-        }
-        for child in b.children.iter().filter(|c| c.tag == "body") {
-            self.body(child, Some(&name), class, &to_link)?;
-        }
-        Ok(name)
+        Ok(link)
     }
 
     /// The URDF joint attaching body `child` to link `parent` at `origin`: revolute for a hinge,
