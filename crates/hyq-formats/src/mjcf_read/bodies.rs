@@ -191,6 +191,9 @@ impl<'a> Walk<'a> {
             ],
             &["user"],
         )?;
+        if b.get("class").is_some() {
+            return Err(b.error("a body takes `childclass`, not `class`"));
+        }
         for (key, ok) in [("mocap", "false"), ("gravcomp", "0")] {
             if b.get(key).is_some_and(|v| v.trim() != ok) {
                 return Err(a.error(format!("attribute `{key}` cannot be represented")));
@@ -355,7 +358,12 @@ impl<'a> Walk<'a> {
         };
         match (kind, root) {
             ("free", true) => {
-                a.check_known(&["name", "type", "pos", "axis"], JOINT_IGNORED)?;
+                a.check_known(&["name", "type", "pos", "axis", "align"], JOINT_IGNORED)?;
+                self.notes.push(format!(
+                    "{}: the root body's pose in the world is not read: the profile's spawn \
+                     height places the trunk",
+                    b.at()
+                ));
                 Ok(None)
             }
             ("free", false) => Err(a.error("a free joint is only read on the root body")),
