@@ -238,7 +238,9 @@ pub struct RobotModel {
 }
 
 impl RobotModel {
-    /// Loads a robot from its profile file; the URDF path inside is relative to the profile.
+    /// Loads a robot from its profile file; the URDF path inside is relative to the profile. A
+    /// profile naming an MJCF (`.xml`) file is refused: `hyq_formats::robots::load_profile`
+    /// reads those.
     /// Errors about the robot's content come wrapped in [`ModelError::InProfile`], naming the
     /// file ([`ModelError::innermost`] unwraps them).
     pub fn load(profile_path: impl AsRef<Path>) -> Result<Self, ModelError> {
@@ -256,6 +258,18 @@ impl RobotModel {
             .parent()
             .unwrap_or_else(|| Path::new("."))
             .join(&profile.urdf);
+        if urdf_path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("xml"))
+        {
+            // This crate reads URDF only; hyq-formats reads MJCF and depends on this crate.
+            return Err(ModelError::Urdf {
+                origin: urdf_path.display().to_string(),
+                message: "an .xml robot file is MJCF: load this profile through \
+                          hyq_formats::robots::load_profile (the front ends do)"
+                    .to_owned(),
+            });
+        }
         let urdf_text =
             input::read_text(&urdf_path, &input::URDF).map_err(|source| ModelError::Io {
                 what: "URDF",
