@@ -59,7 +59,7 @@ commands:
                                         the anchors' venv is target/anchor-venv (or --venv DIR,
                                         $HYQ_ANCHOR_VENV); prints medians, min/max and ratios
                                         and writes target/bench-vs-anchors.md
-  fuzz [--seconds N] [--cases N] [--seed S] [config|profile|urdf|policy|records|ledger]...
+  fuzz [--seconds N] [--cases N] [--seed S] [config|profile|urdf|mjcf|policy|records|ledger]...
                                         fuzz every loader of a user's file (all targets, or
                                         those named) for N seconds each (default 60) in a
                                         release build: no panic, abort or hang, a one-line

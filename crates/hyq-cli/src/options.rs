@@ -78,8 +78,8 @@ pub struct EnvArgs {
 /// The robot option (shared by every command that builds an environment, and `hyq model`).
 #[derive(Debug, Clone, Args)]
 pub struct RobotArgs {
-    /// The robot: a bundled robot's name (hyq, anymal_c) or the path to a robot profile (a
-    /// .toml file next to its URDF; see docs/adding-a-robot.md).
+    /// The robot: a bundled robot's name (hyq, anymal_c, go1) or the path to a robot profile
+    /// (a .toml file next to its URDF or MJCF file; see docs/adding-a-robot.md).
     #[arg(long = "robot", value_name = "NAME|PROFILE.toml", default_value = hyq_physics::bundled::DEFAULT)]
     pub choice: String,
 }
@@ -88,7 +88,7 @@ impl RobotArgs {
     /// The chosen robot's model: a bundled one is shared, a profile is loaded. A choice that is
     /// neither, or a profile that cannot be used, is a usage error naming it.
     pub fn model(&self) -> Result<Arc<RobotModel>, Failure> {
-        hyq_physics::resolve_robot(&self.choice).map_err(|e| {
+        hyq_formats::robots::resolve(&self.choice).map_err(|e| {
             usage(format!(
                 "--robot {}: {}",
                 self.choice,

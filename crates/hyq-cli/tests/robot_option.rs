@@ -2,7 +2,8 @@
 //! (default `hyq`) and names the robot in its header and its JSON records: the bundled ANYmal C
 //! by name, and a third robot (an 8-joint, 2-foot fixture with its own joint names) by profile
 //! path, run, bench, soak, render and compare. A robot that is neither a bundled name nor a
-//! usable profile is one error line naming it, status 2, before anything runs.
+//! usable profile is one error line naming it, status 2, before anything runs. The bundled Go1
+//! (from MJCF) runs by name and by its profile's path.
 
 // In tests a failed unwrap is a failed test, with its location.
 #![allow(clippy::unwrap_used)]
@@ -238,4 +239,39 @@ fn compare_runs_every_scenario_on_anymal_c_and_names_it() {
             assert!(md.contains("0.5341) m"), "{md}");
         }
     }
+}
+
+#[test]
+fn go1_from_mjcf_runs_by_name_and_an_mjcf_file_alone_is_one_error_line() {
+    let summary = one_json_line(&hyq_ok(&[
+        "run",
+        "--robot",
+        "go1",
+        "--policy",
+        "stand",
+        "--json",
+        "--set",
+        "task.max_time_steps=50",
+    ]));
+    assert_eq!(summary["robot"], "go1");
+    assert_eq!(summary["steps"], 50);
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let mjcf = root.join("assets/go1/go1.xml");
+    usage_error_naming(
+        &["run", "--robot", mjcf.to_str().unwrap()],
+        &["go1.xml", "through a robot profile"],
+    );
+    // The bundled profile, used by path, reads the MJCF beside it.
+    let profile = root.join("assets/go1/profile.toml");
+    let summary = one_json_line(&hyq_ok(&[
+        "run",
+        "--robot",
+        profile.to_str().unwrap(),
+        "--policy",
+        "stand",
+        "--json",
+        "--set",
+        "task.max_time_steps=5",
+    ]));
+    assert_eq!(summary["robot"], "go1");
 }

@@ -1,6 +1,12 @@
-//! Robot file formats: a loaded [`RobotModel`](hyq_physics::RobotModel) written as text for
-//! simulators and tools outside the project's engines, or for the MuJoCo backend.
+//! Robot file formats: robots read from MuJoCo's MJCF into the
+//! [`RobotModel`](hyq_physics::RobotModel) every engine builds from, and a loaded model written
+//! as text for simulators and tools outside the project's engines, or for the MuJoCo backend.
 //!
+//! - [`mjcf_read`]: an MJCF robot (default classes, includes, hinges, primitive geoms,
+//!   `<position>` and `<motor>` actuators, keyframes) read into the model through hyq-physics'
+//!   own builder; what the model cannot represent is refused by element, attribute and line.
+//! - [`robots`]: the one resolver of the front ends' robot choice: the bundled URDF robots, the
+//!   bundled MJCF robot Go1, and profiles whose robot file is a URDF or an MJCF file.
 //! - [`mjcf`]: the robot as MuJoCo's XML model format, pure text (no MuJoCo needed), with the
 //!   MuJoCo backend's solver and contact settings ([`mjcf::MujocoOptions`]): what the MuJoCo
 //!   backend compiles, what `hyq model --format mjcf` writes and what the MuJoCo-from-Python
@@ -10,10 +16,12 @@
 //! - `xml`: what the writers share (attribute escaping, the number form).
 //!
 //! The formats depend on the model, never the reverse: hyq-physics knows no file format but the
-//! URDF it reads, and no engine. MuJoCo's solver settings live here, beside the `<option>`
+//! URDF it reads, and no engine; so the resolver that knows MJCF robots lives here. MuJoCo's solver settings live here, beside the `<option>`
 //! element they become, rather than in the MuJoCo backend's crate: `hyq model --format mjcf`
 //! writes them on a build without MuJoCo's library, which that crate needs to compile.
 
 pub mod mjcf;
+pub mod mjcf_read;
+pub mod robots;
 pub mod urdf;
 mod xml;

@@ -27,7 +27,8 @@
 //! - `<worldbody>`: the ground (a plane, or a geom of type `hfield` at the grid's centre and
 //!   lowest height, so that MuJoCo's prisms span the grid's heights), then the trunk with a `<freejoint/>` at its spawn pose and
 //!   the rest of the tree below it, each body at its joint frame with one `hinge` joint (`axis`,
-//!   `range`, `damping`), an `<inertial>` (`pos`, `mass`, `fullinertia`) and its shapes (`box`,
+//!   `range`, `damping`, and `armature` when the model has one: an MJCF robot's), an
+//!   `<inertial>` (`pos`, `mass`, `fullinertia`) and its shapes (`box`,
 //!   `sphere`, `capsule`, `cylinder`: MuJoCo's sizes are half-lengths along the shape's z, as in
 //!   [`Shape`]);
 //! - `<actuator>`: by [`Actuators`]: none (the caller writes joint torques itself, e.g. into
@@ -706,11 +707,17 @@ fn write_body(
             let a = joint.axis;
             let _ = writeln!(
                 x,
-                "{inner}<joint name=\"{}\" type=\"hinge\" axis=\"{}\" range=\"{}\" damping=\"{}\"/>",
+                "{inner}<joint name=\"{}\" type=\"hinge\" axis=\"{}\" range=\"{}\" damping=\"{}\"{}/>",
                 attr(&out.joints[j]),
                 nums(&[a.x, a.y, a.z]),
                 nums(&[joint.lower, joint.upper]),
-                nums(&[joint.damping])
+                nums(&[joint.damping]),
+                // Written only when set, so a URDF robot's MJCF is unchanged.
+                if joint.armature > 0.0 {
+                    format!(" armature=\"{}\"", nums(&[joint.armature]))
+                } else {
+                    String::new()
+                }
             );
         }
     }

@@ -9,7 +9,7 @@ use std::time::{Duration, SystemTime, UNIX_EPOCH};
 use hyq_fuzz::{Finding, Plan, Target, corpus_dir, run};
 
 const USAGE: &str = "usage: hyq-fuzz [--seconds N] [--cases N] [--seed S] [TARGET...] \
-                     (targets: config, profile, urdf, policy, records, ledger)";
+                     (targets: config, profile, urdf, mjcf, policy, records, ledger)";
 
 struct Args {
     seconds: f64,

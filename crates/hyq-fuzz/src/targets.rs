@@ -5,6 +5,7 @@ use std::io::Cursor;
 use std::path::Path;
 
 use hyq_env::{EnvConfig, MlpPolicy};
+use hyq_formats::robots::{GO1_MJCF, GO1_PROFILE};
 use hyq_physics::bundled::{ANYMAL_C_PROFILE, ANYMAL_C_URDF, HYQ_PROFILE, HYQ_URDF};
 use rand_chacha::ChaCha8Rng;
 
@@ -20,6 +21,8 @@ pub enum Target {
     Profile,
     /// A URDF, beside the bundled profile of its robot.
     Urdf,
+    /// An MJCF file, beside the bundled Go1's profile (which names it).
+    Mjcf,
     /// A trained policy (`--policy mlp:FILE`, safetensors).
     Policy,
     /// Step records (JSON lines) that `hyq plot` reads and plots.
@@ -57,10 +60,11 @@ const SET_SEED: &str = "#set\ntask.max_time_steps=5\nreset.spawn_xy_m=[1.5, -2]\
 
 impl Target {
     /// Every target, in the order the runs take them.
-    pub const ALL: [Target; 7] = [
+    pub const ALL: [Target; 8] = [
         Target::Config,
         Target::Profile,
         Target::Urdf,
+        Target::Mjcf,
         Target::Policy,
         Target::Records,
         Target::Ledger,
@@ -73,6 +77,7 @@ impl Target {
             Target::Config => "config",
             Target::Profile => "profile",
             Target::Urdf => "urdf",
+            Target::Mjcf => "mjcf",
             Target::Policy => "policy",
             Target::Records => "records",
             Target::Ledger => "ledger",
@@ -92,6 +97,7 @@ impl Target {
             Target::Config => text(&[CONFIG_SEED, SET_SEED, ""]),
             Target::Profile => text(&[HYQ_PROFILE, ANYMAL_C_PROFILE]),
             Target::Urdf => text(&[HYQ_URDF, ANYMAL_C_URDF]),
+            Target::Mjcf => text(&[GO1_MJCF]),
             Target::Policy => vec![POLICY_SEED.to_vec()],
             Target::Records => text(&[RECORD_SEED]),
             Target::Ledger => text(&[LEDGER_SEED]),
@@ -106,7 +112,7 @@ impl Target {
             Target::Config | Target::Profile | Target::Ledger => {
                 mutate::mutate_text(&text, Syntax::Toml, rng)
             }
-            Target::Urdf => mutate::mutate_text(&text, Syntax::Xml, rng),
+            Target::Urdf | Target::Mjcf => mutate::mutate_text(&text, Syntax::Xml, rng),
             Target::Records => mutate::mutate_text(&text, Syntax::Jsonl, rng),
             Target::Policy => mutate::mutate_safetensors(seed, rng),
             Target::Heights => mutate::mutate_height_file(seed, rng),
@@ -120,6 +126,7 @@ impl Target {
             Target::Config => config(input, scratch),
             Target::Profile => robot(input, None, scratch),
             Target::Urdf => robot(HYQ_PROFILE.as_bytes(), Some(input), scratch),
+            Target::Mjcf => mjcf(input, scratch),
             Target::Policy => policy(input, scratch),
             Target::Records => records(input, scratch),
             Target::Ledger => ledger(input, scratch),
@@ -183,6 +190,18 @@ fn robot(profile: &[u8], urdf: Option<&[u8]>, scratch: &Path) -> Result<bool, St
     let path = scratch.join("profile.toml");
     write(&path, &profile)?;
     match hyq_physics::resolve_robot(path.to_str().unwrap_or("profile.toml")) {
+        Err(e) => refused(&e.to_string()),
+        Ok(model) => check::model(&model).map(|()| true),
+    }
+}
+
+/// A robot from an MJCF file written as `go1.xml` beside the bundled Go1's profile, resolved
+/// as a front end resolves `--robot PROFILE` (an `<include>` of itself is a cycle).
+fn mjcf(input: &[u8], scratch: &Path) -> Result<bool, String> {
+    write(&scratch.join("go1.xml"), input)?;
+    let path = scratch.join("go1_profile.toml");
+    write(&path, GO1_PROFILE.as_bytes())?;
+    match hyq_formats::robots::resolve(path.to_str().unwrap_or("go1_profile.toml")) {
         Err(e) => refused(&e.to_string()),
         Ok(model) => check::model(&model).map(|()| true),
     }

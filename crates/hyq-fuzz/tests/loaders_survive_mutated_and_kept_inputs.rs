@@ -47,6 +47,11 @@ fn urdfs() {
 }
 
 #[test]
+fn mjcf_files() {
+    survives(Target::Mjcf, 120);
+}
+
+#[test]
 fn policy_files() {
     survives(Target::Policy, 200);
 }

@@ -166,6 +166,18 @@ pub const JOINT_FRICTION: Bound = Bound {
     why: "as the effort limit: faithful in f32",
 };
 
+/// A joint's armature (MJCF `armature`: rotor inertia reflected through the gearbox, added to
+/// the joint's own inertia about its axis).
+pub const JOINT_ARMATURE: Bound = Bound {
+    quantity: "joint `armature`",
+    unit: "kg·m²",
+    low: 0.0,
+    low_open: false,
+    high: 1e4,
+    high_open: false,
+    why: "a thousand times a large robot's leg inertia about its joint, faithful in f32",
+};
+
 /// A component of a joint's `<axis>` (the axis is normalised; its length must be at least
 /// [`AXIS_MIN_LENGTH`]).
 pub const AXIS_COMPONENT: Bound = Bound {
@@ -402,13 +414,14 @@ pub const SHAPE_COUNT: Bound = Bound {
 };
 
 /// Every bound, in the order `docs/adding-a-robot.md` lists them.
-pub const TABLE: [&Bound; 27] = [
+pub const TABLE: [&Bound; 28] = [
     &JOINT_ANGLE,
     &JOINT_SPAN,
     &JOINT_EFFORT,
     &JOINT_VELOCITY,
     &JOINT_DAMPING,
     &JOINT_FRICTION,
+    &JOINT_ARMATURE,
     &AXIS_COMPONENT,
     &GAIN_KP,
     &GAIN_KD,

@@ -22,9 +22,11 @@
 //!   everything derived from it stays finite (in f64 and in f32); [`input`]: the size-capped
 //!   reader every loader of a user's file goes through, and the checks made before a parser
 //!   runs (XML nesting depth).
-//! - [`bundled`]: the robots shipped in `assets/` (HyQ, the default, and ANYmal C), usable from
-//!   any directory, and [`resolve_robot`], which every front end uses to turn a robot choice
-//!   (a bundled name or a profile path) into a model.
+//! - [`bundled`]: the URDF robots shipped in `assets/` (HyQ, the default, and ANYmal C), usable
+//!   from any directory, and [`resolve_robot`], which turns a robot choice (a bundled name or a
+//!   profile path) into a model. The front ends resolve through `hyq_formats::robots::resolve`,
+//!   which adds the MJCF robots (the bundled Go1, profiles naming an `.xml` file) and falls back
+//!   to this one.
 //!
 //! Nothing here knows HyQ or any physics engine: robot names and counts come from the profile.
 //! Beside this crate, `hyq-formats` writes a loaded robot as MJCF or URDF, and

@@ -49,10 +49,11 @@ fn backend_error(name: &str) -> pyo3::PyErr {
     }
 }
 
-/// The robot chosen by name or profile path (`None`: the default, HyQ).
+/// The robot chosen by name or profile path, the profile's robot file a URDF or an MJCF
+/// file (`None`: the default, HyQ).
 pub fn robot(choice: Option<&str>) -> PyResult<Arc<RobotModel>> {
     let choice = choice.unwrap_or(hyq_physics::bundled::DEFAULT);
-    hyq_physics::resolve_robot(choice).map_err(|e| {
+    hyq_formats::robots::resolve(choice).map_err(|e| {
         PyValueError::new_err(format!("robot: {}", hyq_physics::one_line(&e.to_string())))
     })
 }

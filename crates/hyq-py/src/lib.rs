@@ -72,7 +72,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(spaces::observation_table, m)?)?;
     m.add_function(wrap_pyfunction!(backends, m)?)?;
     m.add_function(wrap_pyfunction!(randomize_info_schema, m)?)?;
-    m.add("ROBOTS", hyq_physics::bundled::NAMES.to_vec())?;
+    m.add("ROBOTS", hyq_formats::robots::NAMES.to_vec())?;
     m.add("DEFAULT_ROBOT", hyq_physics::bundled::DEFAULT)?;
     m.add("DEFAULT_BACKEND", hyq_engines::DEFAULT.name)?;
     // The configuration's tables, which keyword arguments may give as dicts.

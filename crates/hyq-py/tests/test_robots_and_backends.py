@@ -45,6 +45,9 @@ def test_every_bundled_robot_but_the_default_has_its_id() -> None:
     assert gym.make("HyQ-v0").unwrapped.robot == "hyq"
     envs = gym.make_vec("ANYmalC-v0", num_envs=2)
     assert envs.robot == "anymal_c"
+    # Go1 comes from an MJCF file, through the same resolver.
+    assert gym.make("Go1-v0").unwrapped.robot == "go1"
+    assert len(hyq.HyQEnv(robot="go1").joint_names) == 12
 
 
 def test_spaces_and_rows_come_from_the_model() -> None:

@@ -205,6 +205,7 @@ fn make_joint(
         velocity: limits.velocity,
         damping,
         friction,
+        armature: 0.0,
     })
 }
 

@@ -201,6 +201,10 @@ pub struct Joint {
     /// Coulomb joint friction (N·m, URDF `<dynamics friction>`), applied by the shared
     /// actuator (see [`crate::actuator`]), so identically on every backend.
     pub friction: f64,
+    /// Armature (kg·m²): rotor inertia added to the joint's inertia about its axis. URDF has
+    /// none (0); an MJCF robot's `armature` sets it ([`RobotModel::with_joint_armature`]).
+    /// The MuJoCo backend honours it; rapier and DART have no such term and leave it out.
+    pub armature: f64,
 }
 
 /// A set of collision shapes whose ground contact is reported (a foot, or the trunk).
@@ -234,7 +238,9 @@ pub struct RobotModel {
 }
 
 impl RobotModel {
-    /// Loads a robot from its profile file; the URDF path inside is relative to the profile.
+    /// Loads a robot from its profile file; the URDF path inside is relative to the profile. A
+    /// profile naming an MJCF (`.xml`) file is refused: `hyq_formats::robots::load_profile`
+    /// reads those.
     /// Errors about the robot's content come wrapped in [`ModelError::InProfile`], naming the
     /// file ([`ModelError::innermost`] unwraps them).
     pub fn load(profile_path: impl AsRef<Path>) -> Result<Self, ModelError> {
@@ -252,6 +258,18 @@ impl RobotModel {
             .parent()
             .unwrap_or_else(|| Path::new("."))
             .join(&profile.urdf);
+        if urdf_path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("xml"))
+        {
+            // This crate reads URDF only; hyq-formats reads MJCF and depends on this crate.
+            return Err(ModelError::Urdf {
+                origin: urdf_path.display().to_string(),
+                message: "an .xml robot file is MJCF: load this profile through \
+                          hyq_formats::robots::load_profile (the front ends do)"
+                    .to_owned(),
+            });
+        }
         let urdf_text =
             input::read_text(&urdf_path, &input::URDF).map_err(|source| ModelError::Io {
                 what: "URDF",
@@ -305,6 +323,35 @@ impl RobotModel {
         })?;
         check_counts(&robot)?;
         Self::from_urdf_robot(&robot, profile)
+    }
+
+    /// Builds a robot from an already parsed URDF description and a parsed profile: what a
+    /// reader of another robot format (MJCF, in `hyq-formats`) hands over after converting its
+    /// file. The description's links, joints and collision shapes are counted against
+    /// [`crate::bounds`] first, as for URDF text.
+    pub fn from_urdf_model(robot: &urdf_rs::Robot, profile: &Profile) -> Result<Self, ModelError> {
+        check_counts(robot)?;
+        Self::from_urdf_robot(robot, profile)
+    }
+
+    /// A copy with the given joints' armature (kg·m²) set, as `(joint index, armature)` pairs,
+    /// each checked against [`bounds::JOINT_ARMATURE`].
+    ///
+    /// # Panics
+    /// If a joint index is out of range.
+    pub fn with_joint_armature(&self, armature: &[(usize, f64)]) -> Result<Self, ModelError> {
+        let mut copy = self.clone();
+        for &(j, a) in armature {
+            let joint = &mut copy.joints[j];
+            joint.armature =
+                bounds::JOINT_ARMATURE
+                    .check(a)
+                    .map_err(|reason| ModelError::InvalidJoint {
+                        joint: joint.urdf_name.clone(),
+                        reason: format!("armature: {reason}"),
+                    })?;
+        }
+        Ok(copy)
     }
 
     /// Builds the model phase by phase: the profile's own values, the URDF's index and root,

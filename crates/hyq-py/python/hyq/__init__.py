@@ -9,7 +9,8 @@ Importing this package registers ``HyQ-v0``::
     envs = gym.make_vec("HyQ-v0", num_envs=8)   # the Rust-batched vector env (rayon)
     env = gym.make("HyQ-v0", robot="anymal_c", backend="mujoco")  # another robot, engine
 
-and one id per bundled robot (``ANYmalC-v0`` is ``HyQ-v0`` with ``robot="anymal_c"``).
+and one id per bundled robot (``ANYmalC-v0`` is ``HyQ-v0`` with ``robot="anymal_c"``, ``Go1-v0``
+with ``robot="go1"``).
 
 ``hyq.HyQEnv`` is the single environment, ``hyq.HyQVectorEnv`` the vector env and
 ``hyq.sb3.HyQVecEnv`` an adapter for Stable-Baselines3 (import ``hyq.sb3`` only where
@@ -40,7 +41,7 @@ REWARD_TERMS: tuple[str, ...] = tuple(_core.REWARD_TERMS)
 
 #: The registered id of each bundled robot other than the default: the same env with its
 #: ``robot``.
-ROBOT_IDS = {"anymal_c": "ANYmalC-v0"}
+ROBOT_IDS = {"anymal_c": "ANYmalC-v0", "go1": "Go1-v0"}
 
 #: The registered ``max_episode_steps``: the core's default t_max (``max_time_steps``), so that
 #: ``env.spec.max_episode_steps`` is the episode length the core enforces.

@@ -1,0 +1,173 @@
+//! Every robot a front end can name, whatever its file format: the bundled URDF robots of
+//! [`hyq_physics::bundled`], the bundled MJCF robot Go1 (`assets/go1/`), and robot profiles
+//! whose robot file is a URDF or an MJCF file (`urdf = "robot.xml"`: a `.xml` robot file is
+//! read as MJCF). [`resolve`] is what the command line and the Python bindings call, so they
+//! accept the same choices and give the same errors.
+//!
+//! | name | robot | source |
+//! |---|---|---|
+//! | `hyq` (the default) | IIT's HyQ, 86.8 kg, 12 joints | `assets/hyq/` (URDF) |
+//! | `anymal_c` | ANYbotics' ANYmal C, 52.1 kg, 12 joints | `assets/anymal_c/` (URDF) |
+//! | `go1` | Unitree Go1, 12.7 kg, 12 joints | `assets/go1/` (MJCF, MuJoCo Playground) |
+
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, OnceLock};
+
+use hyq_physics::{ModelError, Profile, RobotModel, bundled, input};
+
+use crate::mjcf_read::{self, MjcfReadError, MjcfRobot};
+
+/// The text of `assets/go1/go1.xml`.
+pub const GO1_MJCF: &str = include_str!("../../../assets/go1/go1.xml");
+
+/// The text of `assets/go1/profile.toml`.
+pub const GO1_PROFILE: &str = include_str!("../../../assets/go1/profile.toml");
+
+/// Every bundled robot's name: [`hyq_physics::bundled::NAMES`] (the URDF robots, the default
+/// first), then the MJCF ones.
+pub const NAMES: [&str; 3] = ["hyq", "anymal_c", "go1"];
+
+/// Why a robot could not be had.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum RobotError {
+    /// The model could not be built (or a URDF robot's files read).
+    #[error(transparent)]
+    Model(#[from] ModelError),
+    /// The MJCF file could not be read.
+    #[error(transparent)]
+    Mjcf(#[from] MjcfReadError),
+    /// A profile file whose robot could not be had: the profile's path, then why.
+    #[error("robot profile {}: {source}", path.display())]
+    InProfile {
+        /// The profile file.
+        path: PathBuf,
+        /// What was wrong with it or its robot file.
+        #[source]
+        source: Box<RobotError>,
+    },
+    /// An MJCF file given where a profile is expected.
+    #[error(
+        "{}: an MJCF robot is chosen through a robot profile that names it (`urdf = \"{}\"`), \
+         as a URDF robot is; see docs/adding-a-robot.md",
+        path.display(),
+        path.file_name().map_or_else(String::new, |n| n.to_string_lossy().into_owned())
+    )]
+    NeedsProfile {
+        /// The MJCF file given.
+        path: PathBuf,
+    },
+    /// A choice that is neither a bundled robot nor a path.
+    #[error(
+        "unknown robot {choice:?}: not a bundled robot ({}) nor a path to a robot profile (a \
+         .toml file next to its URDF or MJCF file)",
+        NAMES.join(", ")
+    )]
+    Unknown {
+        /// What was asked for.
+        choice: String,
+    },
+}
+
+/// The bundled Go1 as read from its MJCF (the notes and keyframes with it).
+pub fn go1_mjcf() -> Result<MjcfRobot, MjcfReadError> {
+    mjcf_read::read_str(GO1_MJCF, "bundled assets/go1/go1.xml")
+}
+
+/// The bundled Go1's profile.
+pub fn go1_profile() -> Result<Profile, ModelError> {
+    Profile::from_toml_str(GO1_PROFILE, "bundled assets/go1/profile.toml")
+}
+
+/// The bundled Go1 as URDF text: the description its model is built from
+/// ([`MjcfRobot::urdf_description`]), before fixed bodies are lumped; what the conformance
+/// kit's checks against a URDF read independently.
+pub fn go1_urdf() -> Result<String, RobotError> {
+    let robot = go1_mjcf()?.urdf_description()?;
+    urdf_rs::write_to_string(&robot).map_err(|e| {
+        RobotError::Mjcf(MjcfReadError(format!(
+            "bundled Go1: its URDF description does not write: {e}"
+        )))
+    })
+}
+
+/// Builds the bundled Go1 afresh (see [`by_name`] for the shared instance).
+pub fn load_go1() -> Result<RobotModel, RobotError> {
+    Ok(go1_mjcf()?.model(&go1_profile()?)?)
+}
+
+/// Bundled robot `name` (any of [`NAMES`]), parsed once per process and shared; `None` if
+/// there is no such robot.
+pub fn by_name(name: &str) -> Option<Arc<RobotModel>> {
+    if let Some(model) = bundled::by_name(name) {
+        return Some(model);
+    }
+    static GO1: OnceLock<Arc<RobotModel>> = OnceLock::new();
+    (name == "go1").then(|| {
+        GO1.get_or_init(|| {
+            // The bundled assets are compiled in and loaded by this crate's tests
+            // (`tests/bundled_go1.rs`), so a failure here is a broken build, not bad input.
+            #[allow(clippy::expect_used)]
+            Arc::new(load_go1().expect("the bundled Go1 assets are valid"))
+        })
+        .clone()
+    })
+}
+
+/// A robot chosen by the user: a bundled robot's name ([`NAMES`]) or the path to a robot
+/// profile whose robot file is a URDF or an MJCF (`.xml`) file. Bundled models are shared; a
+/// profile is loaded afresh.
+pub fn resolve(choice: &str) -> Result<Arc<RobotModel>, RobotError> {
+    if let Some(model) = by_name(choice) {
+        return Ok(model);
+    }
+    let path = Path::new(choice);
+    let looks_like_path = path.extension().is_some() || choice.contains(['/', '\\']);
+    if !looks_like_path {
+        return Err(RobotError::Unknown {
+            choice: choice.to_owned(),
+        });
+    }
+    if is_mjcf(path) {
+        return Err(RobotError::NeedsProfile {
+            path: path.to_owned(),
+        });
+    }
+    load_profile(path).map(Arc::new)
+}
+
+/// Whether a robot file is read as MJCF: its extension is `.xml` (any case).
+pub fn is_mjcf(path: &Path) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("xml"))
+}
+
+/// Loads a robot from its profile file, its robot file (URDF, or MJCF for `.xml`) relative to
+/// the profile. Errors name the profile.
+pub fn load_profile(profile_path: &Path) -> Result<RobotModel, RobotError> {
+    let text =
+        input::read_text(profile_path, &input::ROBOT_PROFILE).map_err(|source| ModelError::Io {
+            what: "robot profile",
+            path: profile_path.to_owned(),
+            source,
+        })?;
+    let profile = Profile::from_toml_str(&text, &profile_path.display().to_string())?;
+    let robot_file = profile_path
+        .parent()
+        .unwrap_or_else(|| Path::new("."))
+        .join(&profile.urdf);
+    if !is_mjcf(&robot_file) {
+        return Ok(RobotModel::load(profile_path)?);
+    }
+    let built = mjcf_read::read_file(&robot_file)
+        .map_err(RobotError::from)
+        .and_then(|robot| Ok(robot.model(&profile)?));
+    built.map_err(|e| match e {
+        // These already name the MJCF file.
+        RobotError::Mjcf(_) => e,
+        other => RobotError::InProfile {
+            path: profile_path.to_owned(),
+            source: Box::new(other),
+        },
+    })
+}
