@@ -29,6 +29,7 @@ use serde::Serialize;
 
 use crate::error::CompareError;
 use crate::metrics::{Divergence, compare_trajectories};
+use crate::plot::{COLOURS, PAIR_COLOURS, Panel, plot_panels};
 use crate::randomized::{RandomizedSide, drew_alike};
 use crate::report::{PLOT_FILE, prepare_output_dir, sig, thin, write_report_files};
 use crate::run::{Trajectory, build_env, run_episode, run_script};
@@ -568,7 +569,7 @@ impl PolicyReport {
         let dir = dir.as_ref();
         prepare_output_dir(dir)?;
         write_report_files(dir, self.to_json(), self.to_markdown(command), |png| {
-            crate::plot::plot_policy(self, png)
+            plot_policy(self, png)
         })
     }
 
@@ -817,6 +818,74 @@ fn reasons(r: &[Reason]) -> String {
     } else {
         r.iter().map(|r| r.as_str()).collect::<Vec<_>>().join(" + ")
     }
+}
+
+/// Draws a policy comparison's plot into `path` (PNG, [`PLOT_SIZE`]): every engine's
+/// first-episode trunk x closed loop, the same under the replayed actions, and every pair's
+/// trunk position divergence over the first episodes.
+pub fn plot_policy(report: &PolicyReport, path: &Path) -> Result<(), CompareError> {
+    let labels: Vec<&str> = report.sides.iter().map(|s| s.label.as_str()).collect();
+    let title = format!(
+        "{}: policy, closed loop, seed {}",
+        labels.join(" vs "),
+        report.seed
+    );
+    let xs: Vec<Vec<f64>> = report
+        .traces
+        .iter()
+        .map(|t| t.position_m.iter().map(|p| p[0]).collect())
+        .collect();
+    let lines: Vec<(&str, &[f64], &[f64])> = report
+        .traces
+        .iter()
+        .zip(&xs)
+        .map(|(t, x)| (t.label.as_str(), t.time_s.as_slice(), x.as_slice()))
+        .collect();
+    let (closed, replayed) = lines.split_at(report.sides.len().min(lines.len()));
+    let source = report
+        .replay
+        .as_ref()
+        .map_or(String::new(), |r| format!(" ({}'s actions)", r.source));
+    let names: Vec<String> = report
+        .pairs
+        .iter()
+        .map(|p| format!("{} vs {}", p.labels[0], p.labels[1]))
+        .collect();
+    let times: Vec<Vec<f64>> = report
+        .pairs
+        .iter()
+        .map(|p| {
+            (0..p.divergence_m.len())
+                .map(|k| k as f64 * report.env_dt_s)
+                .collect()
+        })
+        .collect();
+    let d: Vec<(&str, &[f64], &[f64])> = names
+        .iter()
+        .zip(&times)
+        .zip(&report.pairs)
+        .map(|((n, t), p)| (n.as_str(), t.as_slice(), p.divergence_m.as_slice()))
+        .collect();
+    let open_loop = format!("trunk x, open loop{source}");
+    plot_panels(
+        path,
+        &title,
+        [
+            Panel::new(
+                "trunk x, closed loop (first episode)",
+                "x (m)",
+                closed,
+                &COLOURS,
+            ),
+            Panel::new(&open_loop, "x (m)", replayed, &COLOURS),
+            Panel::new(
+                "trunk position divergence per pair, closed loop",
+                "m",
+                &d,
+                &PAIR_COLOURS,
+            ),
+        ],
+    )
 }
 
 #[cfg(test)]

@@ -136,9 +136,11 @@ impl<'a> Sample<'a> {
             return Err(StatsError::NonFinite { index, value });
         }
         let divide_first = !values.iter().map(|v| v.abs()).sum::<f64>().is_finite();
-        let range = values.iter().fold([f64::INFINITY, f64::NEG_INFINITY], |[lo, hi], &v| {
-            [lo.min(v), hi.max(v)]
-        });
+        let range = values
+            .iter()
+            .fold([f64::INFINITY, f64::NEG_INFINITY], |[lo, hi], &v| {
+                [lo.min(v), hi.max(v)]
+            });
         Ok(Self {
             values,
             divide_first,
@@ -211,7 +213,7 @@ fn quantile(sorted: &[f64], p: f64) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::{quantile, ratio_of_means_with, Pairing};
+    use super::{Pairing, quantile, ratio_of_means_with};
     use crate::StatsError;
 
     #[test]
@@ -227,7 +229,10 @@ mod tests {
     #[test]
     fn a_denominator_that_can_be_zero_is_refused() {
         let e = ratio_of_means_with(&[1.0, 2.0], &[-1.0, 1.5], Pairing::Paired, 0, 200);
-        assert!(matches!(e, Err(StatsError::DenominatorSpansZero { .. })), "{e:?}");
+        assert!(
+            matches!(e, Err(StatsError::DenominatorSpansZero { .. })),
+            "{e:?}"
+        );
         let e = ratio_of_means_with(&[1.0], &[0.0], Pairing::Independent, 0, 200);
         assert_eq!(e, Err(StatsError::DenominatorSpansZero { mean: 0.0 }));
         let e = ratio_of_means_with(&[1.0, 2.0], &[1.0], Pairing::Paired, 0, 200);

@@ -27,8 +27,16 @@ pub fn wilson(k: u64, n: u64) -> Result<Rate, StatsError> {
     let half = Z95 * (p * (1.0 - p) / nf + z2 / (4.0 * nf * nf)).sqrt() / denominator;
     // At k = 0 (k = n) the lower (upper) end is 0 (1) in exact arithmetic; rounding must not
     // put it a hair beside, nor leave p̂ outside.
-    let lo = if k == 0 { 0.0 } else { (centre - half).clamp(0.0, p) };
-    let hi = if k == n { 1.0 } else { (centre + half).clamp(p, 1.0) };
+    let lo = if k == 0 {
+        0.0
+    } else {
+        (centre - half).clamp(0.0, p)
+    };
+    let hi = if k == n {
+        1.0
+    } else {
+        (centre + half).clamp(p, 1.0)
+    };
     Ok(Rate {
         mean: p,
         ci95: [lo, hi],

@@ -77,14 +77,22 @@ fn the_half_width_shrinks_as_one_over_root_n() {
             .sum::<f64>()
             / 60.0
     };
-    let h = [mean_half_width(25), mean_half_width(100), mean_half_width(400)];
+    let h = [
+        mean_half_width(25),
+        mean_half_width(100),
+        mean_half_width(400),
+    ];
     for w in h.windows(2) {
         let ratio = w[0] / w[1];
         assert!((1.85..=2.15).contains(&ratio), "half-widths {h:?}");
     }
     // And it is near the normal theory's 1.96/√n (the percentile form is a little narrower).
     let expected = 1.96 / 20.0;
-    assert!((h[2] / expected - 1.0).abs() < 0.06, "{} vs {expected}", h[2]);
+    assert!(
+        (h[2] / expected - 1.0).abs() < 0.06,
+        "{} vs {expected}",
+        h[2]
+    );
 }
 
 #[test]
@@ -110,7 +118,10 @@ fn a_ratio_of_clearly_different_means_excludes_one_and_of_equal_ones_does_not() 
     assert!(r.ci95[0] <= r.mean && r.mean <= r.ci95[1]);
     let same = ratio_of_means(&a, &a, Pairing::Paired, 0).unwrap_or_else(|e| panic!("{e}"));
     // Paired resampling of a sample with itself: every resampled ratio is exactly 1.
-    assert_eq!((same.mean, same.ci95, same.excludes_one), (1.0, [1.0, 1.0], false));
+    assert_eq!(
+        (same.mean, same.ci95, same.excludes_one),
+        (1.0, [1.0, 1.0], false)
+    );
 }
 
 #[test]
