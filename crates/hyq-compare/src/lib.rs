@@ -32,6 +32,7 @@
 
 mod compare;
 mod error;
+mod estimates;
 pub mod ledger;
 pub mod metrics;
 mod multi;
@@ -44,6 +45,7 @@ mod scenario;
 
 pub use compare::{ComparisonSpec, DEFAULT_ONE_STEP_STATES, Plan, Side, compare, parse_override};
 pub use error::CompareError;
+pub use estimates::{PairRatios, Rates, Stats};
 pub use ledger::{Known, Ledger, Metric, ScenarioScope, ToleranceSource};
 pub use multi::{MultiReport, PairSummary, compare_all, plot_many};
 pub use plot::PLOT_SIZE;

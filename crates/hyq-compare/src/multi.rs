@@ -311,7 +311,7 @@ fn sig(v: f64) -> String {
     crate::report::sig(v)
 }
 
-/// Draws a several-backend report's plot into `path` (PNG, [`PLOT_SIZE`]): every backend's
+/// Draws a several-backend report's plot into `path` (PNG, [`crate::PLOT_SIZE`]): every backend's
 /// trunk x and z, and every pair's trunk position divergence.
 pub fn plot_many(report: &MultiReport, path: &Path) -> Result<(), CompareError> {
     let labels: Vec<&str> = report.sides.iter().map(|s| s.label.as_str()).collect();

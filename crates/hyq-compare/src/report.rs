@@ -515,7 +515,7 @@ pub fn prepare_output_dir(dir: &Path) -> Result<(), CompareError> {
     std::fs::remove_file(&probe).map_err(|e| fail(&probe, e))
 }
 
-/// Draws the report's plot into `path` (PNG, [`PLOT_SIZE`]).
+/// Draws the report's plot into `path` (PNG, [`crate::PLOT_SIZE`]).
 pub fn plot_trunk_x_z(report: &Report, path: &Path) -> Result<(), CompareError> {
     let s = &report.series;
     let [a, b] = &report.sides;
