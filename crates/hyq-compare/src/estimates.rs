@@ -192,7 +192,10 @@ mod tests {
         let s = Stats::of(&[1.0, 2.0, 3.0], 0);
         assert_eq!((s.mean, s.sd, s.min, s.max), (2.0, 1.0, 1.0, 3.0));
         let [lo, hi] = s.ci95.unwrap_or_else(|| panic!("an interval"));
-        assert!((1.0..2.0).contains(&lo) && hi > 2.0 && hi <= 3.0, "{lo} {hi}");
+        assert!(
+            (1.0..2.0).contains(&lo) && hi > 2.0 && hi <= 3.0,
+            "{lo} {hi}"
+        );
         assert_eq!(s, Stats::of(&[1.0, 2.0, 3.0], 0), "seeded: the same again");
         let one = Stats::of(&[4.0], 0);
         assert_eq!((one.mean, one.ci95, one.sd), (4.0, Some([4.0, 4.0]), 0.0));
