@@ -860,14 +860,19 @@ pub fn plot_policy(report: &PolicyReport, path: &Path) -> Result<(), CompareErro
         .iter()
         .map(|t| t.position_m.iter().map(|p| p[0]).collect())
         .collect();
-    // The closed-loop lines' legends carry each engine's mean travel over all episodes with
-    // its 95 % interval.
+    // The closed-loop lines' legends carry each engine's mean travel over all its episodes
+    // (not only the first, which the line shows) with its 95 % interval.
     let legends: Vec<String> = report
         .traces
         .iter()
         .enumerate()
         .map(|(k, t)| match report.sides.get(k) {
-            Some(s) => format!("{}: travel {} m", t.label, s.travel_m.text(2)),
+            Some(s) => format!(
+                "{}; travel, mean of {} episodes: {} m",
+                t.label,
+                s.episodes.len(),
+                s.travel_m.text(2)
+            ),
             None => t.label.clone(),
         })
         .collect();
