@@ -1,4 +1,4 @@
-//! The percentile bootstrap (Efron & Tibshirani 1993, §13.3), seeded: B resamples of the
+//! The percentile bootstrap (Efron & Tibshirani 1993, section 13.3), seeded: B resamples of the
 //! episodes with replacement, the statistic of each, and the 2.5 % and 97.5 % quantiles of
 //! those B values as the 95 % interval. The percentile form is rliable's default for its
 //! interval estimates; it needs no distributional assumption and is exact for a constant
