@@ -5,15 +5,14 @@ use std::sync::Arc;
 
 use hyq_env::EnvConfig;
 use hyq_physics::{Backend, RobotModel};
-use serde::Serialize;
 
 use crate::error::CompareError;
-use crate::ledger::{Ledger, Metric, ToleranceSource};
+use crate::ledger::{Ledger, Metric};
 use crate::metrics::{
     OneStepErrors, OneStepSummary, TrajectoryComparison, compare_trajectories, one_step_errors,
     sample_indices, summarise_one_step,
 };
-use crate::report::{Report, Series, SideReport};
+use crate::report::{Check, OneStepReport, Report, Series, SideReport};
 use crate::run::{Trajectory, build_env, one_step, run_script, standing_height};
 use crate::scenario::{Scenario, check_seconds};
 
@@ -383,38 +382,6 @@ pub fn compare<A: Backend, B: Backend>(
     ledger: &Ledger,
 ) -> Result<Report, CompareError> {
     Plan::new(model, spec)?.compare_two::<A, B>(labels, ledger)
-}
-
-/// The one-step comparison's part of the report.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct OneStepReport {
-    /// Shared states compared.
-    pub states: usize,
-    /// Of those, states where either backend had a foot or the trunk on the ground during the
-    /// sub-step.
-    pub states_in_contact: usize,
-    /// Physics sub-steps taken from each shared state (1).
-    pub sub_steps: u32,
-    /// Per quantity: max, median, max without contact.
-    pub summary: Vec<OneStepSummary>,
-    /// Per state.
-    pub per_state: Vec<OneStepErrors>,
-}
-
-/// One metric checked against the ledger.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct Check {
-    /// The metric.
-    pub metric: Metric,
-    /// Its measured value.
-    pub value: f64,
-    /// Its tolerance.
-    pub tolerance: f64,
-    /// value ≤ tolerance.
-    pub within: bool,
-    /// Where the tolerance came from.
-    #[serde(flatten)]
-    pub source: ToleranceSource,
 }
 
 fn side_report(

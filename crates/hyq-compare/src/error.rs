@@ -7,7 +7,7 @@ use thiserror::Error;
 /// Why a comparison could not be made or written.
 #[derive(Debug, Error)]
 pub enum CompareError {
-    /// A scenario name that is not one of [`crate::Scenario::NAMES`].
+    /// A scenario name that is not one of the scenarios' names (`Scenario::NAMES`).
     #[error("unknown scenario {name:?}: expected one of stand, fall, limit, trot, random, reach")]
     UnknownScenario {
         /// The name given.

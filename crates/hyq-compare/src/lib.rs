@@ -32,6 +32,7 @@
 
 mod compare;
 mod error;
+mod estimates;
 pub mod ledger;
 pub mod metrics;
 mod multi;
@@ -42,19 +43,17 @@ mod report;
 pub mod run;
 mod scenario;
 
-pub use compare::{
-    Check, ComparisonSpec, DEFAULT_ONE_STEP_STATES, OneStepReport, Plan, Side, compare,
-    parse_override,
-};
+pub use compare::{ComparisonSpec, DEFAULT_ONE_STEP_STATES, Plan, Side, compare, parse_override};
 pub use error::CompareError;
+pub use estimates::{PairRatios, Rates, Stats};
 pub use ledger::{Known, Ledger, Metric, ScenarioScope, ToleranceSource};
-pub use multi::{MultiReport, PairSummary, compare_all};
-pub use plot::{PLOT_SIZE, plot_many, plot_policy, plot_trunk_x_z};
-pub use policy::{PolicyPlan, PolicyReport, PolicySpec};
+pub use multi::{MultiReport, PairSummary, compare_all, plot_many};
+pub use plot::PLOT_SIZE;
+pub use policy::{PolicyPlan, PolicyReport, PolicySpec, plot_policy};
 pub use randomized::RandomizedSide;
 pub use report::{
-    JSON_FILE, MARKDOWN_FILE, PLOT_FILE, Report, SERIES_POINTS, Series, SideReport,
-    prepare_output_dir,
+    Check, JSON_FILE, MARKDOWN_FILE, OneStepReport, PLOT_FILE, Report, SERIES_POINTS, Series,
+    SideReport, plot_trunk_x_z, prepare_output_dir,
 };
 pub use scenario::{
     LIMIT_ACTION, MAX_SECONDS, REACH_ACCEPTED_ERROR_M, REACH_AHEAD_M, REACH_BONUS, REACH_LATERAL_M,

@@ -12,6 +12,7 @@ use crate::compare::{Plan, Side};
 use crate::error::CompareError;
 use crate::ledger::Ledger;
 use crate::metrics::Divergence;
+use crate::plot::{COLOURS, PAIR_COLOURS, Panel, plot_panels};
 use crate::report::{
     MARKDOWN_FILE, PLOT_FILE, Report, SideReport, prepare_output_dir, write_report_files,
 };
@@ -172,7 +173,7 @@ impl MultiReport {
             Err(e) => unreachable!("a comparison report serialises to JSON: {e}"),
         };
         write_report_files(dir, text, self.to_markdown(command), |png| {
-            crate::plot::plot_many(self, png)
+            plot_many(self, png)
         })
     }
 
@@ -308,4 +309,51 @@ impl MultiReport {
 /// A number with 4 significant digits (as the pair reports write them).
 fn sig(v: f64) -> String {
     crate::report::sig(v)
+}
+
+/// Draws a several-backend report's plot into `path` (PNG, [`crate::PLOT_SIZE`]): every backend's
+/// trunk x and z, and every pair's trunk position divergence.
+pub fn plot_many(report: &MultiReport, path: &Path) -> Result<(), CompareError> {
+    let labels: Vec<&str> = report.sides.iter().map(|s| s.label.as_str()).collect();
+    let title = format!(
+        "{}: scenario {}, seed {}",
+        labels.join(" vs "),
+        report.scenario,
+        report.seed
+    );
+    let x: Vec<(&str, &[f64], &[f64])> = labels
+        .iter()
+        .zip(&report.traces)
+        .map(|(l, t)| (*l, t[0].as_slice(), t[1].as_slice()))
+        .collect();
+    let z: Vec<(&str, &[f64], &[f64])> = labels
+        .iter()
+        .zip(&report.traces)
+        .map(|(l, t)| (*l, t[0].as_slice(), t[2].as_slice()))
+        .collect();
+    let names: Vec<String> = report
+        .pairs
+        .iter()
+        .map(|p| format!("{} vs {}", p.labels[0], p.labels[1]))
+        .collect();
+    let d: Vec<(&str, &[f64], &[f64])> = names
+        .iter()
+        .zip(&report.reports)
+        .map(|(n, r)| {
+            (
+                n.as_str(),
+                r.series.divergence_time_s.as_slice(),
+                r.series.trunk_position_m.as_slice(),
+            )
+        })
+        .collect();
+    plot_panels(
+        path,
+        &title,
+        [
+            Panel::new("trunk x", "x (m)", &x, &COLOURS),
+            Panel::new("trunk z", "z (m)", &z, &COLOURS),
+            Panel::new("trunk position divergence per pair", "m", &d, &PAIR_COLOURS),
+        ],
+    )
 }

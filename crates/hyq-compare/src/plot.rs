@@ -1,5 +1,6 @@
-//! The comparison plot: trunk x and z over time for both backends (two stacked panels), and the
-//! trunk position divergence |C_A − C_B| below them, drawn with plotters into an RGB buffer and
+//! The comparison plots' frame: a title over three stacked panels of lines over time (each
+//! report module fills them: trunk x and z per backend and the trunk position divergence
+//! |C_A − C_B|, or a policy's closed-loop and replayed runs), drawn with plotters into an RGB buffer and
 //! written as a PNG at the encoder's high compression (the plots are committed to the
 //! repository, so they are kept small: about 100 KB).
 
@@ -11,9 +12,6 @@ use plotters::prelude::*;
 use plotters::style::FontStyle;
 
 use crate::error::CompareError;
-use crate::multi::MultiReport;
-use crate::policy::PolicyReport;
-use crate::report::Report;
 
 /// The plot's size (px).
 pub const PLOT_SIZE: (u32, u32) = (900, 780);
@@ -25,18 +23,18 @@ const FAMILY: &str = "hyq-compare-sans";
 /// DejaVu Sans, the subset hyq-render bundles (its `assets/fonts/`, with the licence).
 const SANS: &[u8] = hyq_render::SANS;
 
-const COLOURS: [RGBColor; 3] = [
+pub(crate) const COLOURS: [RGBColor; 3] = [
     RGBColor(0x4e, 0x79, 0xa7),
     RGBColor(0xe1, 0x57, 0x59),
     RGBColor(0xf2, 0x8e, 0x2b),
 ];
 /// The pairs' divergence lines in a plot of three or more backends.
-const PAIR_COLOURS: [RGBColor; 3] = [
+pub(crate) const PAIR_COLOURS: [RGBColor; 3] = [
     GREEN,
     RGBColor(0xb0, 0x7a, 0xa1),
     RGBColor(0x76, 0xb7, 0xb2),
 ];
-const GREEN: RGBColor = RGBColor(0x59, 0xa1, 0x4f);
+pub(crate) const GREEN: RGBColor = RGBColor(0x59, 0xa1, 0x4f);
 const INK: RGBColor = RGBColor(0x2b, 0x2f, 0x36);
 
 fn font_registered() -> Result<(), String> {
@@ -118,172 +116,9 @@ fn panel(
         .map_err(|e| e.to_string())
 }
 
-/// Draws the report's plot into `path` (PNG, [`PLOT_SIZE`]).
-pub fn plot_trunk_x_z(report: &Report, path: &Path) -> Result<(), CompareError> {
-    let s = &report.series;
-    let [a, b] = &report.sides;
-    let title = format!(
-        "{} vs {}: scenario {}, seed {}",
-        a.label, b.label, report.scenario, report.seed
-    );
-    let x = [
-        (
-            a.label.as_str(),
-            s.time_s[0].as_slice(),
-            s.x_m[0].as_slice(),
-        ),
-        (
-            b.label.as_str(),
-            s.time_s[1].as_slice(),
-            s.x_m[1].as_slice(),
-        ),
-    ];
-    let z = [
-        (
-            a.label.as_str(),
-            s.time_s[0].as_slice(),
-            s.z_m[0].as_slice(),
-        ),
-        (
-            b.label.as_str(),
-            s.time_s[1].as_slice(),
-            s.z_m[1].as_slice(),
-        ),
-    ];
-    let d = [(
-        "divergence",
-        s.divergence_time_s.as_slice(),
-        s.trunk_position_m.as_slice(),
-    )];
-    plot_panels(
-        path,
-        &title,
-        [
-            Panel::new("trunk x", "x (m)", &x, &COLOURS),
-            Panel::new("trunk z", "z (m)", &z, &COLOURS),
-            Panel::new("trunk position divergence |C_A − C_B|", "m", &d, &[GREEN]),
-        ],
-    )
-}
-
-/// Draws a several-backend report's plot into `path` (PNG, [`PLOT_SIZE`]): every backend's
-/// trunk x and z, and every pair's trunk position divergence.
-pub fn plot_many(report: &MultiReport, path: &Path) -> Result<(), CompareError> {
-    let labels: Vec<&str> = report.sides.iter().map(|s| s.label.as_str()).collect();
-    let title = format!(
-        "{}: scenario {}, seed {}",
-        labels.join(" vs "),
-        report.scenario,
-        report.seed
-    );
-    let x: Vec<(&str, &[f64], &[f64])> = labels
-        .iter()
-        .zip(&report.traces)
-        .map(|(l, t)| (*l, t[0].as_slice(), t[1].as_slice()))
-        .collect();
-    let z: Vec<(&str, &[f64], &[f64])> = labels
-        .iter()
-        .zip(&report.traces)
-        .map(|(l, t)| (*l, t[0].as_slice(), t[2].as_slice()))
-        .collect();
-    let names: Vec<String> = report
-        .pairs
-        .iter()
-        .map(|p| format!("{} vs {}", p.labels[0], p.labels[1]))
-        .collect();
-    let d: Vec<(&str, &[f64], &[f64])> = names
-        .iter()
-        .zip(&report.reports)
-        .map(|(n, r)| {
-            (
-                n.as_str(),
-                r.series.divergence_time_s.as_slice(),
-                r.series.trunk_position_m.as_slice(),
-            )
-        })
-        .collect();
-    plot_panels(
-        path,
-        &title,
-        [
-            Panel::new("trunk x", "x (m)", &x, &COLOURS),
-            Panel::new("trunk z", "z (m)", &z, &COLOURS),
-            Panel::new("trunk position divergence per pair", "m", &d, &PAIR_COLOURS),
-        ],
-    )
-}
-
-/// Draws a policy comparison's plot into `path` (PNG, [`PLOT_SIZE`]): every engine's
-/// first-episode trunk x closed loop, the same under the replayed actions, and every pair's
-/// trunk position divergence over the first episodes.
-pub fn plot_policy(report: &PolicyReport, path: &Path) -> Result<(), CompareError> {
-    let labels: Vec<&str> = report.sides.iter().map(|s| s.label.as_str()).collect();
-    let title = format!(
-        "{}: policy, closed loop, seed {}",
-        labels.join(" vs "),
-        report.seed
-    );
-    let xs: Vec<Vec<f64>> = report
-        .traces
-        .iter()
-        .map(|t| t.position_m.iter().map(|p| p[0]).collect())
-        .collect();
-    let lines: Vec<(&str, &[f64], &[f64])> = report
-        .traces
-        .iter()
-        .zip(&xs)
-        .map(|(t, x)| (t.label.as_str(), t.time_s.as_slice(), x.as_slice()))
-        .collect();
-    let (closed, replayed) = lines.split_at(report.sides.len().min(lines.len()));
-    let source = report
-        .replay
-        .as_ref()
-        .map_or(String::new(), |r| format!(" ({}'s actions)", r.source));
-    let names: Vec<String> = report
-        .pairs
-        .iter()
-        .map(|p| format!("{} vs {}", p.labels[0], p.labels[1]))
-        .collect();
-    let times: Vec<Vec<f64>> = report
-        .pairs
-        .iter()
-        .map(|p| {
-            (0..p.divergence_m.len())
-                .map(|k| k as f64 * report.env_dt_s)
-                .collect()
-        })
-        .collect();
-    let d: Vec<(&str, &[f64], &[f64])> = names
-        .iter()
-        .zip(&times)
-        .zip(&report.pairs)
-        .map(|((n, t), p)| (n.as_str(), t.as_slice(), p.divergence_m.as_slice()))
-        .collect();
-    let open_loop = format!("trunk x, open loop{source}");
-    plot_panels(
-        path,
-        &title,
-        [
-            Panel::new(
-                "trunk x, closed loop (first episode)",
-                "x (m)",
-                closed,
-                &COLOURS,
-            ),
-            Panel::new(&open_loop, "x (m)", replayed, &COLOURS),
-            Panel::new(
-                "trunk position divergence per pair, closed loop",
-                "m",
-                &d,
-                &PAIR_COLOURS,
-            ),
-        ],
-    )
-}
-
 /// One of a plot's three stacked panels: its caption, y-axis label, lines (label, times,
 /// values) and their colours.
-struct Panel<'a> {
+pub(crate) struct Panel<'a> {
     caption: &'a str,
     y_desc: &'a str,
     lines: &'a [(&'a str, &'a [f64], &'a [f64])],
@@ -291,7 +126,7 @@ struct Panel<'a> {
 }
 
 impl<'a> Panel<'a> {
-    fn new(
+    pub(crate) fn new(
         caption: &'a str,
         y_desc: &'a str,
         lines: &'a [(&'a str, &'a [f64], &'a [f64])],
@@ -308,7 +143,11 @@ impl<'a> Panel<'a> {
 
 /// Draws `title` over three stacked panels into `path` (PNG, [`PLOT_SIZE`]): every
 /// comparison plot's frame.
-fn plot_panels(path: &Path, title: &str, panels: [Panel<'_>; 3]) -> Result<(), CompareError> {
+pub(crate) fn plot_panels(
+    path: &Path,
+    title: &str,
+    panels: [Panel<'_>; 3],
+) -> Result<(), CompareError> {
     let fail = |message: String| CompareError::Plot {
         path: path.to_owned(),
         message,

@@ -28,7 +28,9 @@ use hyq_physics::{Backend, RobotModel};
 use serde::Serialize;
 
 use crate::error::CompareError;
+use crate::estimates::{Columns, PairRatios, Rates, Stats, rate_text, ratio_text};
 use crate::metrics::{Divergence, compare_trajectories};
+use crate::plot::{COLOURS, PAIR_COLOURS, Panel, plot_panels};
 use crate::randomized::{RandomizedSide, drew_alike};
 use crate::report::{PLOT_FILE, prepare_output_dir, sig, thin, write_report_files};
 use crate::run::{Trajectory, build_env, run_episode, run_script};
@@ -212,7 +214,8 @@ impl<P: Policy + Clone> PolicyPlan<P> {
     /// The report of `sides` (each ran this plan) and of the replays of the first side's
     /// actions (`replays[k]` on the engine of `sides[k]`; empty when not replayed).
     pub fn report(&self, sides: &[PolicySide], replays: &[Trajectory]) -> PolicyReport {
-        let pairs = pairs_of(sides);
+        let seed = self.spec.seed;
+        let pairs = pairs_of(sides, seed);
         let replay = sides.first().filter(|_| !replays.is_empty()).map(|src| {
             let runs = replays
                 .iter()
@@ -255,7 +258,7 @@ impl<P: Policy + Clone> PolicyPlan<P> {
                     .iter()
                     .map(|s| s.episodes.iter().map(|e| e.randomize.as_ref())),
             ),
-            sides: sides.iter().map(side_report).collect(),
+            sides: sides.iter().map(|s| side_report(s, seed)).collect(),
             pairs,
             replay,
             traces,
@@ -263,7 +266,8 @@ impl<P: Policy + Clone> PolicyPlan<P> {
     }
 }
 
-fn side_report(s: &PolicySide) -> PolicySideReport {
+/// One engine's summary; every interval's resampling is seeded with `seed`.
+fn side_report(s: &PolicySide, seed: u64) -> PolicySideReport {
     let e = &s.episodes;
     let mut ends: Vec<(String, u32)> = Vec::new();
     for o in e {
@@ -287,11 +291,12 @@ fn side_report(s: &PolicySide) -> PolicySideReport {
     PolicySideReport {
         label: s.label.clone(),
         engine: s.first.engine.to_owned(),
-        distance_walked_m: Stats::of(e.iter().map(|o| o.distance_walked_m)),
-        travel_m: Stats::of(e.iter().map(|o| o.travel_m)),
-        final_distance_m: Stats::of(e.iter().map(|o| o.final_distance_m)),
-        ret: Stats::of(e.iter().map(|o| o.ret)),
-        steps: Stats::of(e.iter().map(|o| o.steps as f64)),
+        distance_walked_m: Stats::of(&column(e, |o| o.distance_walked_m), seed),
+        travel_m: Stats::of(&column(e, |o| o.travel_m), seed),
+        final_distance_m: Stats::of(&column(e, |o| o.final_distance_m), seed),
+        ret: Stats::of(&column(e, |o| o.ret), seed),
+        steps: Stats::of(&column(e, |o| o.steps as f64), seed),
+        rates: Rates::of(e.iter().map(|o| o.end_reasons.as_slice())),
         ended_by: ends
             .into_iter()
             .map(|(reasons, episodes)| EndCount { reasons, episodes })
@@ -304,7 +309,8 @@ fn side_report(s: &PolicySide) -> PolicySideReport {
     }
 }
 
-fn pairs_of(sides: &[PolicySide]) -> Vec<PolicyPair> {
+/// Every pair of `sides`; the ratios' resampling is seeded with `seed`.
+fn pairs_of(sides: &[PolicySide], seed: u64) -> Vec<PolicyPair> {
     let mut pairs = Vec::new();
     for i in 0..sides.len() {
         for j in i + 1..sides.len() {
@@ -316,7 +322,8 @@ fn pairs_of(sides: &[PolicySide]) -> Vec<PolicyPair> {
                     .position(|e| *e >= m || e.is_nan())
                     .map(|t| t as f64 * a.first.env_dt)
             };
-            let (sa, sb) = (side_report(a), side_report(b));
+            let (ca, cb) = (columns(&a.episodes), columns(&b.episodes));
+            let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len().max(1) as f64;
             pairs.push(PolicyPair {
                 labels: [a.label.clone(), b.label.clone()],
                 samples: d.samples,
@@ -325,9 +332,10 @@ fn pairs_of(sides: &[PolicySide]) -> Vec<PolicyPair> {
                 joint_angles: d.joint_angles,
                 apart_1cm_s: apart(APART_M[0]),
                 apart_10cm_s: apart(APART_M[1]),
-                distance_walked_gap_m: sb.distance_walked_m.mean - sa.distance_walked_m.mean,
-                travel_gap_m: sb.travel_m.mean - sa.travel_m.mean,
-                return_gap: sb.ret.mean - sa.ret.mean,
+                distance_walked_gap_m: mean(&cb.distance_walked_m) - mean(&ca.distance_walked_m),
+                travel_gap_m: mean(&cb.travel_m) - mean(&ca.travel_m),
+                return_gap: mean(&cb.ret) - mean(&ca.ret),
+                ratios: PairRatios::of(&ca, &cb, seed),
                 divergence_m: d.series[0].clone(),
             });
         }
@@ -335,53 +343,19 @@ fn pairs_of(sides: &[PolicySide]) -> Vec<PolicyPair> {
     pairs
 }
 
-/// Mean, sample standard deviation, min and max of some episodes' values.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
-pub struct Stats {
-    /// Mean.
-    pub mean: f64,
-    /// Sample standard deviation (0 for one episode).
-    pub sd: f64,
-    /// Smallest.
-    pub min: f64,
-    /// Largest.
-    pub max: f64,
+/// One figure of every episode, in order.
+fn column(episodes: &[EpisodeOutcome], f: impl Fn(&EpisodeOutcome) -> f64) -> Vec<f64> {
+    episodes.iter().map(f).collect()
 }
 
-impl Stats {
-    fn of(values: impl Iterator<Item = f64> + Clone) -> Self {
-        let n = values.clone().count();
-        if n == 0 {
-            return Self::default();
-        }
-        let mean = values.clone().sum::<f64>() / n as f64;
-        let sd = if n > 1 {
-            (values.clone().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1) as f64).sqrt()
-        } else {
-            0.0
-        };
-        let (min, max) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
-            (lo.min(v), hi.max(v))
-        });
-        Self { mean, sd, min, max }
+/// The figures a pair's ratios compare, a column each.
+fn columns(episodes: &[EpisodeOutcome]) -> Columns {
+    Columns {
+        travel_m: column(episodes, |o| o.travel_m),
+        distance_walked_m: column(episodes, |o| o.distance_walked_m),
+        ret: column(episodes, |o| o.ret),
+        steps: column(episodes, |o| o.steps as f64),
     }
-}
-
-/// How many of the episodes reached the goal (`reached` among their end reasons), as
-/// "18 of 20 (90 %)".
-fn reach_rate(ended_by: &[EndCount]) -> String {
-    let total: u32 = ended_by.iter().map(|e| e.episodes).sum();
-    let reached: u32 = ended_by
-        .iter()
-        .filter(|e| e.reasons.split('+').any(|r| r == "reached"))
-        .map(|e| e.episodes)
-        .sum();
-    let percent = if total == 0 {
-        0.0
-    } else {
-        100.0 * f64::from(reached) / f64::from(total)
-    };
-    format!("{reached} of {total} ({percent:.0} %)")
 }
 
 /// How many episodes ended for a set of reasons.
@@ -411,6 +385,10 @@ pub struct PolicySideReport {
     pub ret: Stats,
     /// Steps per episode.
     pub steps: Stats,
+    /// How often the episodes ended for each reason, with Wilson intervals (absent for no
+    /// episodes).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rates: Option<Rates>,
     /// How the episodes ended.
     pub ended_by: Vec<EndCount>,
     /// With `[randomize]` on, the falls and pushes (else not written).
@@ -445,6 +423,8 @@ pub struct PolicyPair {
     pub travel_gap_m: f64,
     /// Mean return of the second minus the first.
     pub return_gap: f64,
+    /// The second's means over the first's, with their intervals.
+    pub ratios: PairRatios,
     /// e_p(t) of the first episodes, per sample (m).
     #[serde(skip)]
     pub divergence_m: Vec<f64>,
@@ -568,7 +548,7 @@ impl PolicyReport {
         let dir = dir.as_ref();
         prepare_output_dir(dir)?;
         write_report_files(dir, self.to_json(), self.to_markdown(command), |png| {
-            crate::plot::plot_policy(self, png)
+            plot_policy(self, png)
         })
     }
 
@@ -633,20 +613,33 @@ impl PolicyReport {
             let cells: Vec<String> = self.sides.iter().map(f).collect();
             let _ = writeln!(w, "| {name} | {} |", cells.join(" | "));
         };
-        let spread =
-            |s: &Stats| format!("{:.3} ± {:.3} [{:.3}, {:.3}]", s.mean, s.sd, s.min, s.max);
-        row("K − D^T (m): mean ± sd [min, max]", &|s| {
+        row("trunk travel toward the goal (m): mean [95 % CI]", &|s| {
+            s.travel_m.text(3)
+        });
+        row("K − D^T (m): mean [95 % CI]", &|s| {
+            s.distance_walked_m.text(3)
+        });
+        row("D^T (m): mean [95 % CI]", &|s| s.final_distance_m.text(3));
+        row("return: mean [95 % CI]", &|s| s.ret.text(3));
+        row("episode length (steps): mean [95 % CI]", &|s| {
+            s.steps.text(1)
+        });
+        let spread = |s: &Stats| format!("{:.3} [{:.3}, {:.3}]", s.sd, s.min, s.max);
+        row("trunk travel (m): sd [min, max]", &|s| spread(&s.travel_m));
+        row("K − D^T (m): sd [min, max]", &|s| {
             spread(&s.distance_walked_m)
         });
-        row("trunk travel toward the goal (m)", &|s| spread(&s.travel_m));
-        row("D^T (m), mean", &|s| {
-            format!("{:.3}", s.final_distance_m.mean)
-        });
-        row("return, mean ± sd", &|s| {
-            format!("{:.3} ± {:.3}", s.ret.mean, s.ret.sd)
-        });
-        row("steps, mean", &|s| format!("{:.1}", s.steps.mean));
-        row("reached the goal (§6.1)", &|s| reach_rate(&s.ended_by));
+        for k in 0..5 {
+            let name = self
+                .sides
+                .iter()
+                .find_map(|s| s.rates.map(|r| r.named()[k].0))
+                .unwrap_or("");
+            row(name, &|s| {
+                s.rates
+                    .map_or_else(|| "—".to_owned(), |r| rate_text(r.named()[k].1))
+            });
+        }
         row("ended by", &|s| {
             s.ended_by
                 .iter()
@@ -654,6 +647,11 @@ impl PolicyReport {
                 .collect::<Vec<_>>()
                 .join(", ")
         });
+        let _ = writeln!(
+            w,
+            "\nIntervals: a mean's is the percentile bootstrap of the episodes (10,000 resamples seeded with {}), a rate's (k of n episodes) is Wilson's; both 95 %. An episode can end for several reasons at once.",
+            self.seed
+        );
     }
 
     /// With `[randomize]` on: whether every engine drew alike, and each engine's falls and
@@ -727,6 +725,33 @@ impl PolicyReport {
                 p.distance_walked_gap_m,
                 p.travel_gap_m,
                 p.return_gap
+            );
+        }
+        self.markdown_ratios(w);
+    }
+
+    /// Each pair's ratio of means with its interval.
+    fn markdown_ratios(&self, w: &mut String) {
+        // Writing into a String cannot fail.
+        let _ = writeln!(
+            w,
+            "\nThe ratio of the engines' episode means (second over first) with its 95 % interval (paired bootstrap: episode k started from the same reset on both engines). ≠ 1: the interval excludes 1, the two engines' means differ at the 95 % level. —: no ratio (the first engine's resampled means reach 0 or change sign).\n"
+        );
+        let _ = writeln!(
+            w,
+            "| pair | trunk travel | K − D^T | return | episode length |\n|---|---|---|---|---|"
+        );
+        for p in &self.pairs {
+            let r = &p.ratios;
+            let _ = writeln!(
+                w,
+                "| {} / {} | {} | {} | {} | {} |",
+                p.labels[1],
+                p.labels[0],
+                ratio_text(r.travel_m.as_ref()),
+                ratio_text(r.distance_walked_m.as_ref()),
+                ratio_text(r.ret.as_ref()),
+                ratio_text(r.steps.as_ref())
             );
         }
     }
@@ -819,25 +844,95 @@ fn reasons(r: &[Reason]) -> String {
     }
 }
 
+/// Draws a policy comparison's plot into `path` (PNG, [`crate::PLOT_SIZE`]): every engine's
+/// first-episode trunk x closed loop (its legend with the mean travel over all episodes and its
+/// 95 % interval), the same under the replayed actions, and every pair's
+/// trunk position divergence over the first episodes.
+pub fn plot_policy(report: &PolicyReport, path: &Path) -> Result<(), CompareError> {
+    let labels: Vec<&str> = report.sides.iter().map(|s| s.label.as_str()).collect();
+    let title = format!(
+        "{}: policy, closed loop, seed {}",
+        labels.join(" vs "),
+        report.seed
+    );
+    let xs: Vec<Vec<f64>> = report
+        .traces
+        .iter()
+        .map(|t| t.position_m.iter().map(|p| p[0]).collect())
+        .collect();
+    // The closed-loop lines' legends carry each engine's mean travel over all its episodes
+    // (not only the first, which the line shows) with its 95 % interval.
+    let legends: Vec<String> = report
+        .traces
+        .iter()
+        .enumerate()
+        .map(|(k, t)| match report.sides.get(k) {
+            Some(s) => format!(
+                "{}; travel, mean of {} episodes: {} m",
+                t.label,
+                s.episodes.len(),
+                s.travel_m.text(2)
+            ),
+            None => t.label.clone(),
+        })
+        .collect();
+    let lines: Vec<(&str, &[f64], &[f64])> = report
+        .traces
+        .iter()
+        .zip(&xs)
+        .zip(&legends)
+        .map(|((t, x), l)| (l.as_str(), t.time_s.as_slice(), x.as_slice()))
+        .collect();
+    let (closed, replayed) = lines.split_at(report.sides.len().min(lines.len()));
+    let source = report
+        .replay
+        .as_ref()
+        .map_or(String::new(), |r| format!(" ({}'s actions)", r.source));
+    let names: Vec<String> = report
+        .pairs
+        .iter()
+        .map(|p| format!("{} vs {}", p.labels[0], p.labels[1]))
+        .collect();
+    let times: Vec<Vec<f64>> = report
+        .pairs
+        .iter()
+        .map(|p| {
+            (0..p.divergence_m.len())
+                .map(|k| k as f64 * report.env_dt_s)
+                .collect()
+        })
+        .collect();
+    let d: Vec<(&str, &[f64], &[f64])> = names
+        .iter()
+        .zip(&times)
+        .zip(&report.pairs)
+        .map(|((n, t), p)| (n.as_str(), t.as_slice(), p.divergence_m.as_slice()))
+        .collect();
+    let open_loop = format!("trunk x, open loop{source}");
+    plot_panels(
+        path,
+        &title,
+        [
+            Panel::new(
+                "trunk x, closed loop (first episode)",
+                "x (m)",
+                closed,
+                &COLOURS,
+            ),
+            Panel::new(&open_loop, "x (m)", replayed, &COLOURS),
+            Panel::new(
+                "trunk position divergence per pair, closed loop",
+                "m",
+                &d,
+                &PAIR_COLOURS,
+            ),
+        ],
+    )
+}
+
 #[cfg(test)]
 mod tests {
-    use super::{EndCount, Stats, reach_rate, travel};
-
-    #[test]
-    fn the_reach_rate_counts_every_end_that_includes_reached() {
-        let end = |reasons: &str, episodes| EndCount {
-            reasons: reasons.into(),
-            episodes,
-        };
-        let ends = [
-            end("reached", 15),
-            end("reached+timeout", 3),
-            end("timeout", 2),
-        ];
-        assert_eq!(reach_rate(&ends), "18 of 20 (90 %)");
-        assert_eq!(reach_rate(&[end("timeout", 20)]), "0 of 20 (0 %)");
-        assert_eq!(reach_rate(&[]), "0 of 0 (0 %)");
-    }
+    use super::travel;
 
     #[test]
     fn travel_is_the_displacement_along_the_start_to_goal_direction() {
@@ -850,13 +945,5 @@ mod tests {
         // Backwards is negative; a goal straight above the start gives no direction.
         assert_eq!(travel([0.0; 3], [0.0, -2.0, 0.0], [0.0, 4.0, 0.0]), -2.0);
         assert_eq!(travel([0.0; 3], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]), 0.0);
-    }
-
-    #[test]
-    fn stats_are_the_mean_sample_sd_and_range() {
-        let s = Stats::of([1.0, 2.0, 3.0].into_iter());
-        assert_eq!((s.mean, s.sd, s.min, s.max), (2.0, 1.0, 1.0, 3.0));
-        let one = Stats::of([4.0].into_iter());
-        assert_eq!((one.mean, one.sd, one.min, one.max), (4.0, 0.0, 4.0, 4.0));
     }
 }

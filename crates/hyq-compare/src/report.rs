@@ -7,10 +7,10 @@ use std::path::{Path, PathBuf};
 use hyq_env::Reason;
 use serde::Serialize;
 
-use crate::compare::{Check, OneStepReport};
 use crate::error::CompareError;
-use crate::ledger::ToleranceSource;
-use crate::metrics::TrajectoryComparison;
+use crate::ledger::{Metric, ToleranceSource};
+use crate::metrics::{OneStepErrors, OneStepSummary, TrajectoryComparison};
+use crate::plot::{COLOURS, GREEN, Panel, plot_panels};
 use crate::run::{TermSums, Trajectory};
 use crate::scenario::Scenario;
 use hyq_spec::REWARD_TERMS;
@@ -127,6 +127,38 @@ impl Series {
     }
 }
 
+/// The one-step comparison's part of the report.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct OneStepReport {
+    /// Shared states compared.
+    pub states: usize,
+    /// Of those, states where either backend had a foot or the trunk on the ground during the
+    /// sub-step.
+    pub states_in_contact: usize,
+    /// Physics sub-steps taken from each shared state (1).
+    pub sub_steps: u32,
+    /// Per quantity: max, median, max without contact.
+    pub summary: Vec<OneStepSummary>,
+    /// Per state.
+    pub per_state: Vec<OneStepErrors>,
+}
+
+/// One metric checked against the ledger.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Check {
+    /// The metric.
+    pub metric: Metric,
+    /// Its measured value.
+    pub value: f64,
+    /// Its tolerance.
+    pub tolerance: f64,
+    /// value ≤ tolerance.
+    pub within: bool,
+    /// Where the tolerance came from.
+    #[serde(flatten)]
+    pub source: ToleranceSource,
+}
+
 /// A whole comparison.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Report {
@@ -197,7 +229,7 @@ impl Report {
         let dir = dir.as_ref();
         prepare_output_dir(dir)?;
         write_report_files(dir, self.to_json(), self.to_markdown(command), |png| {
-            crate::plot::plot_trunk_x_z(self, png)
+            plot_trunk_x_z(self, png)
         })
     }
 
@@ -481,4 +513,52 @@ pub fn prepare_output_dir(dir: &Path) -> Result<(), CompareError> {
     let probe = dir.join(".hyq-compare-write-test");
     std::fs::write(&probe, b"").map_err(|e| fail(dir, e))?;
     std::fs::remove_file(&probe).map_err(|e| fail(&probe, e))
+}
+
+/// Draws the report's plot into `path` (PNG, [`crate::PLOT_SIZE`]).
+pub fn plot_trunk_x_z(report: &Report, path: &Path) -> Result<(), CompareError> {
+    let s = &report.series;
+    let [a, b] = &report.sides;
+    let title = format!(
+        "{} vs {}: scenario {}, seed {}",
+        a.label, b.label, report.scenario, report.seed
+    );
+    let x = [
+        (
+            a.label.as_str(),
+            s.time_s[0].as_slice(),
+            s.x_m[0].as_slice(),
+        ),
+        (
+            b.label.as_str(),
+            s.time_s[1].as_slice(),
+            s.x_m[1].as_slice(),
+        ),
+    ];
+    let z = [
+        (
+            a.label.as_str(),
+            s.time_s[0].as_slice(),
+            s.z_m[0].as_slice(),
+        ),
+        (
+            b.label.as_str(),
+            s.time_s[1].as_slice(),
+            s.z_m[1].as_slice(),
+        ),
+    ];
+    let d = [(
+        "divergence",
+        s.divergence_time_s.as_slice(),
+        s.trunk_position_m.as_slice(),
+    )];
+    plot_panels(
+        path,
+        &title,
+        [
+            Panel::new("trunk x", "x (m)", &x, &COLOURS),
+            Panel::new("trunk z", "z (m)", &z, &COLOURS),
+            Panel::new("trunk position divergence |C_A − C_B|", "m", &d, &[GREEN]),
+        ],
+    )
 }
