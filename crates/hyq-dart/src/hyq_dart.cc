@@ -13,6 +13,7 @@
 #include <streambuf>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -317,11 +318,26 @@ struct Sim::Impl {
 Sim::Sim(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Sim::~Sim() = default;
 
-std::unique_ptr<Sim> new_sim(rust::Slice<const BodyDesc> bodies,
-                             rust::Slice<const ShapeDesc> shapes,
-                             const WorldDesc& desc) {
-  using namespace dart::dynamics;
+// new_sim in phases: the checks, each body with its joint, each shape, the
+// ground, the world.
+using dart::dynamics::BodyNode;
+using dart::dynamics::Joint;
+using dart::dynamics::Skeleton;
+using dart::dynamics::FreeJoint;
+using dart::dynamics::RevoluteJoint;
+using dart::dynamics::WeldJoint;
+using dart::dynamics::Shape;
+using dart::dynamics::ShapeNode;
+using dart::dynamics::BoxShape;
+using dart::dynamics::SphereShape;
+using dart::dynamics::CapsuleShape;
+using dart::dynamics::CylinderShape;
+using dart::dynamics::CollisionAspect;
+using dart::dynamics::DynamicsAspect;
+using dart::dynamics::Inertia;
 
+// The world description's checks, each failure naming the field.
+static void check_world(const WorldDesc& desc, std::size_t bodies_count) {
   require(desc.dt > 0.0 && std::isfinite(desc.dt),
           "world.dt must be finite and > 0, got " + std::to_string(desc.dt));
   require(finite3(desc.gravity), "world.gravity must be finite");
@@ -332,8 +348,234 @@ std::unique_ptr<Sim> new_sim(rust::Slice<const BodyDesc> bodies,
   require(std::isfinite(desc.ground_height), "world.ground_height must be finite");
   require(desc.ground_half_extent > 0.0 && std::isfinite(desc.ground_half_extent),
           "world.ground_half_extent must be finite and > 0");
-  require(bodies.size() > 0, "the robot needs at least one body");
+  require(bodies_count > 0, "the robot needs at least one body");
+}
 
+// A revolute joint and its body under `parent`: limits enforced as hard
+// constraints, damping, force actuation, and its actuated slot.
+static std::pair<Joint*, BodyNode*> add_revolute(Sim::Impl& impl, const BodyDesc& b,
+                                                 BodyNode* parent,
+                                                 const BodyNode::Properties& body_props,
+                                                 const Eigen::Isometry3d& from_parent,
+                                                 const std::string& what, std::size_t num_bodies) {
+  Eigen::Vector3d axis(b.axis[0], b.axis[1], b.axis[2]);
+  require(std::isfinite(axis.norm()) && std::abs(axis.norm() - 1.0) < 1e-6,
+          what + ": axis must have unit length");
+  require(std::isfinite(b.lower) && std::isfinite(b.upper) && b.lower < b.upper,
+          what + ": limits must be finite with lower < upper, got [" +
+              std::to_string(b.lower) + ", " + std::to_string(b.upper) + "]");
+  require(b.damping >= 0.0 && std::isfinite(b.damping),
+          what + ": damping must be finite and >= 0");
+  RevoluteJoint::Properties props;
+  props.mName = std::string(b.joint_name);
+  props.mAxis = axis;
+  props.mT_ParentBodyToJoint =
+      from_parent * to_isometry(b.joint_origin, what + " joint origin");
+  props.mT_ChildBodyToJoint = Eigen::Isometry3d::Identity();
+  auto pair = impl.robot->createJointAndBodyNodePair<RevoluteJoint>(
+      parent, props, body_props);
+  Joint* joint = require_ptr(pair.first, "RevoluteJoint for " + what);
+  joint->setPositionLowerLimit(0, b.lower);
+  joint->setPositionUpperLimit(0, b.upper);
+  // Position limits are hard constraints, as in rapier's multibody
+  // limits. In DART 6.12 the same switch also enforces the velocity
+  // limits; the shared actuator already handles those in Rust for every
+  // backend, so DART's are lifted to infinity here.
+  joint->setVelocityLowerLimit(0, -std::numeric_limits<double>::infinity());
+  joint->setVelocityUpperLimit(0, std::numeric_limits<double>::infinity());
+  joint->setPositionLimitEnforced(true);
+  joint->setDampingCoefficient(0, b.damping);
+  joint->setActuatorType(Joint::FORCE);
+  if (b.parent == 0) {
+    impl.root_child_joints.emplace_back(joint,
+                                         to_isometry(b.joint_origin, what + " joint origin"));
+  }
+  const std::size_t slot = b.joint_index;
+  require(slot < num_bodies,
+          what + ": joint_index " + std::to_string(slot) + " out of range");
+  if (impl.actuated.size() <= slot) {
+    impl.actuated.resize(slot + 1, nullptr);
+  }
+  require(impl.actuated[slot] == nullptr,
+          what + ": joint_index " + std::to_string(slot) + " is used twice");
+  impl.actuated[slot] = joint;
+  return {joint, pair.second};
+}
+
+// Adds body `i` of the description and its joint to the robot; `nodes` holds
+// the bodies added so far (a parent comes before its children).
+static void add_body(Sim::Impl& impl, std::vector<BodyNode*>& nodes, const BodyDesc& b,
+                     std::size_t i, std::size_t bodies_count) {
+  const std::string name(b.name);
+  const std::string joint_name(b.joint_name);
+  const std::string what = "body '" + name + "' (joint '" + joint_name + "')";
+
+  require(b.mass > 0.0 && std::isfinite(b.mass),
+          what + ": mass must be finite and > 0, got " + std::to_string(b.mass));
+  require(finite3(b.com), what + ": centre of mass must be finite");
+  for (double v : b.inertia) {
+    require(std::isfinite(v), what + ": inertia must be finite");
+  }
+
+  BodyNode* parent = nullptr;
+  // Frames given in the root's description frame are moved to its body
+  // frame, which sits at its centre of mass.
+  Eigen::Isometry3d from_parent = Eigen::Isometry3d::Identity();
+  if (i == 0) {
+    require(b.parent == -1 && b.joint_kind == JointKind::Free,
+            what + ": the first body must be the root (parent -1, free joint)");
+    impl.root_com = Eigen::Vector3d(b.com[0], b.com[1], b.com[2]);
+  } else {
+    if (b.parent == 0) {
+      from_parent.translation() = -impl.root_com;
+    }
+    require(b.parent >= 0 && static_cast<std::size_t>(b.parent) < i,
+            what + ": parent index " + std::to_string(b.parent) +
+                " must name an earlier body");
+    require(b.joint_kind != JointKind::Free,
+            what + ": only the root body may have a free joint");
+    parent = nodes[static_cast<std::size_t>(b.parent)];
+  }
+
+  BodyNode::Properties body_props;
+  body_props.mName = name;
+  BodyNode* node = nullptr;
+  Joint* joint = nullptr;
+  if (b.joint_kind == JointKind::Free) {
+    FreeJoint::Properties props;
+    props.mName = joint_name;
+    auto pair = impl.robot->createJointAndBodyNodePair<FreeJoint>(
+        parent, props, body_props);
+    impl.root_joint = require_ptr(pair.first, "FreeJoint for " + what);
+    joint = pair.first;
+    node = pair.second;
+  } else if (b.joint_kind == JointKind::Revolute) {
+    std::tie(joint, node) =
+        add_revolute(impl, b, parent, body_props, from_parent, what, bodies_count);
+  } else if (b.joint_kind == JointKind::Fixed) {
+    WeldJoint::Properties props;
+    props.mName = joint_name;
+    props.mT_ParentBodyToJoint =
+        from_parent * to_isometry(b.joint_origin, what + " joint origin");
+    props.mT_ChildBodyToJoint = Eigen::Isometry3d::Identity();
+    auto pair = impl.robot->createJointAndBodyNodePair<WeldJoint>(
+        parent, props, body_props);
+    joint = require_ptr(pair.first, "WeldJoint for " + what);
+    node = pair.second;
+    if (b.parent == 0) {
+      impl.root_child_joints.emplace_back(joint,
+                                           to_isometry(b.joint_origin, what + " joint origin"));
+    }
+  } else {
+    throw std::invalid_argument(what + ": unknown joint kind");
+  }
+  require_ptr(node, "BodyNode for " + what);
+  require(joint->getName() == joint_name,
+          what + ": joint name is not unique (DART renamed it to '" +
+              joint->getName() + "')");
+  require(node->getName() == name,
+          what + ": body name is not unique (DART renamed it to '" +
+              node->getName() + "')");
+
+  const auto& in = b.inertia;
+  const Eigen::Vector3d com = (i == 0) ? Eigen::Vector3d::Zero()
+                                       : Eigen::Vector3d(b.com[0], b.com[1], b.com[2]);
+  node->setInertia(Inertia(b.mass, com.x(), com.y(), com.z(), in[0], in[1], in[2], in[3],
+                           in[4], in[5]));
+  nodes.push_back(node);
+}
+
+// Adds shape `i` of the description to its body, with the world's contact
+// settings.
+static void add_shape(Sim::Impl& impl, const std::vector<BodyNode*>& nodes, const ShapeDesc& s,
+                      std::size_t i, const WorldDesc& desc) {
+  const std::string what = "shape " + std::to_string(i);
+  require(s.body < nodes.size(),
+          what + ": body index " + std::to_string(s.body) + " out of range");
+  require(s.tracked >= -1 && s.tracked < static_cast<int>(desc.num_tracked),
+          what + ": tracked index " + std::to_string(s.tracked) + " out of range");
+  std::shared_ptr<Shape> shape;
+  if (s.kind == ShapeKind::Box) {
+    require(s.size[0] > 0 && s.size[1] > 0 && s.size[2] > 0 && finite3(s.size),
+            what + ": box half extents must be finite and > 0");
+    shape = std::make_shared<BoxShape>(
+        2.0 * Eigen::Vector3d(s.size[0], s.size[1], s.size[2]));
+  } else if (s.kind == ShapeKind::Sphere) {
+    require(s.size[0] > 0 && std::isfinite(s.size[0]),
+            what + ": sphere radius must be finite and > 0");
+    shape = std::make_shared<SphereShape>(s.size[0]);
+  } else if (s.kind == ShapeKind::Capsule) {
+    require(s.size[0] > 0 && std::isfinite(s.size[0]) && s.size[1] >= 0 &&
+                std::isfinite(s.size[1]),
+            what + ": capsule radius must be > 0 and half length >= 0");
+    // DART's capsule height is the distance between the cap centres.
+    shape = std::make_shared<CapsuleShape>(s.size[0], 2.0 * s.size[1]);
+  } else if (s.kind == ShapeKind::Cylinder) {
+    require(s.size[0] > 0 && std::isfinite(s.size[0]) && s.size[1] > 0 &&
+                std::isfinite(s.size[1]),
+            what + ": cylinder radius and half length must be finite and > 0");
+    shape = std::make_shared<CylinderShape>(s.size[0], 2.0 * s.size[1]);
+  } else {
+    throw std::invalid_argument(what + ": unknown shape kind");
+  }
+  ShapeNode* sn = nodes[s.body]->createShapeNodeWith<CollisionAspect, DynamicsAspect>(shape);
+  require_ptr(sn, "ShapeNode for " + what);
+  Eigen::Isometry3d shape_tf = to_isometry(s.pose, what + " pose");
+  if (s.body == 0) {
+    impl.root_shapes.emplace_back(sn, shape_tf);
+    shape_tf.pretranslate(-impl.root_com);
+  }
+  sn->setRelativeTransform(shape_tf);
+  sn->getDynamicsAspect()->setFrictionCoeff(desc.friction);
+  sn->getDynamicsAspect()->setRestitutionCoeff(desc.restitution);
+  if (desc.world_friction_axes) {
+    use_world_friction_axes(sn);
+  }
+  if (s.tracked >= 0) {
+    impl.tracked_shapes.emplace_back(sn, static_cast<std::size_t>(s.tracked));
+  }
+}
+
+// The ground skeleton: a fixed box whose top face is z = ground_height.
+static void add_ground(Sim::Impl& impl, const WorldDesc& desc) {
+  impl.ground = Skeleton::create("ground");
+  require_ptr(impl.ground.get(), "ground Skeleton");
+  auto ground_pair = impl.ground->createJointAndBodyNodePair<WeldJoint>();
+  impl.ground_joint = require_ptr(ground_pair.first, "ground WeldJoint");
+  impl.ground_body = require_ptr(ground_pair.second, "ground BodyNode");
+  impl.friction = desc.friction;
+  impl.restitution = desc.restitution;
+  impl.world_friction_axes = desc.world_friction_axes;
+  impl.ground_height = desc.ground_height;
+  impl.ground_half_extent = desc.ground_half_extent;
+  impl.attach_ground_box();
+  impl.ground->setMobile(false);
+}
+
+// The world holding the robot and the ground, with its own Bullet detector,
+// and the buffers of the robot's state and torques.
+static void make_world(Sim::Impl& impl, const WorldDesc& desc) {
+  impl.world = dart::simulation::World::create("hyq");
+  require_ptr(impl.world.get(), "World");
+  impl.world->setGravity(Eigen::Vector3d(desc.gravity[0], desc.gravity[1], desc.gravity[2]));
+  impl.world->setTimeStep(desc.dt);
+  // The world starts with DART's default FCL detector, which would build
+  // (and complain about) capsule geometry for every skeleton added; install
+  // Bullet first.
+  impl.install_fresh_detector();
+  impl.world->addSkeleton(impl.robot);
+  impl.world->addSkeleton(impl.ground);
+
+  const auto ndofs = impl.robot->getNumDofs();
+  impl.torques = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(impl.actuated.size()));
+  impl.positions = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(ndofs));
+  impl.velocities = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(ndofs));
+}
+
+std::unique_ptr<Sim> new_sim(rust::Slice<const BodyDesc> bodies,
+                             rust::Slice<const ShapeDesc> shapes,
+                             const WorldDesc& desc) {
+  check_world(desc, bodies.size());
   auto impl = std::make_unique<Sim::Impl>();
   impl->num_tracked = desc.num_tracked;
   impl->robot = Skeleton::create("robot");
@@ -342,124 +584,7 @@ std::unique_ptr<Sim> new_sim(rust::Slice<const BodyDesc> bodies,
   std::vector<BodyNode*> nodes;
   nodes.reserve(bodies.size());
   for (std::size_t i = 0; i < bodies.size(); ++i) {
-    const BodyDesc& b = bodies[i];
-    const std::string name(b.name);
-    const std::string joint_name(b.joint_name);
-    const std::string what = "body '" + name + "' (joint '" + joint_name + "')";
-
-    require(b.mass > 0.0 && std::isfinite(b.mass),
-            what + ": mass must be finite and > 0, got " + std::to_string(b.mass));
-    require(finite3(b.com), what + ": centre of mass must be finite");
-    for (double v : b.inertia) {
-      require(std::isfinite(v), what + ": inertia must be finite");
-    }
-
-    BodyNode* parent = nullptr;
-    // Frames given in the root's description frame are moved to its body
-    // frame, which sits at its centre of mass.
-    Eigen::Isometry3d from_parent = Eigen::Isometry3d::Identity();
-    if (i == 0) {
-      require(b.parent == -1 && b.joint_kind == JointKind::Free,
-              what + ": the first body must be the root (parent -1, free joint)");
-      impl->root_com = Eigen::Vector3d(b.com[0], b.com[1], b.com[2]);
-    } else {
-      if (b.parent == 0) {
-        from_parent.translation() = -impl->root_com;
-      }
-      require(b.parent >= 0 && static_cast<std::size_t>(b.parent) < i,
-              what + ": parent index " + std::to_string(b.parent) +
-                  " must name an earlier body");
-      require(b.joint_kind != JointKind::Free,
-              what + ": only the root body may have a free joint");
-      parent = nodes[static_cast<std::size_t>(b.parent)];
-    }
-
-    BodyNode::Properties body_props;
-    body_props.mName = name;
-    BodyNode* node = nullptr;
-    Joint* joint = nullptr;
-    if (b.joint_kind == JointKind::Free) {
-      FreeJoint::Properties props;
-      props.mName = joint_name;
-      auto pair = impl->robot->createJointAndBodyNodePair<FreeJoint>(
-          parent, props, body_props);
-      impl->root_joint = require_ptr(pair.first, "FreeJoint for " + what);
-      joint = pair.first;
-      node = pair.second;
-    } else if (b.joint_kind == JointKind::Revolute) {
-      Eigen::Vector3d axis(b.axis[0], b.axis[1], b.axis[2]);
-      require(std::isfinite(axis.norm()) && std::abs(axis.norm() - 1.0) < 1e-6,
-              what + ": axis must have unit length");
-      require(std::isfinite(b.lower) && std::isfinite(b.upper) && b.lower < b.upper,
-              what + ": limits must be finite with lower < upper, got [" +
-                  std::to_string(b.lower) + ", " + std::to_string(b.upper) + "]");
-      require(b.damping >= 0.0 && std::isfinite(b.damping),
-              what + ": damping must be finite and >= 0");
-      RevoluteJoint::Properties props;
-      props.mName = joint_name;
-      props.mAxis = axis;
-      props.mT_ParentBodyToJoint =
-          from_parent * to_isometry(b.joint_origin, what + " joint origin");
-      props.mT_ChildBodyToJoint = Eigen::Isometry3d::Identity();
-      auto pair = impl->robot->createJointAndBodyNodePair<RevoluteJoint>(
-          parent, props, body_props);
-      joint = require_ptr(pair.first, "RevoluteJoint for " + what);
-      node = pair.second;
-      joint->setPositionLowerLimit(0, b.lower);
-      joint->setPositionUpperLimit(0, b.upper);
-      // Position limits are hard constraints, as in rapier's multibody
-      // limits. In DART 6.12 the same switch also enforces the velocity
-      // limits; the shared actuator already handles those in Rust for every
-      // backend, so DART's are lifted to infinity here.
-      joint->setVelocityLowerLimit(0, -std::numeric_limits<double>::infinity());
-      joint->setVelocityUpperLimit(0, std::numeric_limits<double>::infinity());
-      joint->setPositionLimitEnforced(true);
-      joint->setDampingCoefficient(0, b.damping);
-      joint->setActuatorType(Joint::FORCE);
-      if (b.parent == 0) {
-        impl->root_child_joints.emplace_back(joint,
-                                             to_isometry(b.joint_origin, what + " joint origin"));
-      }
-      const std::size_t slot = b.joint_index;
-      require(slot < bodies.size(),
-              what + ": joint_index " + std::to_string(slot) + " out of range");
-      if (impl->actuated.size() <= slot) {
-        impl->actuated.resize(slot + 1, nullptr);
-      }
-      require(impl->actuated[slot] == nullptr,
-              what + ": joint_index " + std::to_string(slot) + " is used twice");
-      impl->actuated[slot] = joint;
-    } else if (b.joint_kind == JointKind::Fixed) {
-      WeldJoint::Properties props;
-      props.mName = joint_name;
-      props.mT_ParentBodyToJoint =
-          from_parent * to_isometry(b.joint_origin, what + " joint origin");
-      props.mT_ChildBodyToJoint = Eigen::Isometry3d::Identity();
-      auto pair = impl->robot->createJointAndBodyNodePair<WeldJoint>(
-          parent, props, body_props);
-      joint = require_ptr(pair.first, "WeldJoint for " + what);
-      node = pair.second;
-      if (b.parent == 0) {
-        impl->root_child_joints.emplace_back(joint,
-                                             to_isometry(b.joint_origin, what + " joint origin"));
-      }
-    } else {
-      throw std::invalid_argument(what + ": unknown joint kind");
-    }
-    require_ptr(node, "BodyNode for " + what);
-    require(joint->getName() == joint_name,
-            what + ": joint name is not unique (DART renamed it to '" +
-                joint->getName() + "')");
-    require(node->getName() == name,
-            what + ": body name is not unique (DART renamed it to '" +
-                node->getName() + "')");
-
-    const auto& in = b.inertia;
-    const Eigen::Vector3d com = (i == 0) ? Eigen::Vector3d::Zero()
-                                         : Eigen::Vector3d(b.com[0], b.com[1], b.com[2]);
-    node->setInertia(Inertia(b.mass, com.x(), com.y(), com.z(), in[0], in[1], in[2], in[3],
-                             in[4], in[5]));
-    nodes.push_back(node);
+    add_body(*impl, nodes, bodies[i], i, bodies.size());
   }
   impl->root = nodes.front();
   impl->bodies = nodes;
@@ -471,85 +596,14 @@ std::unique_ptr<Sim> new_sim(rust::Slice<const BodyDesc> bodies,
   }
 
   for (std::size_t i = 0; i < shapes.size(); ++i) {
-    const ShapeDesc& s = shapes[i];
-    const std::string what = "shape " + std::to_string(i);
-    require(s.body < nodes.size(),
-            what + ": body index " + std::to_string(s.body) + " out of range");
-    require(s.tracked >= -1 && s.tracked < static_cast<int>(desc.num_tracked),
-            what + ": tracked index " + std::to_string(s.tracked) + " out of range");
-    std::shared_ptr<Shape> shape;
-    if (s.kind == ShapeKind::Box) {
-      require(s.size[0] > 0 && s.size[1] > 0 && s.size[2] > 0 && finite3(s.size),
-              what + ": box half extents must be finite and > 0");
-      shape = std::make_shared<BoxShape>(
-          2.0 * Eigen::Vector3d(s.size[0], s.size[1], s.size[2]));
-    } else if (s.kind == ShapeKind::Sphere) {
-      require(s.size[0] > 0 && std::isfinite(s.size[0]),
-              what + ": sphere radius must be finite and > 0");
-      shape = std::make_shared<SphereShape>(s.size[0]);
-    } else if (s.kind == ShapeKind::Capsule) {
-      require(s.size[0] > 0 && std::isfinite(s.size[0]) && s.size[1] >= 0 &&
-                  std::isfinite(s.size[1]),
-              what + ": capsule radius must be > 0 and half length >= 0");
-      // DART's capsule height is the distance between the cap centres.
-      shape = std::make_shared<CapsuleShape>(s.size[0], 2.0 * s.size[1]);
-    } else if (s.kind == ShapeKind::Cylinder) {
-      require(s.size[0] > 0 && std::isfinite(s.size[0]) && s.size[1] > 0 &&
-                  std::isfinite(s.size[1]),
-              what + ": cylinder radius and half length must be finite and > 0");
-      shape = std::make_shared<CylinderShape>(s.size[0], 2.0 * s.size[1]);
-    } else {
-      throw std::invalid_argument(what + ": unknown shape kind");
-    }
-    ShapeNode* sn = nodes[s.body]->createShapeNodeWith<CollisionAspect, DynamicsAspect>(shape);
-    require_ptr(sn, "ShapeNode for " + what);
-    Eigen::Isometry3d shape_tf = to_isometry(s.pose, what + " pose");
-    if (s.body == 0) {
-      impl->root_shapes.emplace_back(sn, shape_tf);
-      shape_tf.pretranslate(-impl->root_com);
-    }
-    sn->setRelativeTransform(shape_tf);
-    sn->getDynamicsAspect()->setFrictionCoeff(desc.friction);
-    sn->getDynamicsAspect()->setRestitutionCoeff(desc.restitution);
-    if (desc.world_friction_axes) {
-      use_world_friction_axes(sn);
-    }
-    if (s.tracked >= 0) {
-      impl->tracked_shapes.emplace_back(sn, static_cast<std::size_t>(s.tracked));
-    }
+    add_shape(*impl, nodes, shapes[i], i, desc);
   }
   // Only robot-ground pairs are checked (DART's default): the robot's own
   // shapes overlap near the joints by design.
   impl->robot->disableSelfCollisionCheck();
 
-  impl->ground = Skeleton::create("ground");
-  require_ptr(impl->ground.get(), "ground Skeleton");
-  auto ground_pair = impl->ground->createJointAndBodyNodePair<WeldJoint>();
-  impl->ground_joint = require_ptr(ground_pair.first, "ground WeldJoint");
-  impl->ground_body = require_ptr(ground_pair.second, "ground BodyNode");
-  impl->friction = desc.friction;
-  impl->restitution = desc.restitution;
-  impl->world_friction_axes = desc.world_friction_axes;
-  impl->ground_height = desc.ground_height;
-  impl->ground_half_extent = desc.ground_half_extent;
-  impl->attach_ground_box();
-  impl->ground->setMobile(false);
-
-  impl->world = dart::simulation::World::create("hyq");
-  require_ptr(impl->world.get(), "World");
-  impl->world->setGravity(Eigen::Vector3d(desc.gravity[0], desc.gravity[1], desc.gravity[2]));
-  impl->world->setTimeStep(desc.dt);
-  // The world starts with DART's default FCL detector, which would build
-  // (and complain about) capsule geometry for every skeleton added; install
-  // Bullet first.
-  impl->install_fresh_detector();
-  impl->world->addSkeleton(impl->robot);
-  impl->world->addSkeleton(impl->ground);
-
-  const auto ndofs = impl->robot->getNumDofs();
-  impl->torques = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(impl->actuated.size()));
-  impl->positions = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(ndofs));
-  impl->velocities = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(ndofs));
+  add_ground(*impl, desc);
+  make_world(*impl, desc);
 
   // Start from the description's zero pose, exactly as set_state would.
   const std::vector<double> zeros(impl->actuated.size(), 0.0);
