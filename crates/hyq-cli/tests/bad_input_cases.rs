@@ -896,3 +896,44 @@ fn comparison_ledgers() {
         &["/dev/zero", "is not a regular file"],
     );
 }
+
+#[test]
+fn output_errors_name_the_output_not_its_hidden_temporary_file() {
+    // Each output is staged in a hidden `.NAME.xxxxxx.partial` beside it; the messages named
+    // that file instead of the one asked for.
+    for args in [
+        &[
+            "run",
+            "--set",
+            "task.max_time_steps=3",
+            "--record",
+            "/proc/nope.jsonl",
+        ][..],
+        &["model", "--format", "json", "--out", "/proc/nope.json"][..],
+    ] {
+        let out = hyq(args);
+        let err = stderr(&out);
+        assert!(!out.status.success(), "hyq {args:?} fails");
+        assert_eq!(err.lines().count(), 1, "hyq {args:?}: {err}");
+        assert!(
+            !err.contains(".partial") && err.contains("nope"),
+            "hyq {args:?}: {err}"
+        );
+    }
+}
+
+#[test]
+fn an_error_echoing_a_long_value_stays_a_short_line() {
+    // A 120 KB value used to come back twice in one 240 KB line.
+    let long = "a".repeat(120_000);
+    let set = format!("task.fall_penalty=\"{long}\"");
+    let out = hyq(&["run", "--set", &set]);
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(2), "{}", &err[..err.len().min(400)]);
+    assert_eq!(err.lines().count(), 1);
+    assert!(err.len() < 400, "{} bytes", err.len());
+    assert!(
+        err.contains("task.fall_penalty") && err.contains("bytes left out"),
+        "{err}"
+    );
+}

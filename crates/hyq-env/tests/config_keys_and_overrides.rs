@@ -595,3 +595,20 @@ fn a_config_file_is_read_up_to_its_size_limit_so_endless_input_is_refused() {
     );
     std::fs::remove_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
 }
+
+#[test]
+fn a_number_past_a_floats_range_is_named_as_such_not_as_a_string() {
+    for value in ["1e400", "-2e308", "1_0e400"] {
+        let mut c = EnvConfig::default();
+        let msg = c
+            .set_all(&[("task.fall_penalty", value)])
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default();
+        assert!(
+            msg.contains("task.fall_penalty") && msg.contains("beyond a float's range"),
+            "{value}: {msg}"
+        );
+        assert!(!msg.contains("string"), "{value}: {msg}");
+    }
+}
