@@ -196,11 +196,7 @@ impl Ground {
     /// Checks that the field lies under the robot's feet at its spawn point: outside the
     /// field's rectangle no engine has any ground, so a robot put down there fell through at
     /// the first step (`diverged`). The error names `terrain.center_m` or `terrain.size_m`.
-    fn check_coverage(
-        &self,
-        model: &RobotModel,
-        terrain: &Terrain,
-    ) -> Result<(), ConfigError> {
+    fn check_coverage(&self, model: &RobotModel, terrain: &Terrain) -> Result<(), ConfigError> {
         let t = &self.config;
         let (key, value) = match t.center_m {
             Some(c) => ("terrain.center_m", format!("{c:?}")),

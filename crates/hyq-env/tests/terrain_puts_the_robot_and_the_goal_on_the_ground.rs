@@ -469,7 +469,10 @@ fn a_field_not_under_the_feet_is_refused_naming_the_key() {
     // A field that holds the feet is built.
     Env::<hyq_env::testing::ScriptedBackend>::new(
         hyq_physics::bundled::hyq(),
-        config(&[("terrain.kind", "\"rough\""), ("terrain.center_m", "[7.0, 0.0]")]),
+        config(&[
+            ("terrain.kind", "\"rough\""),
+            ("terrain.center_m", "[7.0, 0.0]"),
+        ]),
     )
     .unwrap_or_else(|e| panic!("{e}"));
 }
@@ -485,7 +488,10 @@ fn put_down_refusals_quote_the_key_and_the_slope_limit_is_inclusive() {
         ("terrain.start_m", "0.0"),
     ]);
     assert!(msg.contains("terrain.step_height_m = 0.5:"), "{msg}");
-    let msg = refused(&[("terrain.kind", "\"rough\""), ("terrain.amplitude_m", "1.0")]);
+    let msg = refused(&[
+        ("terrain.kind", "\"rough\""),
+        ("terrain.amplitude_m", "1.0"),
+    ]);
     assert!(msg.contains("terrain.amplitude_m = 1.0:"), "{msg}");
     for slope in ["30", "-30"] {
         Env::<hyq_env::testing::ScriptedBackend>::new(
@@ -494,4 +500,25 @@ fn put_down_refusals_quote_the_key_and_the_slope_limit_is_inclusive() {
         )
         .unwrap_or_else(|e| panic!("slope {slope}: {e}"));
     }
+}
+
+/// A range refusal blames the key the user set and prints its numbers short: a resolution of
+/// 1e308 was blamed on `terrain.feature_m`, and a centre of 1e308 on `terrain.size_m`, with the
+/// centre printed in 309 digits.
+#[test]
+fn terrain_range_refusals_blame_the_key_set_in_short_numbers() {
+    let msg = refused(&[
+        ("terrain.kind", "\"rough\""),
+        ("terrain.resolution_m", "1e308"),
+    ]);
+    assert!(
+        msg.contains("terrain.resolution_m = 1e308") && msg.contains("largest field's side"),
+        "{msg}"
+    );
+    let msg = refused(&[
+        ("terrain.kind", "\"rough\""),
+        ("terrain.center_m", "[1e308, 0.0]"),
+    ]);
+    assert!(msg.contains("terrain.center_m = [1e308, 0.0]"), "{msg}");
+    assert!(!msg.contains(&"0".repeat(30)), "{msg}");
 }
