@@ -525,6 +525,8 @@ pub const RANDOMIZE_INFO_KEYS: [InfoKey; 12] = [
 
 #[cfg(test)]
 mod tests {
+    #![allow(clippy::unwrap_used)]
+
     use super::*;
     use crate::randomize::RANDOMIZE_PREFIX;
 
