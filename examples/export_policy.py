@@ -31,7 +31,7 @@ import numpy as np
 
 import hyq
 from hyq._config import config_pairs
-from hyq.policy_file import write_onnx
+from hyq.policy_file import check_finite, write_onnx
 
 #: A clip that never binds: rsl_rl does not clip its normalised observations.
 NO_CLIP = float(np.finfo(np.float32).max)
@@ -236,6 +236,12 @@ def export_run(args: argparse.Namespace) -> Path:
         tensors[f"layers.{k}.weight"] = np.ascontiguousarray(weight, dtype=np.float32)
         tensors[f"layers.{k}.bias"] = np.ascontiguousarray(bias, dtype=np.float32)
     out: Path = args.out or fail("--out is needed with --run")  # type: ignore[assignment]
+    # A trained actor with a NaN or an infinity (a diverged run) is refused before anything is
+    # written, in the reader's words: `hyq run` would refuse the file anyway.
+    try:
+        check_finite(tensors, run)
+    except ValueError as e:
+        fail(str(e))
     out.parent.mkdir(parents=True, exist_ok=True)
     save_file(tensors, str(out), metadata=metadata_of(actor, config, robot, names, joints))
     print(f"wrote {out} ({out.stat().st_size} bytes): layers "

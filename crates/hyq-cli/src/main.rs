@@ -88,9 +88,37 @@ impl Failure {
     }
 }
 
-/// Prints `message` as the one error line `hyq` ever prints, folding any line breaks.
+/// The longest error line printed (bytes, about three screen lines): a message echoing a value
+/// of 120 KB (twice) was one line of 240 KB.
+const MAX_ERROR_BYTES: usize = 300;
+
+/// `line` cut to [`MAX_ERROR_BYTES`] when longer: its start and its end (where the reason is),
+/// with how much was left out between them.
+fn capped(line: &str) -> String {
+    if line.len() <= MAX_ERROR_BYTES {
+        return line.to_owned();
+    }
+    let keep = MAX_ERROR_BYTES / 2;
+    let mut head = keep;
+    while !line.is_char_boundary(head) {
+        head -= 1;
+    }
+    let mut tail = line.len() - keep;
+    while !line.is_char_boundary(tail) {
+        tail += 1;
+    }
+    format!(
+        "{} […{} bytes left out…] {}",
+        &line[..head],
+        tail - head,
+        &line[tail..]
+    )
+}
+
+/// Prints `message` as the one error line `hyq` ever prints, folding any line breaks and
+/// cutting a very long one ([`capped`]).
 fn print_error(message: &str) {
-    let line = hyq_physics::one_line(message);
+    let line = capped(&hyq_physics::one_line(message));
     // Nothing is left to do if stderr is closed too.
     let _ = writeln!(std::io::stderr().lock(), "hyq: error: {line}");
 }

@@ -104,6 +104,18 @@ fn resolved(target: &Path) -> PathBuf {
     }
 }
 
+/// `e` without the temporary file's path that `tempfile` adds to its errors (`… at path
+/// "dir/.name.x1y2z3.partial"`): the messages name the output the user asked for, not the hidden
+/// file it is staged in. (`tempfile`'s error type is private, so its text is cut where the path
+/// begins.)
+fn without_temp_path(e: io::Error) -> io::Error {
+    let text = e.to_string();
+    match text.rfind(" at path ") {
+        Some(at) if text[at..].contains(".partial") => io::Error::new(e.kind(), &text[..at]),
+        _ => e,
+    }
+}
+
 enum Sink {
     Staged(BufWriter<tempfile::NamedTempFile>),
     Direct(BufWriter<File>),
@@ -158,7 +170,8 @@ impl OutputFile {
         let temp = tempfile::Builder::new()
             .prefix(&format!(".{name}."))
             .suffix(".partial")
-            .tempfile_in(parent_of(&target))?;
+            .tempfile_in(parent_of(&target))
+            .map_err(without_temp_path)?;
         // A new file gets the permissions a plain create gives under the usual umask (022),
         // not the temporary file's owner-only ones.
         #[cfg(unix)]
@@ -179,9 +192,13 @@ impl OutputFile {
         match self.sink {
             Sink::Direct(mut w) => w.flush(),
             Sink::Staged(w) => {
-                let temp = w.into_inner().map_err(io::IntoInnerError::into_error)?;
+                let temp = w
+                    .into_inner()
+                    .map_err(|e| without_temp_path(e.into_error()))?;
                 temp.as_file().sync_all()?;
-                temp.persist(&self.target).map(|_| ()).map_err(|e| e.error)
+                temp.persist(&self.target)
+                    .map(|_| ())
+                    .map_err(|e| without_temp_path(e.error))
             }
         }
     }
@@ -190,14 +207,14 @@ impl OutputFile {
 impl Write for OutputFile {
     fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
         match &mut self.sink {
-            Sink::Staged(w) => w.write(buf),
+            Sink::Staged(w) => w.write(buf).map_err(without_temp_path),
             Sink::Direct(w) => w.write(buf),
         }
     }
 
     fn flush(&mut self) -> io::Result<()> {
         match &mut self.sink {
-            Sink::Staged(w) => w.flush(),
+            Sink::Staged(w) => w.flush().map_err(without_temp_path),
             Sink::Direct(w) => w.flush(),
         }
     }
@@ -222,7 +239,8 @@ impl StagedDir {
         let staging = tempfile::Builder::new()
             .prefix(".hyq-")
             .suffix(".partial")
-            .tempdir_in(dir);
+            .tempdir_in(dir)
+            .map_err(without_temp_path);
         let staging = match staging {
             Ok(s) => s,
             Err(e) => {

@@ -935,6 +935,12 @@ impl<B: Backend> Env<B> {
         &self.obs
     }
 
+    /// Whether observation noise is on (`randomize.obs_noise`): [`Env::observation`] is then
+    /// what the policy sees and [`Env::true_observation`] what the rules see.
+    pub fn observation_is_noisy(&self) -> bool {
+        self.robustness.as_deref().is_some_and(|r| r.noisy)
+    }
+
     /// This episode's drawn variations, when `[randomize]` is on.
     pub fn episode_draw(&self) -> Option<&EpisodeDraw> {
         self.robustness.as_deref().map(|r| r.randomizer.draw())

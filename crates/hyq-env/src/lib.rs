@@ -91,12 +91,12 @@ pub use env::{
 };
 pub use error::EnvError;
 pub use hyq_spec::TermSums;
-pub use info::{INFO_KEYS, InfoKey, InfoValue, Reason, Reasons, StepInfo, VectorLen};
+pub use info::{
+    INFO_KEYS, InfoKey, InfoValue, RANDOMIZE_INFO_KEYS, Reason, Reasons, StepInfo, VectorLen,
+};
 pub use mlp::{MlpError, MlpMetadata, MlpPolicy};
 pub use policy::{Policy, PolicyInput, RandomPolicy, Stand, Trot, TrotParams};
-pub use randomize::{
-    EpisodeDraw, EpisodeRandomization, Preset, RANDOMIZE_INFO_KEYS, RandomizeInfo,
-};
+pub use randomize::{EpisodeDraw, EpisodeRandomization, Preset, RandomizeInfo};
 pub use record::{RECORD_KEYS, RecordKey, StepRecord};
 pub use vec_env::{AutoReset, MAX_ENVS, MAX_THREADS, VecEnv, VecEnvError, VecStepOut};
 

@@ -45,7 +45,7 @@ use safetensors::{Dtype, SafeTensors};
 use thiserror::Error;
 
 use crate::action::ActionSpace;
-use crate::config::{ActionMode, EnvConfig};
+use crate::config::{ActionMode, EnvConfig, ObservationConfig, ObservationExtra};
 use crate::env::observation_layout_for;
 use crate::policy::{Policy, PolicyInput};
 
@@ -513,6 +513,9 @@ impl MlpPolicy {
         if let Some(reason) = layout_mismatch("observation", &m.observation, &rows) {
             return Err(err(reason));
         }
+        if let Some(reason) = self.scan_mismatch(&config.observation) {
+            return Err(err(reason));
+        }
         let joints: Vec<&str> = model.joints().iter().map(|j| j.name.as_str()).collect();
         if let Some(reason) = layout_mismatch("action", &m.action, &joints) {
             return Err(err(reason));
@@ -538,6 +541,60 @@ impl MlpPolicy {
             )));
         }
         Ok(())
+    }
+
+    /// Why an environment's height scan is not the one the policy was trained on, if it reads
+    /// one: the same row names and count can lie at other points (another extent, another
+    /// spacing with the same count), so the scan's geometry is compared too. The trained
+    /// geometry is the `observation.height_scan_*` entries of the file's `env_config`, the
+    /// defaults for those it does not hold (a trainer writes only the keys it changed).
+    fn scan_mismatch(&self, env: &ObservationConfig) -> Option<String> {
+        if !env.groups().contains(&ObservationExtra::HeightScan) {
+            return None;
+        }
+        let entries: Vec<(&str, &str)> = self
+            .metadata
+            .env_config
+            .iter()
+            .filter(|(k, _)| k.starts_with("observation.height_scan_"))
+            .map(|(k, v)| (k.as_str(), v.as_str()))
+            .collect();
+        let mut trained = EnvConfig::default();
+        if let Err(e) = trained.set_all(&entries) {
+            return Some(format!("its env_config's height scan: {e}"));
+        }
+        let t = &trained.observation;
+        [
+            (
+                "x_m",
+                t.height_scan_x_m.to_vec(),
+                env.height_scan_x_m.to_vec(),
+            ),
+            (
+                "y_m",
+                t.height_scan_y_m.to_vec(),
+                env.height_scan_y_m.to_vec(),
+            ),
+            (
+                "spacing_m",
+                vec![t.height_scan_spacing_m],
+                vec![env.height_scan_spacing_m],
+            ),
+        ]
+        .into_iter()
+        .find(|(_, t, e)| t != e)
+        .map(|(key, t, e)| {
+            let show = |v: &[f64]| match v {
+                [one] => format!("{one:?}"),
+                many => format!("{many:?}"),
+            };
+            format!(
+                "trained with observation.height_scan_{key} = {}, the environment has {}: the \
+                 same scan rows would read the ground at other points",
+                show(&t),
+                show(&e)
+            )
+        })
     }
 
     /// The action for `observation` (one value per observation row), before clipping to the

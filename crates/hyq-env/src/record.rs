@@ -10,6 +10,11 @@
 //!
 //! `robot` was added after the other keys: a record written before it has none, and still reads
 //! back (with [`StepRecord::robot`] `None`) and writes out again to the same bytes.
+//!
+//! With observation noise on (`randomize.obs_noise`), `obs` is what the policy saw, noise and
+//! all, and `true_obs` beside it the observation of the simulated state, which is what the
+//! reward was computed from (C^t is `true_obs`' trunk position rows then); without noise the
+//! two are the same and only `obs` is written, so such records are as they always were.
 
 use std::borrow::Cow;
 
@@ -39,7 +44,7 @@ pub struct RecordKey {
 }
 
 /// The step record's keys, in the order written: its one schema ([`StepRecord`]'s fields).
-pub const RECORD_KEYS: [RecordKey; 18] = [
+pub const RECORD_KEYS: [RecordKey; 19] = [
     RecordKey {
         name: "robot",
         kind: "string",
@@ -62,8 +67,16 @@ pub const RECORD_KEYS: [RecordKey; 18] = [
     RecordKey {
         name: "obs",
         kind: "{obs} numbers",
-        meaning: "the observation after the step: the §3 rows, then any observation.extra rows",
+        meaning: "the observation after the step: the §3 rows, then any observation.extra rows; \
+                  with observation noise on, what the policy saw (noise included)",
         optional: false,
+    },
+    RecordKey {
+        name: "true_obs",
+        kind: "{obs} numbers",
+        meaning: "only with observation noise on (`randomize.obs_noise`): the observation of the \
+                  simulated state, without noise, which the reward and the rules used",
+        optional: true,
     },
     RecordKey {
         name: "action",
@@ -165,8 +178,11 @@ pub struct StepRecord<'a> {
     pub episode: u64,
     /// Env steps since reset (1 for the first step).
     pub t: u64,
-    /// The observation after the step.
+    /// The observation after the step (as the policy saw it: with noise when it is on).
     pub obs: Cow<'a, [f64]>,
+    /// The observation without its noise, when observation noise is on (else not written).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub true_obs: Option<Cow<'a, [f64]>>,
     /// The action as given.
     pub action: Cow<'a, [f64]>,
     /// The joint targets tracked (rad).
@@ -215,6 +231,7 @@ impl<'a> StepRecord<'a> {
             episode: info.episode,
             t: info.t,
             obs: Cow::Borrowed(obs),
+            true_obs: None,
             action: Cow::Borrowed(action),
             joint_targets: Cow::Borrowed(&info.joint_targets),
             reward: r.total,
@@ -232,15 +249,21 @@ impl<'a> StepRecord<'a> {
         }
     }
 
-    /// The record of `env`'s last step, taken with `action`.
+    /// The record of `env`'s last step, taken with `action`: with observation noise on, the
+    /// noisy observation and the true one beside it.
     pub fn from_env<B: Backend>(env: &'a Env<B>, action: &'a [f64]) -> Self {
-        Self::new(
-            env.model().name(),
-            env.info(),
-            env.observation(),
-            action,
-            &env.config().task,
-        )
+        Self {
+            true_obs: env
+                .observation_is_noisy()
+                .then(|| Cow::Borrowed(env.true_observation())),
+            ..Self::new(
+                env.model().name(),
+                env.info(),
+                env.observation(),
+                action,
+                &env.config().task,
+            )
+        }
     }
 
     /// The reasons as a set.

@@ -66,6 +66,7 @@ impl Ground {
         // The hardest ground the configuration can give is checked once: the full relief.
         let hardest = ground.build(first_seed(t.seed), 1.0)?;
         ground.check_spawn(model, &hardest)?;
+        ground.check_coverage(model, &hardest)?;
         ground.current = if t.curriculum {
             ground.build(first_seed(t.seed), ground.scale())?
         } else {
@@ -159,15 +160,22 @@ impl Ground {
         let placed = place(model, terrain, &spawn, true, self.foot_clearance);
         let (roll, pitch, _) = placed.state.trunk.pose.rotation.euler_angles();
         let tilt = roll.abs().max(pitch.abs()).to_degrees();
-        let key = match self.config.kind {
-            TerrainKind::Slope => "terrain.slope_deg",
-            TerrainKind::Stairs => "terrain.step_height_m",
-            TerrainKind::Rough => "terrain.amplitude_m",
-            TerrainKind::Heightfield | TerrainKind::Flat => "terrain.file",
+        let t = &self.config;
+        // The key that shapes the ground under the feet, with its value.
+        let (key, value) = match t.kind {
+            TerrainKind::Slope => ("terrain.slope_deg", format!("{:?}", t.slope_deg)),
+            TerrainKind::Stairs => ("terrain.step_height_m", format!("{:?}", t.step_height_m)),
+            TerrainKind::Rough => ("terrain.amplitude_m", format!("{:?}", t.amplitude_m)),
+            TerrainKind::Heightfield | TerrainKind::Flat => (
+                "terrain.file",
+                t.file
+                    .as_ref()
+                    .map_or_else(String::new, |f| format!("{:?}", f.display().to_string())),
+            ),
         };
         let refuse = |why: String| ConfigError::Invalid {
             key: key.to_owned(),
-            value: format!("{:?}", self.config.kind.as_str()),
+            value: value.clone(),
             expected: format!("the robot cannot be put down standing at its spawn point: {why}"),
         };
         if placed.other_clearance < 0.0 {
@@ -176,10 +184,51 @@ impl Ground {
                 -1e3 * placed.other_clearance
             )));
         }
-        if tilt > MAX_SLOPE_DEG {
+        // ±30° itself is allowed: a micro-degree of rounding in the fitted plane is not a tilt.
+        if tilt > MAX_SLOPE_DEG + 1e-6 {
             return Err(refuse(format!(
                 "the ground under its feet tilts it {tilt:.0}°, more than {MAX_SLOPE_DEG}°"
             )));
+        }
+        Ok(())
+    }
+
+    /// Checks that the field lies under the robot's feet at its spawn point: outside the
+    /// field's rectangle no engine has any ground, so a robot put down there fell through at
+    /// the first step (`diverged`). The error names `terrain.center_m` or `terrain.size_m`.
+    fn check_coverage(&self, model: &RobotModel, terrain: &Terrain) -> Result<(), ConfigError> {
+        let t = &self.config;
+        let (key, value) = match t.center_m {
+            Some(c) => ("terrain.center_m", format!("{c:?}")),
+            None => ("terrain.size_m", format!("{:?}", t.size_m)),
+        };
+        let refuse = |what: String| ConfigError::Invalid {
+            key: key.to_owned(),
+            value: value.clone(),
+            expected: format!(
+                "the field does not lie under {what}: outside it there is no ground; move or \
+                 widen it (terrain.center_m, terrain.size_m)"
+            ),
+        };
+        let mut spawn = model.spawn_state();
+        spawn.trunk.pose.translation.x = self.spawn[0];
+        spawn.trunk.pose.translation.y = self.spawn[1];
+        let placed = place(model, terrain, &spawn, true, self.foot_clearance);
+        let mut poses = vec![Isometry3::identity(); model.num_links()];
+        if model
+            .link_poses(&placed.state.trunk.pose, &placed.state.q, &mut poses)
+            .is_err()
+        {
+            unreachable!("the spawn state has one angle per joint and the buffer one pose per body")
+        }
+        for foot in &model.tracked()[..model.num_feet()] {
+            let p = poses[foot.link].translation.vector;
+            if !terrain.contains(p.x, p.y) {
+                return Err(refuse(format!(
+                    "the robot's foot {} at its spawn point [{:.2}, {:.2}]",
+                    foot.name, self.spawn[0], self.spawn[1]
+                )));
+            }
         }
         Ok(())
     }

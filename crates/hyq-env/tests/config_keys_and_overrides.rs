@@ -568,12 +568,15 @@ fn messages_name_the_key_at_its_line_in_plain_words_and_short_numbers() {
 
 #[test]
 fn a_config_file_is_read_up_to_its_size_limit_so_endless_input_is_refused() {
-    // /dev/zero used to be read until memory ran out.
+    // /dev/zero used to be read until memory ran out; now only a regular file is read.
     let msg = EnvConfig::from_file("/dev/zero")
         .err()
         .map(|e| e.to_string())
         .unwrap_or_default();
-    assert!(msg.contains("/dev/zero") && msg.contains("1 MiB"), "{msg}");
+    assert!(
+        msg.contains("/dev/zero") && msg.contains("is not a regular file"),
+        "{msg}"
+    );
     let dir = std::env::temp_dir().join(format!("hyq-env-config-big-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
     let path = dir.join("big.toml");
@@ -591,4 +594,21 @@ fn a_config_file_is_read_up_to_its_size_limit_so_endless_input_is_refused() {
         "one byte more is refused"
     );
     std::fs::remove_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+}
+
+#[test]
+fn a_number_past_a_floats_range_is_named_as_such_not_as_a_string() {
+    for value in ["1e400", "-2e308", "1_0e400"] {
+        let mut c = EnvConfig::default();
+        let msg = c
+            .set_all(&[("task.fall_penalty", value)])
+            .err()
+            .map(|e| e.to_string())
+            .unwrap_or_default();
+        assert!(
+            msg.contains("task.fall_penalty") && msg.contains("beyond a float's range"),
+            "{value}: {msg}"
+        );
+        assert!(!msg.contains("string"), "{value}: {msg}");
+    }
 }

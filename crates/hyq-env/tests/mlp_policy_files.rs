@@ -479,3 +479,52 @@ fn a_policy_file_names_the_extra_rows_it_was_trained_with() {
         assert!(!e.contains('\n'), "{e:?}");
     }
 }
+
+/// A policy that reads the height scan runs only on the scan it was trained on: another
+/// extent or spacing with the same row count and names reads the ground at other points, and
+/// was accepted (the committed rough-ground policy then fell at a joint limit).
+#[test]
+fn a_height_scan_policy_refuses_a_scan_of_another_geometry() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../assets/policies/hyq_walk_rough.safetensors");
+    let policy = MlpPolicy::from_file(&path).unwrap_or_else(|e| panic!("{e}"));
+    let model = hyq_physics::bundled::hyq();
+    let mut base: Vec<(&str, &str)> = policy
+        .metadata()
+        .env_config
+        .iter()
+        .map(|(k, v)| (k.as_str(), v.as_str()))
+        .collect();
+    base.push(("terrain.kind", "\"rough\""));
+    policy
+        .check_env(&model, &common::config(&base), "rough.safetensors")
+        .unwrap_or_else(|e| panic!("its own scan: {e}"));
+    for (key, value) in [
+        // 17 × 11 points either way: same rows, other points.
+        ("observation.height_scan_x_m", "[-0.6, 1.0]"),
+        ("observation.height_scan_y_m", "[-0.4, 0.6]"),
+    ] {
+        let mut pairs = base.clone();
+        pairs.push((key, value));
+        let e = policy
+            .check_env(&model, &common::config(&pairs), "rough.safetensors")
+            .map(|()| String::new())
+            .unwrap_or_else(|e| e.to_string());
+        assert!(
+            e.contains(key) && e.contains("trained with") && !e.contains('\n'),
+            "{key} = {value}: {e:?}"
+        );
+    }
+    // The same row count from a wider extent at a coarser spacing (17 × 11 again).
+    let mut pairs = base.clone();
+    pairs.extend([
+        ("observation.height_scan_x_m", "[-1.6, 1.6]"),
+        ("observation.height_scan_y_m", "[-1.0, 1.0]"),
+        ("observation.height_scan_spacing_m", "0.2"),
+    ]);
+    let e = policy
+        .check_env(&model, &common::config(&pairs), "rough.safetensors")
+        .map(|()| String::new())
+        .unwrap_or_else(|e| e.to_string());
+    assert!(e.contains("observation.height_scan_"), "{e:?}");
+}

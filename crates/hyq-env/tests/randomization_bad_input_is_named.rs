@@ -1,7 +1,8 @@
 //! Every bad `[randomize]` value is refused before anything runs, with one line naming the key
 //! and the value: reversed or non-finite ranges, a scale that can make a mass or gain ≤ 0, a
 //! delay longer than an env step, a negative noise deviation, an unknown key or preset, pushes
-//! without a speed, and an added mass that can make the robot's trunk weightless.
+//! without a speed, an added mass that can make the robot's trunk weightless, and masses that
+//! pass as positive but that no engine holds (DART aborted the process on them).
 
 use hyq_env::{Env, EnvConfig};
 use hyq_rapier::RapierBackend;
@@ -99,7 +100,86 @@ fn an_added_mass_that_empties_the_trunk_is_refused_for_the_robot() {
         .expect("a weightless trunk")
         .to_string();
     assert!(
-        err.contains("randomize.trunk_added_mass_kg") && err.contains("positive"),
+        err.contains("randomize.trunk_added_mass_kg") && err.contains("[1e-4, 1e6] kg"),
         "{err}"
     );
+}
+
+#[test]
+fn masses_no_engine_holds_are_refused_before_anything_runs() {
+    // Finite and ordered, but 1e308 kg is far past the bounds table's 1e6 kg: refused when the
+    // configuration is read (DART aborted on it, rapier silently lost the mass).
+    for value in [
+        "[1e308, 1e308]",
+        "[1e20, 1e20]",
+        "[0.0, 1000001.0]",
+        "[-1e7, 0.0]",
+    ] {
+        let err = refused(&[("randomize.trunk_added_mass_kg", value)]);
+        assert!(
+            err.contains("randomize.trunk_added_mass_kg") && err.contains("1000000"),
+            "{value}: {err}"
+        );
+    }
+    // Positive factors whose bodies fall below what an engine resolves: refused when the
+    // environment is built, naming the key and a body (they failed at the first reset with a
+    // message naming no key, or aborted DART).
+    let model = hyq_physics::bundled::hyq();
+    for (key, value) in [
+        ("randomize.link_mass_scale", "[1e-30, 1e-30]"),
+        ("randomize.link_mass_scale", "[5e-324, 1.0]"),
+        ("randomize.trunk_added_mass_kg", "[999000.0, 999999.0]"),
+    ] {
+        let config = EnvConfig::load::<&str, &str>(None, &[(key, value)])
+            .unwrap_or_else(|e| panic!("{key} = {value} passes the robot-free checks: {e}"));
+        let err = Env::<RapierBackend>::new(model.clone(), config)
+            .err()
+            .unwrap_or_else(|| panic!("{key} = {value} is refused for the robot"))
+            .to_string();
+        assert!(
+            err.contains(key) && err.contains("mass properties of body") && !err.contains('\n'),
+            "{key} = {value}: {err}"
+        );
+    }
+}
+
+#[test]
+fn a_push_interval_shorter_than_an_env_step_is_refused_and_push_messages_quote_the_range() {
+    // Pushes come at most once per env step: 1e-9 s used to push at every step.
+    for interval in ["[1e-9, 1e-9]", "[5e-324, 5e-324]", "[0.005, 1.0]"] {
+        let err = refused(&[
+            ("randomize.push_interval_s", interval),
+            ("randomize.push_velocity_xy_mps", "[1.0, 1.0]"),
+        ]);
+        assert!(
+            err.contains("randomize.push_interval_s") && err.contains("one env step"),
+            "{interval}: {err}"
+        );
+    }
+    // With 20 sub-steps of 1 ms a step is 20 ms, and so is the shortest interval.
+    let err = refused(&[
+        ("randomize.push_interval_s", "[0.01, 1.0]"),
+        ("randomize.push_velocity_xy_mps", "[1.0, 1.0]"),
+        ("control.sim_steps_per_env_step", "20"),
+    ]);
+    assert!(err.contains("lo >= 0.02 s"), "{err}");
+    EnvConfig::load::<&str, &str>(
+        None,
+        &[
+            ("randomize.push_interval_s", "[0.01, 0.01]"),
+            ("randomize.push_velocity_xy_mps", "[1.0, 1.0]"),
+        ],
+    )
+    .unwrap_or_else(|e| panic!("one env step is allowed: {e}"));
+    // A speed without an interval quotes the range, not Rust's `Some(…)`.
+    for key in [
+        "randomize.push_velocity_xy_mps",
+        "randomize.push_velocity_z_mps",
+    ] {
+        let err = refused(&[(key, "[1.0, 1.0]")]);
+        assert!(
+            err.contains(&format!("{key} = [1.0, 1.0]")) && !err.contains("Some("),
+            "{err}"
+        );
+    }
 }

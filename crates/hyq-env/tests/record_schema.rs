@@ -197,3 +197,58 @@ fn randomize_is_written_only_when_randomize_is_on_and_reads_back() {
             .contains("randomize")
     );
 }
+
+/// With observation noise on, `obs` is the noisy view the policy saw, so a record also holds
+/// the true observation (`true_obs`), from which the reward is recomputed: its trunk position
+/// is C^t, at `distance_to_goal` from the goal. Without noise no `true_obs` is written.
+#[test]
+fn with_observation_noise_the_record_keeps_the_true_observation_beside_the_noisy_one() {
+    let mut env = common::rapier(&[
+        ("randomize.obs_noise.trunk_position", "0.5"),
+        ("task.max_time_steps", "20"),
+    ]);
+    reset(&mut env, 5);
+    let position = env.observation_layout().trunk_position();
+    let mut largest_noise = 0.0f64;
+    for _ in 0..10 {
+        env.step(&[0.0; 12]).unwrap_or_else(|e| panic!("{e}"));
+        let line = StepRecord::from_env(&env, &[0.0; 12]).to_json_line();
+        let record = StepRecord::from_json_line(&line).unwrap_or_else(|e| panic!("{e}"));
+        let truth = record
+            .true_obs
+            .as_deref()
+            .expect("true_obs is written with noise on");
+        assert_eq!(truth, env.true_observation());
+        assert_eq!(&*record.obs, env.observation());
+        let c = &truth[position.clone()];
+        let d = (0..3)
+            .map(|i| (c[i] - record.goal[i]).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        assert!(
+            (d - record.distance_to_goal).abs() < 1e-12,
+            "{d} vs {}",
+            record.distance_to_goal
+        );
+        let seen = &record.obs[position.clone()];
+        largest_noise = (0..3)
+            .map(|i| (seen[i] - c[i]).abs())
+            .fold(largest_noise, f64::max);
+        // Written right after `obs`, in the schema's order.
+        assert!(line.find("\"true_obs\":") > line.find("\"obs\":"), "{line}");
+        assert!(
+            line.find("\"true_obs\":") < line.find("\"action\":"),
+            "{line}"
+        );
+    }
+    assert!(
+        largest_noise > 0.05,
+        "the obs rows are noisy: {largest_noise}"
+    );
+
+    let mut plain = common::rapier(&[("randomize.kp_scale", "[0.9, 1.1]")]);
+    reset(&mut plain, 5);
+    plain.step(&[0.0; 12]).unwrap_or_else(|e| panic!("{e}"));
+    let line = StepRecord::from_env(&plain, &[0.0; 12]).to_json_line();
+    assert!(!line.contains("true_obs"), "{line}");
+}

@@ -448,3 +448,77 @@ fn bad_terrain_input_is_refused_in_one_line_naming_the_key() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A field that does not lie under the robot's feet at its spawn point is refused naming the
+/// key that put it there: outside the field no engine has ground, and every episode ended
+/// `diverged` at its first step (the edge cell's plane, extended, put the robot 1.9 m up).
+#[test]
+fn a_field_not_under_the_feet_is_refused_naming_the_key() {
+    for (key, value) in [
+        ("terrain.center_m", "[9.0, 0.0]"),
+        ("terrain.center_m", "[20.0, 0.0]"),
+        ("terrain.center_m", "[8.0, 0.0]"),
+        ("terrain.size_m", "[0.01, 0.01]"),
+    ] {
+        let msg = refused(&[("terrain.kind", "\"rough\""), (key, value)]);
+        assert!(
+            msg.contains(&format!("{key} = {value}")) && msg.contains("does not lie under"),
+            "{key} = {value}: {msg}"
+        );
+    }
+    // A field that holds the feet is built.
+    Env::<hyq_env::testing::ScriptedBackend>::new(
+        hyq_physics::bundled::hyq(),
+        config(&[
+            ("terrain.kind", "\"rough\""),
+            ("terrain.center_m", "[7.0, 0.0]"),
+        ]),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+}
+
+/// A put-down refusal quotes the key's own value (it quoted the terrain's kind), and a slope of
+/// exactly ±30°, the documented limit, is accepted both ways (+30 was refused as "30°, more
+/// than 30°").
+#[test]
+fn put_down_refusals_quote_the_key_and_the_slope_limit_is_inclusive() {
+    let msg = refused(&[
+        ("terrain.kind", "\"stairs\""),
+        ("terrain.step_height_m", "0.5"),
+        ("terrain.start_m", "0.0"),
+    ]);
+    assert!(msg.contains("terrain.step_height_m = 0.5:"), "{msg}");
+    let msg = refused(&[
+        ("terrain.kind", "\"rough\""),
+        ("terrain.amplitude_m", "1.0"),
+    ]);
+    assert!(msg.contains("terrain.amplitude_m = 1.0:"), "{msg}");
+    for slope in ["30", "-30"] {
+        Env::<hyq_env::testing::ScriptedBackend>::new(
+            hyq_physics::bundled::hyq(),
+            config(&[("terrain.kind", "\"slope\""), ("terrain.slope_deg", slope)]),
+        )
+        .unwrap_or_else(|e| panic!("slope {slope}: {e}"));
+    }
+}
+
+/// A range refusal blames the key the user set and prints its numbers short: a resolution of
+/// 1e308 was blamed on `terrain.feature_m`, and a centre of 1e308 on `terrain.size_m`, with the
+/// centre printed in 309 digits.
+#[test]
+fn terrain_range_refusals_blame_the_key_set_in_short_numbers() {
+    let msg = refused(&[
+        ("terrain.kind", "\"rough\""),
+        ("terrain.resolution_m", "1e308"),
+    ]);
+    assert!(
+        msg.contains("terrain.resolution_m = 1e308") && msg.contains("largest field's side"),
+        "{msg}"
+    );
+    let msg = refused(&[
+        ("terrain.kind", "\"rough\""),
+        ("terrain.center_m", "[1e308, 0.0]"),
+    ]);
+    assert!(msg.contains("terrain.center_m = [1e308, 0.0]"), "{msg}");
+    assert!(!msg.contains(&"0".repeat(30)), "{msg}");
+}

@@ -1,15 +1,28 @@
 //! `hyq-fuzz [--seconds N] [--cases N] [--seed S] [TARGET...]`: runs the fuzz targets (all, or
 //! those named) for N seconds each (default 60) or N cases, whichever comes first, and saves
 //! an input that fails to `corpus/<target>/` (where the crate's tests replay it). `cargo xtask
-//! fuzz` runs it. Status 0 when nothing was found, 1 on a finding, 2 for bad arguments.
+//! fuzz` runs it. Status 0 when nothing was found (or for `--help`), 1 on a finding, 2 for bad
+//! arguments.
 
 use std::process::ExitCode;
 use std::time::{Duration, SystemTime, UNIX_EPOCH};
 
 use hyq_fuzz::{Finding, Plan, Target, corpus_dir, run};
 
-const USAGE: &str = "usage: hyq-fuzz [--seconds N] [--cases N] [--seed S] [TARGET...] \
-                     (targets: config, profile, urdf, mjcf, policy, records, ledger)";
+/// The usage line, its targets listed from [`Target::ALL`] so that none is left out.
+fn usage() -> String {
+    let names: Vec<&str> = Target::ALL.iter().map(|t| t.name()).collect();
+    format!(
+        "usage: hyq-fuzz [--seconds N] [--cases N] [--seed S] [TARGET...] (targets: {})",
+        names.join(", ")
+    )
+}
+
+/// What the arguments ask for: a run, or the usage (`--help`, `-h`).
+enum Request {
+    Run(Args),
+    Help,
+}
 
 struct Args {
     seconds: f64,
@@ -18,7 +31,7 @@ struct Args {
     targets: Vec<Target>,
 }
 
-fn parse(args: &[String]) -> Result<Args, String> {
+fn parse(args: &[String]) -> Result<Request, String> {
     let now = SystemTime::now()
         .duration_since(UNIX_EPOCH)
         .map_or(0, |d| d.as_secs());
@@ -32,7 +45,7 @@ fn parse(args: &[String]) -> Result<Args, String> {
     while let Some(arg) = it.next() {
         let mut value = |name: &str| {
             it.next()
-                .ok_or_else(|| format!("{name} needs a value; {USAGE}"))
+                .ok_or_else(|| format!("{name} needs a value; {}", usage()))
                 .cloned()
         };
         match arg.as_str() {
@@ -53,15 +66,17 @@ fn parse(args: &[String]) -> Result<Args, String> {
                     .parse()
                     .map_err(|_| "--seed: expected a whole number")?;
             }
+            "--help" | "-h" => return Ok(Request::Help),
             name => parsed.targets.push(
-                Target::by_name(name).ok_or_else(|| format!("unknown target {name:?}; {USAGE}"))?,
+                Target::by_name(name)
+                    .ok_or_else(|| format!("unknown target {name:?}; {}", usage()))?,
             ),
         }
     }
     if parsed.targets.is_empty() {
         parsed.targets = Target::ALL.to_vec();
     }
-    Ok(parsed)
+    Ok(Request::Run(parsed))
 }
 
 /// Saves a finding's input to its target's corpus, named by its content, and says where.
@@ -80,7 +95,11 @@ fn keep(finding: &Finding, target: Target) -> String {
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let args = match parse(&args) {
-        Ok(a) => a,
+        Ok(Request::Run(a)) => a,
+        Ok(Request::Help) => {
+            println!("{}", usage());
+            return ExitCode::SUCCESS;
+        }
         Err(e) => {
             eprintln!("hyq-fuzz: error: {e}");
             return ExitCode::from(2);
@@ -126,5 +145,30 @@ fn main() -> ExitCode {
         ExitCode::from(1)
     } else {
         ExitCode::SUCCESS
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    //! The usage names every target, and `--help` asks for it rather than naming a target.
+    use super::*;
+
+    #[test]
+    fn help_is_the_usage_and_the_usage_names_every_target() {
+        for target in Target::ALL {
+            assert!(usage().contains(target.name()), "{}", usage());
+        }
+        for flag in ["--help", "-h"] {
+            let args = [flag.to_owned()];
+            assert!(matches!(parse(&args), Ok(Request::Help)), "{flag}");
+        }
+        let args = ["bogus".to_owned()];
+        let Err(e) = parse(&args) else {
+            panic!("an unknown target is refused")
+        };
+        assert!(
+            e.contains("unknown target \"bogus\"") && e.contains("heights"),
+            "{e}"
+        );
     }
 }

@@ -135,13 +135,57 @@ impl Target {
     }
 }
 
+/// An input that stands for a FIFO: the target puts a FIFO that no one writes to where its
+/// loader looks for the file, and the loader must refuse it at once (opening one used to block
+/// every loader but the height file's forever; a case still waiting after [`crate::HANG_LIMIT`]
+/// is a hang). The corpus holds one for each target.
+pub const FIFO_INPUT: &[u8] = b"#fifo\n";
+
 /// A refusal: `Ok(false)` if its message is a good one.
 fn refused(message: &str) -> Result<bool, String> {
     check::message(message).map(|()| false)
 }
 
+/// Writes `bytes` at `path`, or makes a FIFO there for [`FIFO_INPUT`]. The path is cleared
+/// first: writing into a FIFO an earlier case left would wait for a reader.
 fn write(path: &Path, bytes: &[u8]) -> Result<(), String> {
+    let _ = std::fs::remove_file(path);
+    if bytes == FIFO_INPUT {
+        let made = std::process::Command::new("mkfifo")
+            .arg(path)
+            .status()
+            .map_err(|e| format!("cannot run mkfifo: {e}"))?;
+        return if made.success() {
+            Ok(())
+        } else {
+            Err(format!("mkfifo {} failed", path.display()))
+        };
+    }
     std::fs::write(path, bytes).map_err(|e| format!("scratch file {}: {e}", path.display()))
+}
+
+/// Why an accepted policy file is unsound, if it holds a value that is not finite in a float
+/// tensor: the reader must refuse every such file (a NaN weight makes every action NaN).
+fn non_finite_tensor(input: &[u8]) -> Option<String> {
+    let tensors = safetensors::SafeTensors::deserialize(input).ok()?;
+    for (name, view) in tensors.tensors() {
+        let data = view.data();
+        let bad = match view.dtype() {
+            safetensors::Dtype::F32 => data
+                .chunks_exact(4)
+                .any(|c| !f32::from_le_bytes([c[0], c[1], c[2], c[3]]).is_finite()),
+            safetensors::Dtype::F64 => data.chunks_exact(8).any(|c| {
+                !f64::from_le_bytes([c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]]).is_finite()
+            }),
+            _ => false,
+        };
+        if bad {
+            return Some(format!(
+                "an accepted policy's tensor `{name}` holds a non-finite value"
+            ));
+        }
+    }
+    None
 }
 
 fn config(input: &[u8], scratch: &Path) -> Result<bool, String> {
@@ -214,6 +258,9 @@ fn policy(input: &[u8], scratch: &Path) -> Result<bool, String> {
         Err(e) => return refused(&e.to_string()),
         Ok(p) => p,
     };
+    if let Some(unsound) = non_finite_tensor(input) {
+        return Err(unsound);
+    }
     let widths = policy.widths();
     let (inputs, outputs) = (widths[0], widths[widths.len() - 1]);
     let mut action = vec![0.0; outputs];
@@ -240,7 +287,15 @@ fn policy(input: &[u8], scratch: &Path) -> Result<bool, String> {
 }
 
 fn records(input: &[u8], scratch: &Path) -> Result<bool, String> {
-    let read = match hyq_render::parse_jsonl(Cursor::new(input), "fuzz.jsonl") {
+    let parsed = if input == FIFO_INPUT {
+        // Through the file reader `hyq plot` uses, which must refuse the FIFO.
+        let path = scratch.join("records.jsonl");
+        write(&path, input)?;
+        hyq_render::read_jsonl(&path)
+    } else {
+        hyq_render::parse_jsonl(Cursor::new(input), "fuzz.jsonl")
+    };
+    let read = match parsed {
         Err(e) => return refused(&e.to_string()),
         Ok(r) => r,
     };

@@ -15,11 +15,18 @@
 //!   keeps the tensor about it.
 //!
 //! So a draw whose scales are positive and whose trunk mass stays positive gives positive
-//! masses and positive definite tensors that satisfy the triangle inequality, for every body;
-//! [`Dynamics::validate`] checks it anyway before a backend sees the values.
+//! masses and positive definite tensors that satisfy the triangle inequality, for every body.
+//! Positive is not enough for an engine: a body of 1e-30 kg or 1e308 kg passes it, and DART
+//! aborts the process on either (an assertion no caller can catch). So every drawn body is held
+//! to the same table the robot's own bodies are ([`crate::bounds`]: [`bounds::BODY_MASS`],
+//! [`bounds::BODY_MOMENT`], [`bounds::JOINT_DAMPING`]), by [`Dynamics::validate`] before a
+//! backend sees the values, and whole ranges of draws are checked once, when an environment is
+//! built, by [`check_draw_ranges`]: a drawn mass, moment or damping is monotone in each factor
+//! and in the added mass, so a range whose corners are inside the table has every draw inside.
 
 use nalgebra::Vector3;
 
+use crate::bounds;
 use crate::error::PhysicsError;
 use crate::inertia::{MassProperties, check_inertia};
 use crate::model::RobotModel;
@@ -88,19 +95,7 @@ impl Dynamics {
         }
         for (b, link) in self.bodies.iter().zip(model.links()) {
             let what = || format!("mass properties of body {}", link.name);
-            if !(b.mass.is_finite() && b.mass > 0.0) {
-                return Err(invalid(
-                    what(),
-                    format!("mass {} kg must be finite and positive", b.mass),
-                ));
-            }
-            if !b.com.iter().all(|v| v.is_finite()) {
-                return Err(invalid(
-                    what(),
-                    format!("centre of mass {:?} m must be finite", b.com.as_slice()),
-                ));
-            }
-            check_inertia(&b.inertia, true).map_err(|reason| invalid(what(), reason))?;
+            check_body(b).map_err(|reason| invalid(what(), reason))?;
         }
         if self.joint_damping.len() != model.num_joints() {
             return Err(PhysicsError::WrongLength {
@@ -109,19 +104,119 @@ impl Dynamics {
                 got: self.joint_damping.len(),
             });
         }
-        if let Some((j, d)) = self
-            .joint_damping
-            .iter()
-            .enumerate()
-            .find(|(_, d)| !(d.is_finite() && **d >= 0.0))
-        {
-            return Err(invalid(
-                format!("damping of joint {}", model.joints()[j].name),
-                format!("{d} N·m·s/rad must be finite and non-negative"),
-            ));
+        for (d, joint) in self.joint_damping.iter().zip(model.joints()) {
+            bounds::JOINT_DAMPING
+                .check(*d)
+                .map_err(|reason| invalid(format!("damping of joint {}", joint.name), reason))?;
         }
         Ok(())
     }
+}
+
+/// Checks one moving body's drawn mass properties against the robot bounds table: the mass in
+/// [`bounds::BODY_MASS`], a finite centre of mass, a valid positive definite tensor whose
+/// principal moments are in [`bounds::BODY_MOMENT`]. The reason names the quantity, the value
+/// and the range.
+fn check_body(b: &MassProperties) -> Result<(), String> {
+    bounds::BODY_MASS
+        .check(b.mass)
+        .map_err(|reason| format!("mass {reason}"))?;
+    if !b.com.iter().all(|v| v.is_finite()) {
+        return Err(format!(
+            "centre of mass {:?} m must be finite",
+            b.com.as_slice()
+        ));
+    }
+    check_inertia(&b.inertia, true)?;
+    let moments: [f64; 3] = b.inertia.symmetric_eigenvalues().into();
+    for m in moments {
+        bounds::BODY_MOMENT
+            .check(m)
+            .map_err(|reason| format!("principal moment of inertia {reason}"))?;
+    }
+    Ok(())
+}
+
+/// The ranges an environment draws its physical variations from, the nominal range (`[1, 1]`
+/// factors, `[0, 0]` kg) for an option that is off. See [`check_draw_ranges`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DrawRanges {
+    /// The factor of every body's mass and inertia.
+    pub link_mass_scale: [f64; 2],
+    /// The mass added to the trunk (kg).
+    pub trunk_added_mass_kg: [f64; 2],
+    /// The factor of every joint's damping.
+    pub joint_damping_scale: [f64; 2],
+}
+
+impl DrawRanges {
+    /// No variation.
+    pub const NOMINAL: Self = Self {
+        link_mass_scale: [1.0, 1.0],
+        trunk_added_mass_kg: [0.0, 0.0],
+        joint_damping_scale: [1.0, 1.0],
+    };
+}
+
+/// Which range of [`DrawRanges`] a draw outside the bounds table comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DrawnQuantity {
+    /// [`DrawRanges::link_mass_scale`].
+    LinkMassScale,
+    /// [`DrawRanges::trunk_added_mass_kg`].
+    TrunkAddedMass,
+    /// [`DrawRanges::joint_damping_scale`].
+    JointDampingScale,
+}
+
+/// A range of [`DrawRanges`] that reaches outside what every engine holds.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DrawRangeFault {
+    /// The range to blame.
+    pub quantity: DrawnQuantity,
+    /// What its extreme draw gives, and the table's range (one line, short numbers).
+    pub reason: String,
+}
+
+/// Checks that every draw from `ranges` gives `model` dynamics inside the robot bounds table
+/// (what rapier, DART and MuJoCo all hold; see the module docs), by checking the ranges'
+/// corners: each drawn mass, principal moment and damping is monotone in its factor and in the
+/// added mass. The link scales are checked first with no added mass, so that a fault is blamed
+/// on the range that causes it. The ranges themselves must be finite and ordered with positive
+/// factors (the configuration's checks).
+pub fn check_draw_ranges(model: &RobotModel, ranges: &DrawRanges) -> Result<(), DrawRangeFault> {
+    let corner = |scale: f64, added: f64, damping: f64| DynamicsDraw {
+        ground_friction: 0.0,
+        trunk_added_mass_kg: added,
+        trunk_com_offset_m: [0.0; 3],
+        link_mass_scale: vec![scale; model.num_links()],
+        joint_damping_scale: vec![damping; model.num_joints()],
+    };
+    let fault = |quantity, e: PhysicsError| DrawRangeFault {
+        quantity,
+        reason: match e {
+            PhysicsError::InvalidState { what, reason } => format!("{what}: {reason}"),
+            other => other.to_string(),
+        },
+    };
+    for s in ranges.link_mass_scale {
+        corner(s, 0.0, 1.0)
+            .dynamics(model)
+            .map_err(|e| fault(DrawnQuantity::LinkMassScale, e))?;
+    }
+    for s in ranges.link_mass_scale {
+        for a in ranges.trunk_added_mass_kg {
+            corner(s, a, 1.0)
+                .dynamics(model)
+                .map_err(|e| fault(DrawnQuantity::TrunkAddedMass, e))?;
+        }
+    }
+    for d in ranges.joint_damping_scale {
+        corner(1.0, 0.0, d)
+            .dynamics(model)
+            .map_err(|e| fault(DrawnQuantity::JointDampingScale, e))?;
+    }
+    Ok(())
 }
 
 /// One episode's drawn physical variations, as factors and offsets of the model's values;
@@ -417,7 +512,7 @@ mod tests {
                     link_mass_scale: vec![0.0; model.num_links()],
                     ..nominal.clone()
                 },
-                "mass 0 kg",
+                "mass 0 must be finite and in [1e-4, 1e6] kg",
             ),
             (
                 DynamicsDraw {
@@ -438,6 +533,56 @@ mod tests {
             let err = draw.dynamics(&model).unwrap_err().to_string();
             assert!(err.contains(says), "{err:?} should name {says:?}");
         }
+    }
+
+    #[test]
+    fn draws_are_held_to_the_robot_bounds_table_and_blamed_on_their_range() {
+        let model = bundled::hyq();
+        let trunk = model.links()[0].mass;
+        check_draw_ranges(&model, &DrawRanges::NOMINAL).unwrap();
+        let cases = [
+            (
+                DrawRanges {
+                    link_mass_scale: [1e-30, 1.0],
+                    ..DrawRanges::NOMINAL
+                },
+                DrawnQuantity::LinkMassScale,
+                "[1e-4, 1e6] kg",
+            ),
+            (
+                DrawRanges {
+                    trunk_added_mass_kg: [0.0, 1e6],
+                    ..DrawRanges::NOMINAL
+                },
+                DrawnQuantity::TrunkAddedMass,
+                "body trunk",
+            ),
+            (
+                // Each factor alone is fine; the lightest trunk with the most mass removed is not.
+                DrawRanges {
+                    link_mass_scale: [0.5, 1.0],
+                    trunk_added_mass_kg: [-0.5 * trunk, 0.0],
+                    ..DrawRanges::NOMINAL
+                },
+                DrawnQuantity::TrunkAddedMass,
+                "mass 0 must be",
+            ),
+        ];
+        for (ranges, quantity, says) in cases {
+            let fault = check_draw_ranges(&model, &ranges).unwrap_err();
+            assert_eq!(fault.quantity, quantity, "{ranges:?}");
+            assert!(fault.reason.contains(says), "{:?}", fault.reason);
+        }
+        // The heaviest and lightest draws inside the table pass.
+        check_draw_ranges(
+            &model,
+            &DrawRanges {
+                link_mass_scale: [0.01, 100.0],
+                trunk_added_mass_kg: [-0.0099 * trunk, 9e5],
+                ..DrawRanges::NOMINAL
+            },
+        )
+        .unwrap();
     }
 
     #[test]

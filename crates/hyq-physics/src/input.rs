@@ -1,10 +1,13 @@
 //! Reading the files users give the project, every one through the same size-capped reader.
 //!
 //! A configuration, a robot profile, a URDF, a trained policy, a comparison ledger and the step
-//! records `hyq plot` reads may come from anyone, and a path may name `/dev/zero`, a FIFO fed
-//! forever or a file of gigabytes. Each kind of file has a cap ([`FileKind`], one table:
-//! [`KINDS`]) far above any real file of its kind; the reader stops one byte past it and says
-//! so, instead of reading until memory runs out. Records are read line by line
+//! records `hyq plot` reads may come from anyone, and a path may name `/dev/zero`, a FIFO that
+//! no one writes to or a file of gigabytes. Only a regular file is read ([`open`], the one rule
+//! of every loader, the terrain's height files included): a FIFO would block its reader
+//! forever and a device may never end. Each kind of file has a cap ([`FileKind`], one table:
+//! [`KINDS`]) far above any real file of its kind; the reader refuses a file past it from its
+//! size, stops one byte past it if the file grows while it is read, and says so, instead of
+//! reading until memory runs out. Records are read line by line
 //! ([`read_line`]), with a cap per line as well as on the whole file.
 //!
 //! What a parser would choke on is checked here too, before it runs: the nesting depth of an
@@ -112,14 +115,47 @@ fn too_large(kind: &FileKind) -> io::Error {
     )
 }
 
+/// Why a path that is not a regular file is refused, in words that follow the path.
+pub const NOT_A_FILE: &str = "is not a regular file (a FIFO, device, socket or directory): \
+                              only files are read, since a pipe would block its reader forever \
+                              and a device may never end";
+
+/// Opens a user's file for reading, refusing anything but a regular file ([`NOT_A_FILE`],
+/// [`io::ErrorKind::InvalidInput`]), the one rule of every loader: a FIFO with no writer would
+/// block `open()` forever, and a blocked `open()` cannot even be interrupted from Python. The
+/// path is checked before it is opened, and the opened file again, opened without waiting for
+/// a writer, so a FIFO swapped in between is refused too rather than waited on.
+pub fn open(path: &Path) -> io::Result<std::fs::File> {
+    let not_a_file = || io::Error::new(io::ErrorKind::InvalidInput, NOT_A_FILE);
+    if !std::fs::metadata(path)?.is_file() {
+        return Err(not_a_file());
+    }
+    let mut options = std::fs::OpenOptions::new();
+    options.read(true);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::OpenOptionsExt;
+        // For a regular file O_NONBLOCK changes nothing; for a FIFO it makes `open()` return
+        // at once instead of waiting for a writer.
+        options.custom_flags(libc::O_NONBLOCK);
+    }
+    let file = options.open(path)?;
+    if !file.metadata()?.is_file() {
+        return Err(not_a_file());
+    }
+    Ok(file)
+}
+
 /// The bytes of a file of `kind`, reading at most one byte past its cap. Errors: the operating
-/// system's (missing, a directory, no permission), or [`io::ErrorKind::FileTooLarge`] with a
-/// message saying the cap.
+/// system's (missing, no permission), [`NOT_A_FILE`] for anything but a regular file
+/// ([`open`]), or [`io::ErrorKind::FileTooLarge`] with a message saying the cap.
 pub fn read_bytes(path: &Path, kind: &FileKind) -> io::Result<Vec<u8>> {
+    let file = open(path)?;
+    if file.metadata()?.len() > kind.max_bytes {
+        return Err(too_large(kind));
+    }
     let mut bytes = Vec::new();
-    std::fs::File::open(path)?
-        .take(kind.max_bytes + 1)
-        .read_to_end(&mut bytes)?;
+    file.take(kind.max_bytes + 1).read_to_end(&mut bytes)?;
     if bytes.len() as u64 > kind.max_bytes {
         return Err(too_large(kind));
     }

@@ -48,7 +48,10 @@ pub mod terrain;
 pub use actuator::{Actuator, PdScratch, apply_pd, apply_pd_to_valid_targets, pd_substep};
 pub use backend::{Backend, check_joint_values};
 pub use bundled::resolve as resolve_robot;
-pub use dynamics::{ActuatorScales, Dynamics, DynamicsDraw, TargetDelay};
+pub use dynamics::{
+    ActuatorScales, DrawRangeFault, DrawRanges, DrawnQuantity, Dynamics, DynamicsDraw, TargetDelay,
+    check_draw_ranges,
+};
 pub use error::{ModelError, PhysicsError, one_line, printable};
 pub use inertia::MassProperties;
 pub use model::{Collision, Joint, Link, RobotModel, Shape, TrackedBody};

@@ -1,5 +1,5 @@
 //! A robot's files are read through the size-capped reader and checked before the XML parser
-//! runs: an endless file (`/dev/zero`) stops at its cap, a URDF nested thousands deep (which
+//! runs: a file past its cap is refused from its size, a URDF nested thousands deep (which
 //! would overflow the parser's stack, an abort no caller can catch) is refused by its depth, and
 //! one with tens of thousands of links or shapes is refused by count, each with one line naming
 //! the file and what was too big.
@@ -57,21 +57,34 @@ fn deeply_nested_urdf_is_refused_before_parsing() {
 }
 
 #[test]
-fn endless_profile_and_urdf_files_are_refused_at_their_cap() {
-    let e = RobotModel::load("/dev/zero").expect_err("endless profile");
-    let text = one_line(&e);
+fn oversized_profile_and_urdf_files_are_refused_at_their_cap() {
+    // Sparse files past the caps: refused from their size, before a byte is read.
+    let dir = std::env::temp_dir().join(format!("hyq-caps-big-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let big = |name: &str, bytes: u64| {
+        let path = dir.join(name);
+        std::fs::File::create(&path)
+            .and_then(|f| f.set_len(bytes))
+            .expect("a sparse file");
+        path
+    };
+    let profile = big("big_profile.toml", (1 << 20) + 1);
+    let text = one_line(&RobotModel::load(&profile).expect_err("a 1 MiB + 1 profile"));
     assert!(
-        text.contains("/dev/zero") && text.contains("larger than 1 MiB, which no robot profile is"),
+        text.contains("big_profile.toml")
+            && text.contains("larger than 1 MiB, which no robot profile is"),
         "{text}"
     );
-    let dir = robot_dir(
-        "zero",
-        HYQ_URDF,
-        ("urdf = \"hyq.urdf\"", "urdf = \"/dev/zero\""),
+    let urdf = big("big.urdf", (8 << 20) + 1);
+    let profile = HYQ_PROFILE.replacen(
+        "urdf = \"hyq.urdf\"",
+        &format!("urdf = {:?}", urdf.display().to_string()),
+        1,
     );
-    let text = one_line(&load_from(&dir).expect_err("endless URDF"));
+    std::fs::write(dir.join("profile.toml"), profile).expect("profile");
+    let text = one_line(&load_from(&dir).expect_err("an 8 MiB + 1 URDF"));
     assert!(
-        text.contains("cannot read URDF file /dev/zero: larger than 8 MiB, which no URDF is"),
+        text.contains("big.urdf: larger than 8 MiB, which no URDF is"),
         "{text}"
     );
 }

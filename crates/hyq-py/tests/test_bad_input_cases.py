@@ -203,7 +203,8 @@ def test_constructor_arguments_are_checked_by_name(kwargs) -> None:
     words = {"bogus_key": "bogus_key", "env_config": "env_config", "config_file": "missing"}
     expected = words.get(name, name)
     if name == "config_file" and "zero" in str(kwargs[name]):
-        expected = "1 MiB"
+        # A device is not read at all, like a FIFO (it used to be read up to the 1 MiB cap).
+        expected = "is not a regular file"
     if name == "goal" and isinstance(kwargs[name], dict):
         expected = "goal.position"
     assert expected in str(err.value), str(err.value)
@@ -242,7 +243,10 @@ def test_vector_env_arguments() -> None:
         envs.reset(options={"reset_mask": [True]})
     with pytest.raises(IndexError):
         envs.env_info(5)
-    envs.reset(seed=2**64 - 1)
+    # Env i is seeded seed + i: the largest seed leaves room for every env (it used to wrap).
+    envs.reset(seed=2**64 - 3)
+    with pytest.raises(ValueError, match="seed = 18446744073709551614"):
+        envs.reset(seed=2**64 - 2)
 
 
 @pytest.mark.parametrize("robot", ["hyq", "anymal_c"])

@@ -118,3 +118,16 @@ def test_on_policy_runner_learns_on_it_and_logs_the_episodes(tmp_path) -> None:
     events = EventAccumulator(str(tmp_path))
     events.Reload()
     assert "hyq/distance_m" in events.Tags()["scalars"]
+
+
+def test_numpy_actions_are_taken_as_tensors_and_junk_is_refused_by_name() -> None:
+    env = HyQRslRlVecEnv(num_envs=2, seed=4)
+    obs_np, rewards_np, _, _ = env.step(np.zeros((2, 12)))
+    env2 = HyQRslRlVecEnv(num_envs=2, seed=4)
+    obs_t, rewards_t, _, _ = env2.step(torch.zeros((2, 12)))
+    assert torch.equal(rewards_np, rewards_t)
+    assert torch.equal(obs_np["policy"], obs_t["policy"])
+    with pytest.raises(ValueError, match="actions: expected a tensor or an array of numbers"):
+        env.step([["a"] * 12] * 2)
+    env.close()
+    env2.close()

@@ -140,7 +140,8 @@ pub fn parse_jsonl(mut reader: impl BufRead, origin: &str) -> Result<JsonlRecord
 /// Reads a JSONL file of step records (see [`parse_jsonl`]).
 pub fn read_jsonl(path: impl AsRef<Path>) -> Result<JsonlRecords, PlotError> {
     let path = path.as_ref();
-    let file = std::fs::File::open(path).map_err(|source| PlotError::Read {
+    // The one rule of every loader: only a regular file is opened (a FIFO would block).
+    let file = input::open(path).map_err(|source| PlotError::Read {
         path: path.to_owned(),
         source,
     })?;

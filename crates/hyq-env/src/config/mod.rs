@@ -59,6 +59,7 @@ mod messages;
 mod observation;
 mod parse;
 mod physics;
+mod presets;
 mod randomize;
 mod reset;
 mod task;
@@ -73,6 +74,7 @@ pub use messages::{ConfigError, LoadError};
 pub use observation::{MAX_SCAN_POINTS, MAX_SCAN_REACH_M, ObservationConfig, ObservationExtra};
 pub use parse::CONFIG_FILE_MAX_BYTES;
 pub use physics::{ENGINE_TABLES, PhysicsConfig};
+pub use presets::{PRESET_RANGES, Preset, PresetRange, preset_table};
 pub use randomize::{
     COM_OFFSET_MAX_M, FRICTION_MAX, NOISE_MAX, NoiseDistribution, ObsNoiseConfig,
     PUSH_SPEED_MAX_MPS, RandomizeConfig, Range, SCALE_MAX,

@@ -156,6 +156,12 @@ fn insert(doc: &mut toml::Table, key: &str, value: &str) -> Result<(), String> {
                     .into(),
             );
         }
+        // A number past a float's range (`1e400`): say so, rather than read it as a string.
+        Err(_) if is_out_of_range_float(value) => {
+            return Err(
+                "not a number a configuration can hold: beyond a float's range (±1.8e308)".into(),
+            );
+        }
         Err(_) => None,
     }
     .unwrap_or_else(|| toml::Value::String(value.to_owned()));
@@ -222,6 +228,18 @@ fn line_of(text: &str, key: &str) -> Option<usize> {
 }
 
 /// Whether `value` is written as a TOML integer (sign, digits, underscores).
+/// Whether `value` is written as a decimal number that overflows f64 (`1e400`, `-2e308`), which
+/// TOML refuses as a float.
+fn is_out_of_range_float(value: &str) -> bool {
+    let v = value.trim();
+    v.chars()
+        .all(|c| c.is_ascii_digit() || matches!(c, '+' | '-' | '.' | 'e' | 'E' | '_'))
+        && v.chars().any(|c| c.is_ascii_digit())
+        && v.replace('_', "")
+            .parse::<f64>()
+            .is_ok_and(f64::is_infinite)
+}
+
 fn is_integer_literal(value: &str) -> bool {
     let digits = value.trim().trim_start_matches(['+', '-']);
     !digits.is_empty() && digits.chars().all(|c| c.is_ascii_digit() || c == '_')

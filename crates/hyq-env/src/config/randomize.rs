@@ -4,8 +4,8 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::presets::{PRESET_RANGES, Preset};
 use super::{ConfigError, EnvConfig, Table};
-use crate::randomize::Preset;
 
 /// A range `[lo, hi]` drawn uniformly (lo = hi draws that value).
 pub type Range = [f64; 2];
@@ -21,6 +21,12 @@ pub const COM_OFFSET_MAX_M: f64 = 0.5;
 
 /// The largest push speed on any axis (m/s): the anchors' strongest kick is 3 m/s.
 pub const PUSH_SPEED_MAX_MPS: f64 = 100.0;
+
+/// The largest mass added to or removed from the trunk (kg): the robot bounds table's largest
+/// moving body ([`hyq_physics::bounds::BODY_MASS`], what every engine holds faithfully). Whether
+/// the trunk's drawn mass itself stays inside that table depends on the robot, and is checked
+/// when an environment is built ([`crate::randomize::check_for_robot`]).
+pub const ADDED_MASS_MAX_KG: f64 = hyq_physics::bounds::BODY_MASS.high;
 
 /// The largest ground friction coefficient.
 pub const FRICTION_MAX: f64 = 10.0;
@@ -44,14 +50,17 @@ pub struct RandomizeConfig {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub ground_friction: Option<Range>,
     /// Mass added to the trunk at its centre of mass (kg; negative removes), its inertia
-    /// following its mass; the trunk's lightest mass must stay positive. (default: off)
+    /// following its mass, within ±1e6 kg; the trunk's drawn mass must stay within the robot
+    /// bounds table's [1e-4, 1e6] kg. (default: off)
     #[serde(skip_serializing_if = "Option::is_none")]
     pub trunk_added_mass_kg: Option<Range>,
     /// Offset of the trunk's centre of mass along its link frame's x, y, z (m, three ranges),
     /// each within ±0.5 m. (default: off)
     #[serde(skip_serializing_if = "Option::is_none")]
     pub trunk_com_offset_m: Option<[Range; 3]>,
-    /// Factor of every body's mass and inertia, drawn per body, in (0, 100]. (default: off)
+    /// Factor of every body's mass and inertia, drawn per body, in (0, 100]; every drawn body
+    /// must stay within the robot bounds table (mass in [1e-4, 1e6] kg, principal moments in
+    /// [1e-8, 1e6] kg·m²). (default: off)
     #[serde(skip_serializing_if = "Option::is_none")]
     pub link_mass_scale: Option<Range>,
     /// Factor of every joint's kp, drawn per joint, in (0, 100]. (default: off)
@@ -212,10 +221,11 @@ impl RandomizeConfig {
 
     /// Checks the ranges in effect (see [`RandomizeConfig::effective`]) against what keeps
     /// every drawn world physical and every number finite; `substeps` is
-    /// `control.sim_steps_per_env_step`. The error names the key and the value. What depends
-    /// on the robot (the trunk's mass staying positive) is checked when an environment is
+    /// `control.sim_steps_per_env_step` and `env_step_s` the env step's length (that times
+    /// `physics.dt`). The error names the key and the value. What depends on the robot (every
+    /// drawn body inside the robot bounds table) is checked when an environment is
     /// built ([`crate::randomize::check_for_robot`]).
-    pub fn check(&self, substeps: u32) -> Result<(), ConfigError> {
+    pub fn check(&self, substeps: u32, env_step_s: f64) -> Result<(), ConfigError> {
         let e = self.effective();
         range(
             "randomize.ground_friction",
@@ -224,9 +234,13 @@ impl RandomizeConfig {
             FRICTION_MAX,
             false,
         )?;
-        if let Some(r) = e.trunk_added_mass_kg {
-            ordered("randomize.trunk_added_mass_kg", r)?;
-        }
+        range(
+            "randomize.trunk_added_mass_kg",
+            e.trunk_added_mass_kg,
+            -ADDED_MASS_MAX_KG,
+            ADDED_MASS_MAX_KG,
+            false,
+        )?;
         if let Some(axes) = e.trunk_com_offset_m {
             for r in axes {
                 range(
@@ -266,10 +280,10 @@ impl RandomizeConfig {
             });
         }
         e.obs_noise.validate()?;
-        e.validate_pushes()
+        e.validate_pushes(env_step_s)
     }
 
-    fn validate_pushes(&self) -> Result<(), ConfigError> {
+    fn validate_pushes(&self, env_step_s: f64) -> Result<(), ConfigError> {
         range(
             "randomize.push_interval_s",
             self.push_interval_s,
@@ -277,6 +291,21 @@ impl RandomizeConfig {
             f64::MAX,
             true,
         )?;
+        // Pushes come at the start of an env step, at most one per step: an interval shorter
+        // than a step would push at every step whatever its value.
+        if let Some(r) = self.push_interval_s
+            && r[0] < env_step_s
+        {
+            return Err(ConfigError::Invalid {
+                key: "randomize.push_interval_s".into(),
+                value: format!("{r:?}"),
+                expected: format!(
+                    "must have lo >= {env_step_s} s, one env step (control.sim_steps_per_env_step \
+                     × physics.dt): pushes come at most once per env step, so a shorter interval \
+                     would push at every step"
+                ),
+            });
+        }
         range(
             "randomize.push_velocity_xy_mps",
             self.push_velocity_xy_mps,
@@ -306,10 +335,10 @@ impl RandomizeConfig {
                 } else {
                     "randomize.push_velocity_z_mps".into()
                 },
-                value: format!(
-                    "{:?}",
-                    self.push_velocity_xy_mps.or(self.push_velocity_z_mps)
-                ),
+                value: self
+                    .push_velocity_xy_mps
+                    .or(self.push_velocity_z_mps)
+                    .map_or_else(String::new, |r| format!("{r:?}")),
                 expected: "pushes need a time between them: set randomize.push_interval_s too"
                     .into(),
             }),
@@ -322,7 +351,8 @@ impl RandomizeConfig {
 /// and finite, the delay within an env step.
 impl Table for RandomizeConfig {
     fn validate(&self, config: &EnvConfig) -> Result<(), ConfigError> {
-        self.check(config.control.sim_steps_per_env_step)
+        let substeps = config.control.sim_steps_per_env_step;
+        self.check(substeps, f64::from(substeps) * config.physics.params.dt)
     }
 }
 
@@ -414,5 +444,80 @@ fn with_value(err: ConfigError, value: &str) -> ConfigError {
             expected,
         },
         other => other,
+    }
+}
+
+impl Preset {
+    /// The preset's ranges as a `[randomize]` table (built from [`PRESET_RANGES`]).
+    pub fn config(self) -> RandomizeConfig {
+        let mut table = toml::Table::new();
+        for range in PRESET_RANGES.iter().filter(|r| r.preset == self) {
+            let value: toml::Value = toml::from_str::<toml::Table>(&format!("v = {}", range.value))
+                .ok()
+                .and_then(|mut t| t.remove("v"))
+                .unwrap_or_else(|| unreachable!("preset value {} is TOML", range.value));
+            match range.key.split_once('.') {
+                Some((table_name, key)) => {
+                    let sub = table
+                        .entry(table_name.to_owned())
+                        .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+                    if let toml::Value::Table(sub) = sub {
+                        sub.insert(key.to_owned(), value);
+                    }
+                }
+                None => {
+                    table.insert(range.key.to_owned(), value);
+                }
+            }
+        }
+        RandomizeConfig::deserialize(toml::Value::Table(table)).unwrap_or_else(|e| {
+            unreachable!("preset {} is a [randomize] table: {e}", self.as_str())
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    //! Every preset is a valid table whose ranges are the table's, and keys written beside a
+    //! preset win over it.
+    #![allow(clippy::unwrap_used)]
+
+    use super::*;
+
+    #[test]
+    fn every_preset_is_valid_and_holds_its_rows() {
+        for preset in Preset::ALL {
+            let c = preset.config();
+            assert!(!c.is_off(), "{} sets something", preset.as_str());
+            c.check(10, 0.01).unwrap();
+            assert_eq!(c.obs_noise.distribution, Some(NoiseDistribution::Uniform));
+            let rows = PRESET_RANGES.iter().filter(|r| r.preset == preset).count();
+            assert!(rows >= 5, "{} has {rows} rows", preset.as_str());
+        }
+        let lg = Preset::LeggedGym.config();
+        assert_eq!(lg.ground_friction, Some([0.5, 1.25]));
+        assert_eq!(lg.obs_noise.joint_speed, Some(1.5));
+        let go1 = Preset::PlaygroundGo1.config();
+        assert_eq!(
+            go1.trunk_com_offset_m,
+            Some([[-0.05, 0.05], [-0.05, 0.05], [-0.05, 0.05]])
+        );
+    }
+
+    #[test]
+    fn keys_beside_a_preset_override_it() {
+        let c = RandomizeConfig {
+            preset: Some(Preset::LeggedGym),
+            ground_friction: Some([0.8, 0.9]),
+            ..RandomizeConfig::default()
+        };
+        let e = c.effective();
+        assert_eq!(e.preset, None);
+        assert_eq!(e.ground_friction, Some([0.8, 0.9]));
+        assert_eq!(e.push_interval_s, Some([15.0, 15.0]));
+        assert_eq!(
+            RandomizeConfig::default().effective(),
+            RandomizeConfig::default()
+        );
     }
 }

@@ -5,6 +5,7 @@
 use std::fmt;
 use std::path::PathBuf;
 
+use hyq_physics::bounds::short;
 use hyq_physics::terrain::generate::{self, Climb, Extent, Relief, Rough, Slope, Stairs};
 use serde::de::{self, Visitor};
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
@@ -285,12 +286,33 @@ impl Table for TerrainConfig {
         let [cx, cy] = self.center_m.unwrap_or(config.reset.spawn_xy_m);
         let inside = |c: f64, side: f64| in_world(c - 0.5 * side) && in_world(c + 0.5 * side);
         if !(inside(cx, self.size_m[0]) && inside(cy, self.size_m[1])) {
+            // The centre the user gave is the key at fault; else the size around the spawn point.
+            let (key, value) = match self.center_m {
+                Some(c) => ("terrain.center_m", c),
+                None => ("terrain.size_m", self.size_m),
+            };
             return Err(invalid(
-                "terrain.size_m",
-                self.size_m,
+                key,
+                value,
                 &format!(
-                    "puts the field's edge outside the world around its centre ({cx}, {cy}): {}",
+                    "puts the field's edge outside the world around its centre ({}, {}): {}",
+                    short(cx),
+                    short(cy),
                     super::outside_world_reason()
+                ),
+            ));
+        }
+        let generated = matches!(
+            self.kind,
+            TerrainKind::Rough | TerrainKind::Slope | TerrainKind::Stairs
+        );
+        if generated && (self.resolution_m.is_nan() || self.resolution_m > max_side) {
+            return Err(invalid(
+                "terrain.resolution_m",
+                self.resolution_m,
+                &format!(
+                    "must be at most {max_side} m, the largest field's side: the grid's spacing \
+                     is never wider than its field"
                 ),
             ));
         }

@@ -87,25 +87,25 @@ pub fn read(path: &Path, placement: &Placement) -> Result<HeightGrid, TerrainErr
 }
 
 /// The file's bytes, through the capped reader every user file goes through
-/// ([`crate::input::read_bytes`]): a file over [`MAX_FILE_BYTES`] is refused from its size
-/// before it is read, and one that grows past the cap while it is read stops one byte past it.
-/// Only a regular file is opened: opening a FIFO would wait for a writer forever.
+/// ([`crate::input::read_bytes`]), under its rule: only a regular file is opened (opening a
+/// FIFO would wait for a writer forever), a file over [`MAX_FILE_BYTES`] is refused from its
+/// size before it is read, and one that grows past the cap while it is read stops one byte
+/// past it.
 fn read_capped(path: &Path) -> Result<Vec<u8>, String> {
-    let meta = std::fs::metadata(path).map_err(|e| format!("cannot read it: {e}"))?;
-    if !meta.is_file() {
-        return Err("is not a file".into());
-    }
-    let too_large = |bytes: String| {
-        format!(
-            "{bytes} is too large (the cap is {MAX_FILE_BYTES} bytes, a grid of \
-             {MAX_GRID_POINTS} heights)"
-        )
-    };
-    if meta.len() > MAX_FILE_BYTES {
-        return Err(too_large(format!("{} bytes", meta.len())));
-    }
     crate::input::read_bytes(path, &crate::input::HEIGHT_FILE).map_err(|e| match e.kind() {
-        std::io::ErrorKind::FileTooLarge => too_large("the file, grown while read,".into()),
+        std::io::ErrorKind::FileTooLarge => {
+            let bytes = std::fs::metadata(path).map_or(0, |m| m.len());
+            let size = if bytes > MAX_FILE_BYTES {
+                format!("{bytes} bytes")
+            } else {
+                "the file, grown while read,".into()
+            };
+            format!(
+                "{size} is too large (the cap is {MAX_FILE_BYTES} bytes, a grid of \
+                 {MAX_GRID_POINTS} heights)"
+            )
+        }
+        std::io::ErrorKind::InvalidInput => e.to_string(),
         _ => format!("cannot read it: {e}"),
     })
 }

@@ -19,6 +19,7 @@ an unknown key or a bad value raises ``ValueError`` naming the key and the value
 
 from __future__ import annotations
 
+import os
 import re
 from collections.abc import Mapping
 from typing import Any
@@ -78,12 +79,19 @@ def toml_value(value: Any, key: str) -> str:
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, int):
+        if not -(2**63) <= value < 2**63:
+            # TOML's integers are 64-bit: a larger one would be read back as a malformed string.
+            raise ValueError(f"{key}: an integer of {value.bit_length()} bits, beyond TOML's "
+                             "64-bit integers")
         return str(value)
     if isinstance(value, float):
         # A float's repr is a TOML float, "nan", "inf" and "-inf" included.
         return repr(value)
     if isinstance(value, str):
         return toml_string(value)
+    if isinstance(value, os.PathLike):
+        # A path (`pathlib.Path`) is its text, as `config_file` and `robot` take it.
+        return toml_string(os.fsdecode(os.fspath(value)))
     if isinstance(value, Mapping):
         items = ", ".join(
             f"{toml_key(k)} = {toml_value(v, f'{key}.{k}')}" for k, v in value.items()

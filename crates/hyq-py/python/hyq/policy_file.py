@@ -28,6 +28,8 @@ from __future__ import annotations
 
 import hashlib
 import json
+import os
+import stat
 import struct
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -45,6 +47,8 @@ OPSET = 17
 IR_VERSION = 8
 
 _DTYPES = {"F32": np.float32, "F64": np.float64}
+#: The largest policy file read (bytes): the Rust reader's cap (hyq-physics' ``input::POLICY``).
+MAX_POLICY_BYTES = 256 * 2**20
 _ACTIVATIONS = ("tanh", "relu", "elu")
 
 
@@ -94,11 +98,51 @@ def _refuse(path: Any, reason: str) -> ValueError:
     return ValueError(f"{path}: {reason}")
 
 
+def non_finite(name: str, values: np.ndarray) -> str | None:
+    """Why tensor `name` cannot be part of a policy, in the Rust reader's words (``tensor
+    `layers.0.weight` holds a non-finite value (NaN) at flat index 0``), or ``None`` when every
+    value is finite. The reader, the ONNX writer and ``examples/export_policy.py`` all ask it, so
+    a policy that ``hyq run`` refuses is never written, exported or loaded."""
+    flat = np.asarray(values).reshape(-1)
+    bad = np.flatnonzero(~np.isfinite(flat))
+    if bad.size == 0:
+        return None
+    i = int(bad[0])
+    value = float(flat[i])
+    text = "NaN" if np.isnan(value) else ("inf" if value > 0 else "-inf")
+    return f"tensor `{name}` holds a non-finite value ({text}) at flat index {i}"
+
+
+def check_finite(tensors: dict[str, np.ndarray], path: Any) -> None:
+    """Raises ``ValueError`` naming `path` and the first tensor of `tensors` (in their order)
+    holding a non-finite value (see :func:`non_finite`)."""
+    for name, values in tensors.items():
+        reason = non_finite(name, values)
+        if reason is not None:
+            raise _refuse(path, reason)
+
+
+def _read_capped(path: str | Path) -> bytes:
+    """The bytes of a policy file, under the Rust reader's rule: only a regular file (a FIFO is
+    opened without waiting for a writer, then refused), at most :data:`MAX_POLICY_BYTES`."""
+    fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+    with os.fdopen(fd, "rb") as f:
+        if not stat.S_ISREG(os.fstat(f.fileno()).st_mode):
+            raise _refuse(path, "is not a regular file (a FIFO, device, socket or directory): only "
+                                "files are read, since a pipe would block its reader forever and a "
+                                "device may never end")
+        data = f.read(MAX_POLICY_BYTES + 1)
+    if len(data) > MAX_POLICY_BYTES:
+        raise _refuse(path, "larger than 256 MiB, which no policy is (is it the right file?)")
+    return data
+
+
 def read_policy(path: str | Path) -> PolicyFile:
-    """Reads a ``hyq-mlp-policy`` safetensors file (numpy only). A file that is not one, or
-    whose shapes do not chain, is a ``ValueError`` naming the file and what is wrong (the Rust
-    reader checks the rest: finiteness, the action mode's scale)."""
-    data = Path(path).read_bytes()
+    """Reads a ``hyq-mlp-policy`` safetensors file (numpy only). A file that is not one, whose
+    shapes do not chain or which holds a non-finite value, is a ``ValueError`` naming the file
+    and what is wrong, in the Rust reader's words (the Rust reader also checks the action
+    mode's scale)."""
+    data = _read_capped(path)
     if len(data) < 8:
         raise _refuse(path, "not a safetensors policy file (shorter than its 8-byte header length)")
     (n,) = struct.unpack("<Q", data[:8])
@@ -124,9 +168,16 @@ def read_policy(path: str | Path) -> PolicyFile:
             raise _refuse(path, f"has no tensor `{name}`")
         if info.get("dtype") != dtype:
             raise _refuse(path, f"tensor `{name}` is {info.get('dtype')}, expected {dtype}")
-        begin, end = info["data_offsets"]
-        values = np.frombuffer(body[begin:end], dtype=np.dtype(_DTYPES[dtype]).newbyteorder("<"))
-        return values.reshape(info["shape"]).astype(_DTYPES[dtype])
+        try:
+            begin, end = info["data_offsets"]
+            values = np.frombuffer(body[begin:end], dtype=np.dtype(_DTYPES[dtype]).newbyteorder("<"))
+            check_finite({name: values}, path)
+            return values.reshape(info["shape"]).astype(_DTYPES[dtype])
+        except (KeyError, TypeError, ValueError) as e:
+            if str(e).startswith(str(path)):
+                raise
+            raise _refuse(path, f"tensor `{name}`: its data offsets, shape and dtype do not fit "
+                                f"the file ({e})") from None
 
     policy = PolicyFile(
         path=str(path),
@@ -175,6 +226,12 @@ def to_onnx(policy: PolicyFile, low: np.ndarray, high: np.ndarray):  # noqa: ANN
     from onnx import TensorProto, helper, numpy_helper
 
     n_obs, n_act = len(policy.observation), len(policy.action)
+    # A non-finite weight would make a graph whose every output is NaN (the action clip's
+    # Min/Max keep NaN): refused, as the reader refuses it, however `policy` was made.
+    tensors = {"obs_mean": policy.obs_mean, "obs_var": policy.obs_var}
+    for k, (weight, bias) in enumerate(policy.layers):
+        tensors.update({f"layers.{k}.weight": weight, f"layers.{k}.bias": bias})
+    check_finite(tensors, policy.path)
     std = np.sqrt(policy.obs_var + policy.obs_epsilon)
     # The normalisation runs in float64 on the float64 statistics, as the Rust pass does, so
     # the first layer sees the same float32 inputs to the bit.
@@ -312,6 +369,7 @@ class OnnxPolicy:
         # One thread: the same arithmetic on every run, and no pool competing with the envs.
         options.intra_op_num_threads = 1
         options.inter_op_num_threads = 1
+        self.path = str(path)
         self.session = onnxruntime.InferenceSession(str(path), options, providers=["CPUExecutionProvider"])
         self.metadata = check_onnx_layout(self.session, robot, path)
 
@@ -319,4 +377,11 @@ class OnnxPolicy:
         x = np.asarray(obs, dtype=np.float32)
         single = x.ndim == 1
         out = self.session.run(["actions"], {"obs": x[None, :] if single else x})[0]
+        # Never hand on a non-finite action: a graph made from a non-finite tensor (or one whose
+        # float32 sums overflow) says so here instead of driving a robot with NaN.
+        bad = np.argwhere(~np.isfinite(out))
+        if bad.size:
+            where = tuple(int(i) for i in bad[0])
+            raise ValueError(f"{self.path}: the ONNX policy output a non-finite action "
+                             f"{float(out[where])} at {where}")
         return out[0] if single else out

@@ -125,7 +125,14 @@ class HyQRslRlVecEnv(VecEnv):
     def step(self, actions: torch.Tensor) -> tuple[TensorDict, torch.Tensor, torch.Tensor, dict]:
         """Steps every env with its row of ``actions``; returns (observations, rewards, dones,
         extras). A finite action outside the action space is clipped by the core (and flagged
-        in its info), as rsl_rl's Gaussian samples are unbounded."""
+        in its info), as rsl_rl's Gaussian samples are unbounded. A NumPy array (or a nested
+        list) of numbers is taken as the tensor it converts to."""
+        if not isinstance(actions, torch.Tensor):
+            try:
+                actions = torch.as_tensor(np.asarray(actions, dtype=np.float32))
+            except (TypeError, ValueError) as e:
+                raise ValueError(f"actions: expected a tensor or an array of numbers, got "
+                                 f"{type(actions).__name__} ({e})") from None
         a = actions.detach().to("cpu", torch.float32).numpy()
         obs, rewards, terminated, truncated, _ = self.venv.step(a)
         dones = terminated | truncated

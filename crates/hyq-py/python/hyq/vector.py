@@ -79,6 +79,13 @@ class HyQVectorEnv(VectorEnv):
             isinstance(task, Mapping) and "max_time_steps" in task
         )
         if max_episode_steps is not None and not given:
+            # Checked here, under its own name: the core would blame `task.max_time_steps`,
+            # which the caller did not set.
+            if isinstance(max_episode_steps, bool) or not isinstance(max_episode_steps, (int, np.integer)):
+                raise TypeError(f"max_episode_steps = {max_episode_steps!r}: expected an integer")
+            if not 1 <= max_episode_steps < 2**63:
+                raise ValueError(f"max_episode_steps = {max_episode_steps}: expected an integer "
+                                 "from 1 to 2**63 - 1")
             config["max_time_steps"] = int(max_episode_steps)
         self.render_mode = render_mode
         num_envs = check_count("num_envs", num_envs, 1, MAX_ENVS)
@@ -154,6 +161,10 @@ class HyQVectorEnv(VectorEnv):
                 raise ValueError(f"{len(seeds)} seeds given for {self.num_envs} envs")
             seed = None
         seed = check_seed(seed)
+        if seed is not None and seed + self.num_envs - 1 >= 2**64:
+            # Env i is seeded seed + i: past 2**64 - 1 it would wrap to seed 0 silently.
+            raise ValueError(f"seed = {seed}: env i is seeded seed + i, so {self.num_envs} envs "
+                             f"need a seed up to 2**64 - {self.num_envs}")
         super().reset(seed=seed)
         return self._core.reset(seed=seed, seeds=seeds, goal=goal, mask=mask)
 

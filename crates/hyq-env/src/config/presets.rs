@@ -1,6 +1,7 @@
 //! The anchors' ranges as presets (`randomize.preset`), each range with where it comes from.
-//! One table ([`PRESET_RANGES`]): the presets' configurations and `docs/robustness.md`'s table
-//! are both read from it.
+//! One table ([`PRESET_RANGES`]): the presets' configurations (`Preset::config`, in
+//! `randomize.rs` beside the table it builds, so that this file needs nothing of the rest of the
+//! configuration) and `docs/robustness.md`'s table are both read from it.
 //!
 //! Where an anchor's setting has no exact counterpart here, the nearest is used and the source
 //! says how it differs: the anchors' pushes set the trunk's velocity (legged_gym, Isaac Lab) or
@@ -8,10 +9,6 @@
 //! a drawn direction; their gravity-vector noise becomes noise on the trunk quaternion's rows.
 
 use serde::{Deserialize, Serialize};
-
-#[cfg(test)]
-use crate::config::NoiseDistribution;
-use crate::config::RandomizeConfig;
 
 /// An anchor environment whose ranges a preset takes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -231,33 +228,6 @@ impl Preset {
             Preset::IsaacLab => "isaac_lab",
         }
     }
-
-    /// The preset's ranges as a `[randomize]` table (built from [`PRESET_RANGES`]).
-    pub fn config(self) -> RandomizeConfig {
-        let mut table = toml::Table::new();
-        for range in PRESET_RANGES.iter().filter(|r| r.preset == self) {
-            let value: toml::Value = toml::from_str::<toml::Table>(&format!("v = {}", range.value))
-                .ok()
-                .and_then(|mut t| t.remove("v"))
-                .unwrap_or_else(|| unreachable!("preset value {} is TOML", range.value));
-            match range.key.split_once('.') {
-                Some((table_name, key)) => {
-                    let sub = table
-                        .entry(table_name.to_owned())
-                        .or_insert_with(|| toml::Value::Table(toml::Table::new()));
-                    if let toml::Value::Table(sub) = sub {
-                        sub.insert(key.to_owned(), value);
-                    }
-                }
-                None => {
-                    table.insert(range.key.to_owned(), value);
-                }
-            }
-        }
-        RandomizeConfig::deserialize(toml::Value::Table(table)).unwrap_or_else(|e| {
-            unreachable!("preset {} is a [randomize] table: {e}", self.as_str())
-        })
-    }
 }
 
 /// [`PRESET_RANGES`] as the Markdown table `docs/robustness.md` shows (a test keeps the two
@@ -275,50 +245,4 @@ pub fn preset_table() -> String {
         ));
     }
     out
-}
-
-#[cfg(test)]
-mod tests {
-    //! Every preset is a valid table whose ranges are the table's, and keys written beside a
-    //! preset win over it.
-    #![allow(clippy::unwrap_used)]
-
-    use super::*;
-
-    #[test]
-    fn every_preset_is_valid_and_holds_its_rows() {
-        for preset in Preset::ALL {
-            let c = preset.config();
-            assert!(!c.is_off(), "{} sets something", preset.as_str());
-            c.check(10).unwrap();
-            assert_eq!(c.obs_noise.distribution, Some(NoiseDistribution::Uniform));
-            let rows = PRESET_RANGES.iter().filter(|r| r.preset == preset).count();
-            assert!(rows >= 5, "{} has {rows} rows", preset.as_str());
-        }
-        let lg = Preset::LeggedGym.config();
-        assert_eq!(lg.ground_friction, Some([0.5, 1.25]));
-        assert_eq!(lg.obs_noise.joint_speed, Some(1.5));
-        let go1 = Preset::PlaygroundGo1.config();
-        assert_eq!(
-            go1.trunk_com_offset_m,
-            Some([[-0.05, 0.05], [-0.05, 0.05], [-0.05, 0.05]])
-        );
-    }
-
-    #[test]
-    fn keys_beside_a_preset_override_it() {
-        let c = RandomizeConfig {
-            preset: Some(Preset::LeggedGym),
-            ground_friction: Some([0.8, 0.9]),
-            ..RandomizeConfig::default()
-        };
-        let e = c.effective();
-        assert_eq!(e.preset, None);
-        assert_eq!(e.ground_friction, Some([0.8, 0.9]));
-        assert_eq!(e.push_interval_s, Some([15.0, 15.0]));
-        assert_eq!(
-            RandomizeConfig::default().effective(),
-            RandomizeConfig::default()
-        );
-    }
 }
