@@ -14,7 +14,7 @@ use serde::{Deserialize, Serialize};
 use crate::config::{NoiseDistribution, RandomizeConfig};
 
 /// The ChaCha stream of each per-episode option: [`FIRST_OPTION_STREAM`] + its index in
-/// [`Option_`]'s order. (The goal stream is 0, the reset noise's 1.)
+/// [`EpisodeOption`]'s order. (The goal stream is 0, the reset noise's 1.)
 pub const FIRST_OPTION_STREAM: u64 = 16;
 /// The observation noise's stream.
 pub const OBS_NOISE_STREAM: u64 = 32;
@@ -23,7 +23,7 @@ pub const PUSH_STREAM: u64 = 33;
 
 /// The per-episode options, in stream order.
 #[derive(Clone, Copy, Debug)]
-enum Option_ {
+enum EpisodeOption {
     GroundFriction,
     TrunkAddedMass,
     TrunkComOffset,
@@ -36,7 +36,9 @@ enum Option_ {
     ActuatorDelay,
 }
 
-const OPTIONS: usize = 10;
+/// How many options draw per episode: one past the last in stream order, so a new option
+/// placed last in [`EpisodeOption`] gets its stream without a count kept by hand.
+const OPTIONS: usize = EpisodeOption::ActuatorDelay as usize + 1;
 
 /// One episode's drawn variations, as the info and the records report them: the values in
 /// effect, the nominal ones (the configured friction, factors of 1, no added mass, offset or
@@ -178,31 +180,31 @@ impl Randomizer {
         let g = &mut self.options;
         let mut d = EpisodeDraw::nominal(model, params);
         if let Some(r) = c.ground_friction {
-            d.ground_friction = uniform(&mut g[Option_::GroundFriction as usize], r);
+            d.ground_friction = uniform(&mut g[EpisodeOption::GroundFriction as usize], r);
         }
         if let Some(r) = c.trunk_added_mass_kg {
-            d.trunk_added_mass_kg = uniform(&mut g[Option_::TrunkAddedMass as usize], r);
+            d.trunk_added_mass_kg = uniform(&mut g[EpisodeOption::TrunkAddedMass as usize], r);
         }
         if let Some(axes) = c.trunk_com_offset_m {
-            let rng = &mut g[Option_::TrunkComOffset as usize];
+            let rng = &mut g[EpisodeOption::TrunkComOffset as usize];
             d.trunk_com_offset_m = axes.map(|r| uniform(rng, r));
         }
         for (o, r, out) in [
             (
-                Option_::LinkMassScale,
+                EpisodeOption::LinkMassScale,
                 c.link_mass_scale,
                 &mut d.link_mass_scale,
             ),
-            (Option_::KpScale, c.kp_scale, &mut d.kp_scale),
-            (Option_::KdScale, c.kd_scale, &mut d.kd_scale),
-            (Option_::EffortScale, c.effort_scale, &mut d.effort_scale),
+            (EpisodeOption::KpScale, c.kp_scale, &mut d.kp_scale),
+            (EpisodeOption::KdScale, c.kd_scale, &mut d.kd_scale),
+            (EpisodeOption::EffortScale, c.effort_scale, &mut d.effort_scale),
             (
-                Option_::JointDampingScale,
+                EpisodeOption::JointDampingScale,
                 c.joint_damping_scale,
                 &mut d.joint_damping_scale,
             ),
             (
-                Option_::JointFrictionScale,
+                EpisodeOption::JointFrictionScale,
                 c.joint_friction_scale,
                 &mut d.joint_friction_scale,
             ),
@@ -213,7 +215,7 @@ impl Randomizer {
             }
         }
         if let Some([lo, hi]) = c.actuator_delay_substeps {
-            let u = g[Option_::ActuatorDelay as usize].random::<f64>();
+            let u = g[EpisodeOption::ActuatorDelay as usize].random::<f64>();
             let span = f64::from(hi - lo + 1);
             d.actuator_delay_substeps = (lo + (u * span) as u32).min(hi);
         }
