@@ -102,7 +102,7 @@ pub use randomize::{
 };
 pub use record::{RECORD_KEYS, RecordKey, StepRecord};
 pub use vec_env::{AutoReset, MAX_ENVS, MAX_THREADS, VecEnv, VecEnvError, VecStepOut};
-pub use velocity::VelocityInfo;
+pub use velocity::{VELOCITY_INFO_KEYS, VelocityInfo};
 
 /// The repository README, whose Rust quickstart runs as a doctest of this crate so that it stays
 /// true (only with `cargo test --doc`; nothing of it is compiled into the library).

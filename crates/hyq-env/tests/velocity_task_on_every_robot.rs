@@ -276,3 +276,13 @@ fn bad_values_are_one_line_errors_naming_the_key() {
         "{e}"
     );
 }
+
+#[test]
+fn the_info_keys_name_every_term_in_order() {
+    let names: Vec<&str> = hyq_env::VELOCITY_INFO_KEYS
+        .iter()
+        .skip(5)
+        .map(|k| k.name.trim_start_matches("velocity."))
+        .collect();
+    assert_eq!(names, hyq_tasks::TERM_NAMES);
+}

@@ -78,12 +78,8 @@ impl<'de> Deserialize<'de> for TaskTable {
     fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
         let mut table = toml::Table::deserialize(deserializer)?;
         let kind = match table.remove("kind") {
-            Some(v) => TaskKind::deserialize(v).map_err(|e| {
-                D::Error::custom(format!(
-                    "task.kind: {} (\"goal\" or \"velocity\")",
-                    e.message()
-                ))
-            })?,
+            Some(v) => TaskKind::deserialize(v)
+                .map_err(|e| D::Error::custom(format!("task.kind: {}", e.message())))?,
             None => TaskKind::Goal,
         };
         let spec = TaskConfig::deserialize(toml::Value::Table(table))

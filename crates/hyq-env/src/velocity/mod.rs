@@ -22,6 +22,9 @@ use serde::Serialize;
 use crate::action::ActionSpace;
 use crate::config::EnvConfig;
 
+mod keys;
+pub use keys::{VELOCITY_INFO_KEYS, VELOCITY_PREFIX};
+
 /// The command stream's ChaCha stream number (the goal, noise and terrain streams are 0–2).
 pub const COMMAND_STREAM: u64 = 3;
 /// The name of the task's observation group.
