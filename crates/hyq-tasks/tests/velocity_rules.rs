@@ -342,3 +342,48 @@ fn upside_down_and_trunk_contact_end_an_episode() {
     assert!(!terminated([1.0, 0.0, 0.0], true, false));
     assert!(terminated([0.0, 0.0, -1.0], true, true));
 }
+
+proptest! {
+    /// A perfect follower (its body-frame velocity and yaw rate are the command) earns both
+    /// tracking terms' maximum, 1, whatever the command; with every regulariser at rest its
+    /// reward is the tracking scales' sum times Δt under either preset.
+    #[test]
+    fn a_perfect_follower_earns_the_tracking_maximum(
+        c in [-10.0..10.0f64, -10.0..10.0, -10.0..10.0],
+        playground in any::<bool>(),
+    ) {
+        let preset = if playground { Preset::Playground } else { Preset::LeggedGym };
+        let scales = preset.scales();
+        let zeros = [0.0; 12];
+        let soft = [[-1.0, 1.0]; 12];
+        let s = VelocitySnapshot {
+            command: Command { lin_vel_x: c[0], lin_vel_y: c[1], ang_vel_yaw: c[2] },
+            lin_vel: [c[0], c[1], 0.0],
+            ang_vel: [0.0, 0.0, c[2]],
+            gravity: [0.0, 0.0, -1.0],
+            joint_angles: &zeros,
+            joint_speeds: &zeros,
+            previous_joint_speeds: &zeros,
+            standing: &zeros,
+            soft_limits: &soft,
+            torques: &zeros,
+            action: &zeros,
+            previous_action: &zeros,
+            foot_contacts: &[true; 4],
+            foot_velocity_xy: &[[0.0; 2]; 4],
+            air_at_touchdown: &[0.0; 4],
+            trunk_contact: false,
+            trunk_contact_ends: false,
+            env_dt: 0.02,
+        };
+        let out = evaluate(&scales, &s);
+        prop_assert_eq!(out.terms.tracking_lin_vel, 1.0);
+        prop_assert_eq!(out.terms.tracking_ang_vel, 1.0);
+        let t = scales.terms;
+        let expected = (t.tracking_lin_vel + t.tracking_ang_vel) * 0.02;
+        prop_assert!((out.total - expected).abs() < 1e-15, "{} vs {}", out.total, expected);
+        // Any tracking error earns less.
+        let slower = VelocitySnapshot { lin_vel: [c[0] - 0.1, c[1], 0.0], ..s };
+        prop_assert!(evaluate(&scales, &slower).total < out.total);
+    }
+}
