@@ -13,6 +13,7 @@
 //! | [`scales`] | `[velocity]`: every term's scale as a key, and the anchors' presets |
 //! | [`step`] | one step of the task: the terms, their scaled sum and the terminations from a [`step::VelocitySnapshot`] |
 //! | [`termination`] | Playground's upside-down rule, trunk contact as an option |
+//! | [`error`] | [`ConfigError`]: a key's value refused, named by its dotted key |
 //! | [`observation`] | the task's observation rows (body-frame velocities, projected gravity, command, joints, last action) |
 //!
 //! No I/O, no simulator, no environment: the environment (`hyq-env`) reads the robot and the
