@@ -94,6 +94,45 @@ pub struct EpisodeSummary {
     /// When `[randomize]` is on: the episode's drawn values and its pushes (else not written).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub randomize: Option<EpisodeRandomization>,
+    /// Under `task.kind = "velocity"`: how well the commands were followed and the sum of
+    /// each of the task's terms (else not written; `ret` is then the task's return).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub velocity: Option<VelocitySummary>,
+}
+
+/// The velocity task's part of an episode's summary.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct VelocitySummary {
+    /// The mean of |c_x − v_x| over the steps (m/s): forward-speed tracking error.
+    pub mean_abs_lin_vel_x_error: f64,
+    /// The mean of |c_y − v_y| over the steps (m/s).
+    pub mean_abs_lin_vel_y_error: f64,
+    /// The mean of |c_yaw − ω_z| over the steps (rad/s).
+    pub mean_abs_yaw_rate_error: f64,
+    /// The sum over the steps of each term, unscaled, by hyq-tasks' term name.
+    pub terms: std::collections::BTreeMap<&'static str, f64>,
+}
+
+impl VelocitySummary {
+    /// Adds a step's `info` (`steps` counted so far, this one included).
+    fn add(&mut self, v: &hyq_env::VelocityInfo, steps: u64) {
+        let mean = |m: &mut f64, x: f64| *m += (x - *m) / steps.max(1) as f64;
+        mean(
+            &mut self.mean_abs_lin_vel_x_error,
+            (v.command[0] - v.lin_vel[0]).abs(),
+        );
+        mean(
+            &mut self.mean_abs_lin_vel_y_error,
+            (v.command[1] - v.lin_vel[1]).abs(),
+        );
+        mean(
+            &mut self.mean_abs_yaw_rate_error,
+            (v.command[2] - v.ang_vel[2]).abs(),
+        );
+        for (name, value) in hyq_tasks::TERM_NAMES.iter().zip(v.terms.to_array()) {
+            *self.terms.entry(name).or_default() += value;
+        }
+    }
 }
 
 /// The mean of each multiplier (`hyq_spec::REWARD_TERMS` of kind `Multiplier`) over an
@@ -267,7 +306,7 @@ impl<B: Backend> Run<'_, B> {
         let args = self.args;
         let seed = (episode == 0).then_some(args.policy.seed);
         let robot = self.env.model().name().to_owned();
-        let task = self.env.config().task;
+        let task = self.env.config().task.spec;
         let reset = self
             .env
             .reset(seed, &ResetOptions::default())
@@ -343,6 +382,7 @@ impl EpisodeSummary {
                 .randomize
                 .as_ref()
                 .map(|r| EpisodeRandomization::starting(&r.draw)),
+            velocity: info.velocity.map(|_| VelocitySummary::default()),
         }
     }
 
@@ -352,8 +392,11 @@ impl EpisodeSummary {
         let info = step.info;
         let r = &info.reward;
         self.steps = info.t;
-        self.ret += r.total;
+        self.ret += step.reward;
         self.terms.add(r);
+        if let (Some(s), Some(v)) = (self.velocity.as_mut(), &info.velocity) {
+            s.add(v, info.t);
+        }
         if done {
             self.terminated = step.terminated;
             self.truncated = step.truncated;

@@ -54,6 +54,7 @@ use crate::goal::{GoalSampler, episode_rules, sample_reset_state};
 use crate::info::{Reason, Reasons, StepInfo};
 use crate::randomize::{EpisodeDraw, RandomizeInfo, Randomizer, check_for_robot};
 use crate::terrain::Ground;
+use crate::velocity::VelocityTask;
 
 /// Options for one [`Env::reset`] (Gymnasium's `options`). Everything unset follows the
 /// configuration.
@@ -219,6 +220,8 @@ pub struct Env<B: Backend> {
     info: StepInfo,
     /// `[randomize]`'s state, when any option is on.
     robustness: Option<Box<Robustness>>,
+    /// The velocity task's state, under `task.kind = "velocity"`.
+    velocity: Option<Box<VelocityTask>>,
 
     timing_on: bool,
     timing: StepTiming,
@@ -231,6 +234,15 @@ fn outside_world(what: &str, point: Point3<f64>) -> ConfigError {
         value: format!("{:?}", [point.x, point.y, point.z]),
         expected: outside_world_reason(),
     }
+}
+
+/// The number of rows of the velocity task's group in `layout` (0 if it has none).
+fn task_rows(layout: &ObservationLayout) -> usize {
+    layout
+        .groups()
+        .last()
+        .filter(|g| g.name == crate::velocity::GROUP)
+        .map_or(0, |g| g.rows.len())
 }
 
 /// The goal stream's ChaCha stream number (the reset noise uses [`NOISE_STREAM`]).
@@ -299,11 +311,25 @@ pub fn observation_layout_for(
     config: &EnvConfig,
 ) -> Result<ObservationLayout, ConfigError> {
     let robot = robot_description(model)?;
-    Ok(crate::observation::extend(
+    let layout = crate::observation::extend(
         ObservationLayout::new(&robot),
         &config.observation,
         &robot.trunk().name,
-    ))
+    );
+    Ok(with_task_rows(layout, model, config))
+}
+
+/// `layout` with the task's own rows appended: the velocity task's group under
+/// `task.kind = "velocity"`, nothing for the spec's task.
+fn with_task_rows(
+    layout: ObservationLayout,
+    model: &RobotModel,
+    config: &EnvConfig,
+) -> ObservationLayout {
+    match config.task.kind {
+        crate::config::TaskKind::Goal => layout,
+        crate::config::TaskKind::Velocity => crate::velocity::extend_layout(layout, model, config),
+    }
 }
 
 /// The `[randomize]` state of an environment of `model` with `config` and its configured
@@ -370,6 +396,7 @@ fn info_before_reset(n: usize) -> StepInfo {
         joint_targets: vec![0.0; n],
         action_clipped: false,
         randomize: None,
+        velocity: None,
     }
 }
 
@@ -391,6 +418,8 @@ impl<B: Backend> Env<B> {
             &config.observation,
             &robot.trunk().name,
         );
+        let layout = with_task_rows(layout, &model, &config);
+        let velocity = VelocityTask::new(&model, &config, DEFAULT_SEED);
         let goals = GoalSampler::new(&config, &model);
         let ground = Ground::new(&config, &model)?;
         // A fixed goal can be checked against the spawn point once, here, rather than fail at
@@ -428,6 +457,7 @@ impl<B: Backend> Env<B> {
             obs_f32: vec![0.0; obs_len],
             info: info_before_reset(n),
             robustness,
+            velocity,
             timing_on: false,
             timing: StepTiming::default(),
             backend,
@@ -493,6 +523,10 @@ impl<B: Backend> Env<B> {
         let initial = Point3::from(self.state.trunk.pose.translation.vector);
         let (rules, k) = episode_rules(&self.config.task, initial, goal).unwrap_or(requested_rules);
         let initial = rules.initial();
+        if let Some(task) = self.velocity.as_deref_mut() {
+            self.backend.link_poses(task.poses_mut());
+            task.reset(seed);
+        }
         self.observe_reset(&goal)?;
         self.write_reset_info(goal, initial, k);
         self.episode = Some(Episode {
@@ -533,6 +567,9 @@ impl<B: Backend> Env<B> {
             self.space
                 .targets(action, &self.state.q, &mut self.info.joint_targets);
         self.info.t += 1;
+        if let Some(task) = self.velocity.as_deref_mut() {
+            task.begin_step(action.iter().map(|a| a.to_f64()));
+        }
         let previous = self.state.trunk;
         let mut watch = Stopwatch::start(self.timing_on);
         let outcome = self
@@ -542,6 +579,7 @@ impl<B: Backend> Env<B> {
             Ok(outcome) => self.report(&outcome, k),
             Err(cause) => self.report_divergence(cause, previous, rules.config().max_time_steps),
         }
+        self.report_velocity(rules.config().max_time_steps);
         if let Some(e) = self.episode.as_mut() {
             e.done = self.info.reasons.done();
         }
@@ -556,7 +594,7 @@ impl<B: Backend> Env<B> {
         Ok(Step {
             observation: self.seen(),
             observation_f32: &self.obs_f32,
-            reward: self.info.reward.total,
+            reward: self.info.total_reward(),
             terminated: self.info.reasons.terminated(),
             truncated: self.info.reasons.truncated(),
             info: &self.info,
@@ -627,6 +665,7 @@ impl<B: Backend> Env<B> {
             .robustness
             .as_deref()
             .map(|r| RandomizeInfo::at_reset(r.randomizer.draw()));
+        info.velocity = self.velocity.as_deref().map(|task| task.info);
     }
 
     /// The next episode's ground, start state and goal, from the goal, noise and terrain streams
@@ -741,6 +780,17 @@ impl<B: Backend> Env<B> {
             joint_ranges: self.robot.joint_ranges(),
             trunk_contact: self.latching[self.trunk_tracked],
         })?;
+        if let Some(task) = self.velocity.as_deref_mut() {
+            self.backend.link_poses(task.poses_mut());
+            task.evaluate_step(
+                &self.state.trunk,
+                &self.state.q,
+                &self.state.qd,
+                self.scratch.torques(),
+                &self.latching[..self.num_feet],
+                self.latching[self.trunk_tracked],
+            );
+        }
         watch.lap(&mut self.timing.spec);
         let accel = trunk_acceleration(&previous.linvel, &self.state.trunk.linvel, self.env_dt)?;
         self.write_observation(accel, &rules.goal())?;
@@ -801,6 +851,32 @@ impl<B: Backend> Env<B> {
         info.divergence = Some(cause);
     }
 
+    /// Under the velocity task, replaces the spec's reward and end reasons with the task's
+    /// (see [`crate::velocity`]) and reports its terms; `max_time_steps` is the time limit.
+    fn report_velocity(&mut self, max_time_steps: u64) {
+        let Some(task) = self.velocity.as_deref_mut() else {
+            return;
+        };
+        let info = &mut self.info;
+        let diverged = info.reasons.contains(Reason::Diverged);
+        if diverged {
+            task.diverged();
+        }
+        info.reward = RewardBreakdown::NEUTRAL;
+        info.joint_at_limit = None;
+        info.reasons = Reasons::NONE;
+        if diverged {
+            info.reasons.insert(Reason::Diverged);
+        }
+        if task.ended && !diverged {
+            info.reasons.insert(Reason::Fell);
+        }
+        if info.t >= max_time_steps {
+            info.reasons.insert(Reason::Timeout);
+        }
+        info.velocity = Some(task.info);
+    }
+
     /// Writes the observation of the current state, with the contacts latched in `latching`,
     /// into `obs_next`.
     fn write_observation(
@@ -820,8 +896,17 @@ impl<B: Backend> Env<B> {
         };
         self.layout
             .write(&observation, Clipping::Off, &mut self.obs_next)?;
+        // The task's rows are the last group; the extras end where they start.
+        let extras_end = match self.velocity.as_deref() {
+            Some(task) => {
+                let start = self.layout.len() - task_rows(&self.layout);
+                task.write_group(trunk, &self.state.q, &mut self.obs_next[start..]);
+                start
+            }
+            None => self.layout.len(),
+        };
         if !self.extras.is_empty() {
-            let tail = &mut self.obs_next[self.layout.spec_rows().end..];
+            let tail = &mut self.obs_next[self.layout.spec_rows().end..extras_end];
             crate::observation::write_extras(
                 &self.extras,
                 &self.scan,
@@ -1033,6 +1118,12 @@ impl<B: Backend> Env<B> {
     /// observation's contact rows hold, as booleans.
     pub fn contacts(&self) -> &[bool] {
         &self.contacts
+    }
+
+    /// The velocity task's current command (what the observation holds), under
+    /// `task.kind = "velocity"`.
+    pub fn command(&self) -> Option<hyq_tasks::Command> {
+        self.velocity.as_deref().map(|t| t.command())
     }
 
     /// Whether the environment was ever reset with a seed.

@@ -7,6 +7,7 @@ use hyq_spec::{JointLimitHit, LimitSide, RewardBreakdown, Termination, Terminati
 
 use crate::divergence::Divergence;
 use crate::randomize::{EpisodeDraw, RandomizeInfo};
+use crate::velocity::VelocityInfo;
 use serde::{Deserialize, Serialize, Serializer};
 use std::fmt;
 
@@ -221,9 +222,20 @@ pub struct StepInfo {
     /// otherwise, and then not written).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub randomize: Option<RandomizeInfo>,
+    /// Under `task.kind = "velocity"`: the command, the task's terms and its reward, which is
+    /// then the step's (the spec's breakdown is neutral). Absent otherwise, and then not
+    /// written.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub velocity: Option<VelocityInfo>,
 }
 
 impl StepInfo {
+    /// The step's reward: the velocity task's under `task.kind = "velocity"`, else the spec's
+    /// `reward.total`.
+    pub fn total_reward(&self) -> f64 {
+        self.velocity.map_or(self.reward.total, |v| v.reward)
+    }
+
     /// The name of the first joint at a limit when `joint_limit` holds (`model` names the
     /// joints), else `""`.
     pub fn joint_at_limit_name(&self, model: &RobotModel) -> String {

@@ -51,6 +51,7 @@
 //! | [`observation`] | the observation's rows beyond the spec's (`observation.extra`): height scan, goal vector, trunk velocity |
 //! | [`randomize`] | `[randomize]`: varied dynamics, actuator and delay, observation noise, pushes |
 //! | [`vec_env`] | [`VecEnv`]: N envs on rayon into flat buffers, autoreset modes |
+//! | [`velocity`] | `task.kind = "velocity"`: the velocity-command task's state, observation group and info (rules in `hyq-tasks`) |
 //! | [`record`] | [`StepRecord`]: the per-step JSONL schema |
 //! | [`terrain`] | [`terrain::Ground`]: the ground of each episode, the robot put down on it, the goal over it, the curriculum |
 //! | [`testing`] | [`testing::ScriptedBackend`]: a scripted backend for contract tests |
@@ -75,15 +76,17 @@ pub mod record;
 pub mod terrain;
 pub mod testing;
 pub mod vec_env;
+pub mod velocity;
 
 pub use action::{ActionError, ActionScalar, ActionSpace};
 pub use config::RandomizeConfig;
 pub use config::{
     ActionConfig, ActionMode, ConfigError, ControlConfig, EXP_REW_SCALING_MAX, EnvConfig, Gains,
     GoalConfig, GoalMode, JOINT_NOISE_MAX_RAD, LoadError, ObservationConfig, ObservationExtra,
-    OutOfRange, PhysicsConfig, REWARD_SCALE_MAX, ResetConfig, StairsClimb, TerrainConfig,
-    TerrainKind, TerrainSeed, WORLD_HALF_EXTENT_M,
+    OutOfRange, PhysicsConfig, REWARD_SCALE_MAX, ResetConfig, StairsClimb, TaskKind, TaskTable,
+    TerrainConfig, TerrainKind, TerrainSeed, WORLD_HALF_EXTENT_M,
 };
+pub use config::{CommandConfig, VelocityConfig};
 pub use divergence::Divergence;
 pub use env::{
     DEFAULT_SEED, Env, Reset, ResetOptions, Step, StepTiming, observation_layout_for,
@@ -99,6 +102,7 @@ pub use policy::{Policy, PolicyInput, RandomPolicy, Stand, Trot, TrotParams};
 pub use randomize::{EpisodeDraw, EpisodeRandomization, Preset, RandomizeInfo};
 pub use record::{RECORD_KEYS, RecordKey, StepRecord};
 pub use vec_env::{AutoReset, MAX_ENVS, MAX_THREADS, VecEnv, VecEnvError, VecStepOut};
+pub use velocity::{VELOCITY_INFO_KEYS, VelocityInfo};
 
 /// The repository README, whose Rust quickstart runs as a doctest of this crate so that it stays
 /// true (only with `cargo test --doc`; nothing of it is compiled into the library).

@@ -21,7 +21,8 @@ fn parse_err(text: &str) -> String {
 fn an_empty_file_is_the_documented_defaults() {
     let c = EnvConfig::from_toml_str("", "empty").unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(c, EnvConfig::default());
-    assert_eq!(c.task, hyq_spec::TaskConfig::default());
+    assert_eq!(c.task.spec, hyq_spec::TaskConfig::default());
+    assert_eq!(c.task.kind, hyq_env::TaskKind::Goal);
     assert_eq!(c.goal.mode, GoalMode::Ahead);
     assert_eq!(c.goal.distance_m, 5.0);
     assert_eq!(c.goal.heading_range_deg, [0.0, 0.0]);
@@ -107,11 +108,12 @@ fn a_full_file_reads_every_table() {
 
 /// A table is registered once, by its row in `EnvConfig`: the list of tables, the tables of the
 /// written-out configuration and the tables whose keys are checked are the same. The optional
-/// tables (`[terrain]`, `[observation]`, `[randomize]`) are written when they hold anything but their defaults,
+/// tables (`[terrain]`, `[observation]`, `[randomize]`, and the velocity task's `[command]`
+/// and `[velocity]`) are written when they hold anything but their defaults,
 /// so the default configuration is written as it was before they existed.
 #[test]
 fn every_registered_table_is_written_read_and_checked() {
-    const OPTIONAL: [&str; 3] = ["observation", "randomize", "terrain"];
+    const OPTIONAL: [&str; 5] = ["command", "observation", "randomize", "terrain", "velocity"];
     let tables_of = |c: &EnvConfig| -> Vec<String> {
         let written: toml::Table =
             toml::from_str(&c.to_toml_string()).unwrap_or_else(|e| panic!("{e}"));
@@ -126,6 +128,9 @@ fn every_registered_table_is_written_read_and_checked() {
         ("terrain.kind", "\"rough\""),
         ("observation.extra", "[\"goal_vector\"]"),
         ("randomize.ground_friction", "[0.5, 1.25]"),
+        ("task.kind", "velocity"),
+        ("command.lin_vel_x", "[0, 1]"),
+        ("velocity.preset", "playground"),
     ])
     .unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(tables_of(&all), registered);

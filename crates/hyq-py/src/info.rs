@@ -10,14 +10,18 @@
 //!
 //! When `[randomize]` is on, the info also holds hyq-env's [`RANDOMIZE_INFO_KEYS`] (the
 //! episode's draws and the step's push, `randomize.<name>`), read the same way, after the
-//! others; an env whose `[randomize]` is off has none of them.
+//! others; an env whose `[randomize]` is off has none of them. Under `task.kind = "velocity"`
+//! the info holds hyq-env's [`VELOCITY_INFO_KEYS`] last (`velocity.<name>`: the command, the
+//! trunk's velocities, the task's reward and terms); the spec's task has none of them.
 //!
 //! The vector info holds the same keys as arrays over the envs, exactly as Gymnasium's
 //! `SyncVectorEnv` builds them from N single infos: int64, float64 and bool arrays, object
 //! arrays of str, and float64 (N, k) arrays, each with its `_key` mask (all true: every env
 //! reports every key every step).
 
-use hyq_env::{INFO_KEYS, InfoKey, InfoValue, RANDOMIZE_INFO_KEYS, Reason, StepInfo};
+use hyq_env::{
+    INFO_KEYS, InfoKey, InfoValue, RANDOMIZE_INFO_KEYS, Reason, StepInfo, VELOCITY_INFO_KEYS,
+};
 use hyq_physics::RobotModel;
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1};
@@ -38,14 +42,19 @@ pub fn info_schema(keys: &[InfoKey], joints: usize, links: usize) -> Vec<(&'stat
 }
 
 /// The keys an info of `info` holds, in order: [`INFO_KEYS`], then [`RANDOMIZE_INFO_KEYS`] when
-/// the env's `[randomize]` is on.
+/// the env's `[randomize]` is on, then [`VELOCITY_INFO_KEYS`] under `task.kind = "velocity"`.
 fn keys_of(info: &StepInfo) -> impl Iterator<Item = &'static InfoKey> {
     let randomized: &'static [InfoKey] = if info.randomize.is_some() {
         &RANDOMIZE_INFO_KEYS
     } else {
         &[]
     };
-    INFO_KEYS.iter().chain(randomized)
+    let velocity: &'static [InfoKey] = if info.velocity.is_some() {
+        &VELOCITY_INFO_KEYS
+    } else {
+        &[]
+    };
+    INFO_KEYS.iter().chain(randomized).chain(velocity)
 }
 
 /// The single env's info dict (see the module docs): every key of [`INFO_KEYS`] in its order,

@@ -38,6 +38,12 @@
 //!
 //! [randomize]     # robustness options, all off by default (see RandomizeConfig)
 //! ground_friction = [0.5, 1.25]
+//!
+//! [command]       # the velocity task's commands (task.kind = "velocity"; see CommandConfig)
+//! lin_vel_x = [-1.0, 1.0]
+//!
+//! [velocity]      # the velocity task's reward scales (see VelocityConfig)
+//! preset = "legged_gym"
 //! ```
 //!
 //! Every table and every key is optional: a missing one takes its default. Unknown keys are
@@ -65,11 +71,13 @@ mod reset;
 mod task;
 mod terrain;
 mod validate;
+mod velocity;
 
 pub use action::{ActionConfig, ActionMode, OutOfRange};
 pub use control::{ControlConfig, Gains};
 pub use goal::{GoalConfig, GoalMode};
 pub use hyq_spec::{EXP_REW_SCALING_MAX, REWARD_SCALE_MAX, TaskConfig};
+pub use hyq_tasks::{CommandConfig, VelocityConfig};
 pub use messages::{ConfigError, LoadError};
 pub use observation::{MAX_SCAN_POINTS, MAX_SCAN_REACH_M, ObservationConfig, ObservationExtra};
 pub use parse::CONFIG_FILE_MAX_BYTES;
@@ -80,6 +88,7 @@ pub use randomize::{
     PUSH_SPEED_MAX_MPS, RandomizeConfig, Range, SCALE_MAX,
 };
 pub use reset::{JOINT_NOISE_MAX_RAD, ResetConfig};
+pub use task::{TaskKind, TaskTable};
 pub(crate) use terrain::keyed as terrain_error;
 pub use terrain::{
     MAX_LEVELS, MAX_SLOPE_DEG, StairsClimb, TerrainConfig, TerrainKind, TerrainSeed,
@@ -125,10 +134,11 @@ env_config! {
     #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
     #[serde(deny_unknown_fields, default)]
     pub struct EnvConfig {
-        /// The spec's user variables (rewards, penalties, tolerances, t_max), hyq-spec's
-        /// [`TaskConfig`] with the spec's names and ranges, including the upper bounds that keep
-        /// every reward finite. (default: the spec's §2 table)
-        task: TaskConfig,
+        /// Which task (`kind`: `"goal"`, the spec's, or `"velocity"`) and the spec's user
+        /// variables (rewards, penalties, tolerances, t_max), hyq-spec's [`TaskConfig`] with
+        /// the spec's names and ranges, including the upper bounds that keep every reward
+        /// finite. (default: the spec's goal task and its §2 table)
+        task: TaskTable,
         /// Where the goal is. (default: 5 m ahead along +x at the nominal standing height)
         goal: GoalConfig,
         /// How actions become joint targets. (default: normalized, clipped)
@@ -153,6 +163,16 @@ env_config! {
         /// pushes ([`crate::randomize`]). (default: all off, and the table is not written)
         #[serde(skip_serializing_if = "RandomizeConfig::is_off")]
         randomize: RandomizeConfig,
+        /// The velocity task's command: ranges, resampling, standing commands (hyq-tasks'
+        /// [`CommandConfig`]; only with `task.kind = "velocity"`). (default: legged_gym's
+        /// ranges and 10 s resampling, and the table is not written)
+        #[serde(skip_serializing_if = "velocity::is_default_command")]
+        command: CommandConfig,
+        /// The velocity task's reward scales and trunk-contact termination (hyq-tasks'
+        /// [`VelocityConfig`]; only with `task.kind = "velocity"`). (default: legged_gym's
+        /// preset, and the table is not written)
+        #[serde(skip_serializing_if = "velocity::is_default_velocity")]
+        velocity: VelocityConfig,
     }
 }
 

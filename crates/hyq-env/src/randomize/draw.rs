@@ -197,7 +197,11 @@ impl Randomizer {
             ),
             (EpisodeOption::KpScale, c.kp_scale, &mut d.kp_scale),
             (EpisodeOption::KdScale, c.kd_scale, &mut d.kd_scale),
-            (EpisodeOption::EffortScale, c.effort_scale, &mut d.effort_scale),
+            (
+                EpisodeOption::EffortScale,
+                c.effort_scale,
+                &mut d.effort_scale,
+            ),
             (
                 EpisodeOption::JointDampingScale,
                 c.joint_damping_scale,

@@ -10,7 +10,10 @@ Importing this package registers ``HyQ-v0``::
     env = gym.make("HyQ-v0", robot="anymal_c", backend="mujoco")  # another robot, engine
 
 and one id per bundled robot (``ANYmalC-v0`` is ``HyQ-v0`` with ``robot="anymal_c"``, ``Go1-v0``
-with ``robot="go1"``).
+with ``robot="go1"``). The velocity-command task (docs/velocity.md) has its own ids,
+``HyQ-Velocity-v0`` and ``ANYmalC-Velocity-v0`` (the same env with ``task.kind = "velocity"``)::
+
+    env = gym.make("HyQ-Velocity-v0", env_config={"command.lin_vel_x": [0.5, 0.5]})
 
 ``hyq.HyQEnv`` is the single environment, ``hyq.HyQVectorEnv`` the vector env and
 ``hyq.sb3.HyQVecEnv`` an adapter for Stable-Baselines3 (import ``hyq.sb3`` only where
@@ -54,6 +57,19 @@ if ENV_ID not in gymnasium.registry:
         vector_entry_point="hyq.vector:HyQVectorEnv",
         max_episode_steps=MAX_EPISODE_STEPS,
     )
+#: The registered id of the velocity-command task on each bundled robot (``task.kind =
+#: "velocity"``, docs/velocity.md), the spec's ids being the goal task's.
+VELOCITY_IDS = {"hyq": "HyQ-Velocity-v0", "anymal_c": "ANYmalC-Velocity-v0"}
+
+for _robot, _id in VELOCITY_IDS.items():
+    if _id not in gymnasium.registry:
+        gymnasium.register(
+            id=_id,
+            entry_point="hyq.env:HyQEnv",
+            vector_entry_point="hyq.vector:HyQVectorEnv",
+            max_episode_steps=MAX_EPISODE_STEPS,
+            kwargs={"robot": _robot, "kind": "velocity"},
+        )
 for _robot, _id in ROBOT_IDS.items():
     if _id not in gymnasium.registry:
         gymnasium.register(
@@ -73,6 +89,7 @@ __all__ = [
     "REWARD_TERMS",
     "ROBOTS",
     "ROBOT_IDS",
+    "VELOCITY_IDS",
     "HyQEnv",
     "HyQVectorEnv",
     "ObservationRow",

@@ -7,6 +7,8 @@ The configuration mirrors the TOML file (``hyq run --config``) table for table:
   ``task={...}`` dict works too);
 * the other tables (``TABLES``) as dicts: ``goal={"mode": "fixed", "position": [5, 1, 0.6]}``,
   ``action={"mode": "absolute"}``, ``physics={...}``, ...;
+* dotted keys as the file and ``hyq run --set`` name them: ``{"task.kind": "velocity",
+  "command.lin_vel_x": [0.5, 0.5]}`` (``kind="velocity"`` is the same as ``task.kind``);
 * ``config_file="hyq.toml"``: a TOML file read first, the keyword arguments applied on top.
 
 ``robot`` (a bundled robot's name, ``"hyq"`` or ``"anymal_c"``, or the path to a robot profile)
@@ -114,6 +116,10 @@ def config_pairs(options: Mapping[str, Any]) -> list[tuple[str, str]]:
                 )
             for key, v in value.items():
                 pairs.append((f"{name}.{key}", toml_value(v, f"{name}.{key}")))
+        elif "." in name:
+            # A dotted key as the TOML file and ``hyq --set`` name it (``"task.kind"``,
+            # ``"command.lin_vel_x"``), given as it is.
+            pairs.append((name, toml_value(value, name)))
         else:
             # Every other name is a spec user variable of the [task] table; the core names
             # the accepted ones if this is not one of them.

@@ -1,0 +1,140 @@
+//! The reward terms, each a pure function of explicit numbers, unscaled (the scales and the
+//! sum are [`crate::step`]'s). Vectors are in the trunk's frame unless said otherwise.
+//!
+//! | term | value | anchor |
+//! |---|---|---|
+//! | `tracking_lin_vel` | exp(−‖c_xy − v_xy‖² / σ) | both |
+//! | `tracking_ang_vel` | exp(−(c_yaw − ω_z)² / σ) | both |
+//! | `lin_vel_z` | v_z² | both |
+//! | `ang_vel_xy` | ω_x² + ω_y² | both |
+//! | `orientation` | g_x² + g_y², g the projected gravity | both |
+//! | `torques` | Σ τ² | legged_gym |
+//! | `torques_abs` | ‖τ‖ + Σ\|τ\| | Playground |
+//! | `joint_acc` | Σ ((q̇ − q̇_prev) / Δt)² | legged_gym |
+//! | `action_rate` | Σ (a − a_prev)² | both |
+//! | `feet_air_time` | Σ (t_air − t_min) over feet touching down, if moving | both |
+//! | `foot_slip` | Σ ‖v_foot,xy‖² over feet in contact, if moving | Playground |
+//! | `stand_still` | Σ \|q − q₀\|, if standing | both |
+//! | `joint_limits` | Σ max(0, q_lo − q) + max(0, q − q_hi) over the soft limits | both |
+//! | `termination` | 1 on a terminating step | both |
+//!
+//! "Moving" and "standing" compare the command's norm with the preset's gate.
+
+/// exp(−err²/σ): 1 for a perfect follower, in (0, 1] for any finite error, 0 only when the
+/// squared error overflows.
+pub fn tracking(err_sq: f64, sigma: f64) -> f64 {
+    (-err_sq / sigma).exp()
+}
+
+/// The forward/sideways tracking term: exp(−‖c − v‖²/σ), `command` and `velocity` the xy parts.
+pub fn tracking_lin_vel(command: [f64; 2], velocity: [f64; 2], sigma: f64) -> f64 {
+    let e = [command[0] - velocity[0], command[1] - velocity[1]];
+    tracking(e[0] * e[0] + e[1] * e[1], sigma)
+}
+
+/// The yaw-rate tracking term: exp(−(c − ω_z)²/σ).
+pub fn tracking_ang_vel(command: f64, yaw_rate: f64, sigma: f64) -> f64 {
+    let e = command - yaw_rate;
+    tracking(e * e, sigma)
+}
+
+/// v_z², the trunk's vertical speed squared (m²/s²).
+pub fn lin_vel_z(v_z: f64) -> f64 {
+    v_z * v_z
+}
+
+/// ω_x² + ω_y², the trunk's roll and pitch rates squared.
+pub fn ang_vel_xy(omega: [f64; 3]) -> f64 {
+    omega[0] * omega[0] + omega[1] * omega[1]
+}
+
+/// g_x² + g_y²: how far the trunk is from level (0 level, 1 on its side).
+pub fn orientation(projected_gravity: [f64; 3]) -> f64 {
+    projected_gravity[0].powi(2) + projected_gravity[1].powi(2)
+}
+
+/// Σ x², the sum of squares.
+pub fn sum_sq(xs: &[f64]) -> f64 {
+    xs.iter().map(|x| x * x).sum()
+}
+
+/// Σ τ² (N²·m²).
+pub fn torques(tau: &[f64]) -> f64 {
+    sum_sq(tau)
+}
+
+/// Playground's ‖τ‖ + Σ|τ| (N·m).
+pub fn torques_abs(tau: &[f64]) -> f64 {
+    sum_sq(tau).sqrt() + tau.iter().map(|t| t.abs()).sum::<f64>()
+}
+
+/// Σ ((q̇ − q̇_prev) / Δt)², the joint accelerations squared.
+pub fn joint_acc(qd: &[f64], qd_prev: &[f64], dt: f64) -> f64 {
+    qd.iter()
+        .zip(qd_prev)
+        .map(|(a, b)| ((a - b) / dt).powi(2))
+        .sum()
+}
+
+/// Σ (a − a_prev)², the action's change squared.
+pub fn action_rate(action: &[f64], previous: &[f64]) -> f64 {
+    action
+        .iter()
+        .zip(previous)
+        .map(|(a, b)| (a - b).powi(2))
+        .sum()
+}
+
+/// Σ (t_air − `threshold`) over the feet that touched down this step (`air_at_touchdown`
+/// holds the air time of a foot touching down, 0 for every other), if `moving`.
+pub fn feet_air_time(air_at_touchdown: &[f64], threshold: f64, moving: bool) -> f64 {
+    if !moving {
+        return 0.0;
+    }
+    air_at_touchdown
+        .iter()
+        .filter(|t| **t > 0.0)
+        .map(|t| t - threshold)
+        .sum()
+}
+
+/// Σ ‖v_foot,xy‖² over the feet in contact (world frame, m²/s²), if `moving`.
+pub fn foot_slip(foot_velocity_xy: &[[f64; 2]], contact: &[bool], moving: bool) -> f64 {
+    if !moving {
+        return 0.0;
+    }
+    foot_velocity_xy
+        .iter()
+        .zip(contact)
+        .filter(|(_, c)| **c)
+        .map(|(v, _)| v[0] * v[0] + v[1] * v[1])
+        .sum()
+}
+
+/// Σ |q − q₀| (rad), if `standing` (the command's norm is below the gate), else 0.
+pub fn stand_still(q: &[f64], standing_pose: &[f64], standing: bool) -> f64 {
+    if !standing {
+        return 0.0;
+    }
+    q.iter()
+        .zip(standing_pose)
+        .map(|(a, b)| (a - b).abs())
+        .sum()
+}
+
+/// A joint's soft limits: its range shrunk about its middle by `factor` in (0, 1]
+/// (legged_gym's `soft_dof_pos_limit`, Playground's `soft_joint_pos_limit_factor`).
+pub fn soft_limits(lower: f64, upper: f64, factor: f64) -> [f64; 2] {
+    let mid = 0.5 * (lower + upper);
+    let half = 0.5 * (upper - lower) * factor;
+    [mid - half, mid + half]
+}
+
+/// Σ max(0, q_lo − q) + max(0, q − q_hi) over `soft` limits (rad): how far joints are past
+/// them.
+pub fn joint_limits(q: &[f64], soft: &[[f64; 2]]) -> f64 {
+    q.iter()
+        .zip(soft)
+        .map(|(q, [lo, hi])| (lo - q).max(0.0) + (q - hi).max(0.0))
+        .sum()
+}
