@@ -16,9 +16,15 @@ fn the_kind_list_holds_every_kind_once_under_its_configuration_name() {
     for (i, kind) in TerrainKind::ALL.into_iter().enumerate() {
         assert_eq!(position(kind), Some(i), "{kind:?} is listed twice");
         let text = format!("[terrain]\nkind = \"{}\"", kind.as_str());
-        let config = EnvConfig::from_toml_str(&text, "test")
-            .unwrap_or_else(|e| panic!("{:?} is not read back: {e}", kind.as_str()));
-        assert_eq!(config.terrain.kind, kind);
+        match EnvConfig::from_toml_str(&text, "test") {
+            Ok(config) => assert_eq!(config.terrain.kind, kind),
+            // A height file's kind is read, then refused for want of its file.
+            Err(e) => assert!(
+                !kind.is_generated() && e.to_string().contains("terrain.file"),
+                "{:?} is not read back: {e}",
+                kind.as_str()
+            ),
+        }
     }
 }
 
