@@ -460,7 +460,7 @@ pub fn unphysical_dynamics_are_refused<B: Backend>(robot: &Robot, options: &B::O
     let mut cases: Vec<(Dynamics, &str)> = Vec::new();
     let mut d = nominal.clone();
     d.bodies[1].mass = 0.0;
-    cases.push((d, "mass 0 kg"));
+    cases.push((d, "mass 0 must be finite and in [1e-4, 1e6] kg"));
     let mut d = nominal.clone();
     d.bodies[0].inertia = Matrix3::from_diagonal(&Vector3::new(1.0, 1.0, -1.0));
     cases.push((d, "positive semi-definite"));
