@@ -258,14 +258,10 @@ impl TerrainConfig {
     }
 }
 
-/// `[terrain]`: the generator's ranges for the kind chosen (named `terrain.<key>`), the slope
-/// within ±[`MAX_SLOPE_DEG`], a file for `"heightfield"`, the curriculum's levels and kinds.
-impl Table for TerrainConfig {
-    fn validate(&self, config: &EnvConfig) -> Result<(), ConfigError> {
-        keys_match_kind(self)?;
-        if self.kind == TerrainKind::Flat {
-            return Ok(());
-        }
+impl TerrainConfig {
+    /// The field's size and centre: each side in (0, the largest side], the centre finite, and
+    /// the whole field inside the world around it (the spawn point when no centre is given).
+    fn check_placement(&self, config: &EnvConfig) -> Result<(), ConfigError> {
         let max_side = hyq_physics::terrain::MAX_SIDE_M;
         if !self
             .size_m
@@ -302,11 +298,22 @@ impl Table for TerrainConfig {
                 ),
             ));
         }
-        let generated = matches!(
-            self.kind,
-            TerrainKind::Rough | TerrainKind::Slope | TerrainKind::Stairs
-        );
-        if generated && (self.resolution_m.is_nan() || self.resolution_m > max_side) {
+        Ok(())
+    }
+}
+
+/// `[terrain]`: the generator's ranges for the kind chosen (named `terrain.<key>`), the slope
+/// within ±[`MAX_SLOPE_DEG`], a file for `"heightfield"`, the curriculum's levels and kinds.
+impl Table for TerrainConfig {
+    fn validate(&self, config: &EnvConfig) -> Result<(), ConfigError> {
+        keys_match_kind(self)?;
+        if self.kind == TerrainKind::Flat {
+            return Ok(());
+        }
+        self.check_placement(config)?;
+        let max_side = hyq_physics::terrain::MAX_SIDE_M;
+        if self.kind.is_generated() && (self.resolution_m.is_nan() || self.resolution_m > max_side)
+        {
             return Err(invalid(
                 "terrain.resolution_m",
                 self.resolution_m,
