@@ -94,6 +94,27 @@ pub fn free_fall_matches_ballistic_until_contact<B: Backend>(robot: &Robot, opti
     }
 }
 
+/// The trunk frame's height (m) 1 s and 10 s after spawn, the PD actuator holding the standing
+/// pose under the default gains: what a robot's standing-height ledger states per engine.
+pub fn standing_heights<B: Backend>(robot: &Robot, options: &B::Options) -> (f64, f64) {
+    let params = PhysicsParams::default();
+    let mut b: B = build(robot, &params, options);
+    let model = Arc::clone(b.model());
+    set(&mut b, &model.spawn_state());
+    let act = Actuator::new(&model);
+    let mut scratch = PdScratch::new(model.num_joints());
+    let targets = model.standing_pose().to_vec();
+    let at_1s_step = steps_for(&params, 1.0);
+    let mut at_1s = f64::NAN;
+    for n in 1..=steps_for(&params, 10.0) {
+        step_pd(&mut b, &act, &targets, &mut scratch);
+        if n == at_1s_step {
+            at_1s = b.trunk().pose.translation.z;
+        }
+    }
+    (at_1s, b.trunk().pose.translation.z)
+}
+
 /// Under the default PD gains with the standing pose as target, the robot stands for 10 s from
 /// its spawn state: over the last 5 s the trunk height varies by at most 1 mm, every foot is in
 /// contact at every step, and the trunk never touches the ground.

@@ -78,7 +78,7 @@ pub use api_contract::{
 };
 pub use contacts::{
     free_fall_matches_ballistic_until_contact, lifted_foot_reports_no_contact,
-    limp_robot_collapses_onto_its_trunk, stands_in_nominal_pose_for_10_s,
+    limp_robot_collapses_onto_its_trunk, standing_heights, stands_in_nominal_pose_for_10_s,
 };
 pub use dynamics::{
     internal_torques_conserve_momentum, joint_damping_is_applied,

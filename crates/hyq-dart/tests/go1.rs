@@ -1,8 +1,8 @@
 //! The bundled Go1, read from MuJoCo Playground's MJCF, passes the backend conformance suite
 //! on DART as the URDF robots do, and stands where its profile says.
 
-use hyq_conformance::fixtures::{Robot, build_default, set, step_pd, steps_for};
-use hyq_physics::{Actuator, Backend, PdScratch, PhysicsParams};
+use hyq_conformance::fixtures::Robot;
+use hyq_physics::Backend;
 
 type Engine = hyq_dart::DartBackend;
 
@@ -62,29 +62,9 @@ mod suite {
 /// default gains (m), as measured on this engine.
 const STANDING: (f64, f64) = (0.25925, 0.26159);
 
-/// Where the trunk frame stands 1 s and 10 s after spawn at the standing pose.
-fn standing_heights() -> (f64, f64) {
-    let robot = go1();
-    let mut b: Engine = build_default(&robot, &Default::default());
-    let model = robot.model.clone();
-    set(&mut b, &model.spawn_state());
-    let act = Actuator::new(&model);
-    let mut scratch = PdScratch::new(model.num_joints());
-    let targets = model.standing_pose().to_vec();
-    let params = PhysicsParams::default();
-    let mut at_1s = f64::NAN;
-    for n in 1..=steps_for(&params, 10.0) {
-        step_pd(&mut b, &act, &targets, &mut scratch);
-        if n == steps_for(&params, 1.0) {
-            at_1s = b.trunk().pose.translation.z;
-        }
-    }
-    (at_1s, b.trunk().pose.translation.z)
-}
-
 #[test]
 fn go1_stands_where_stated_and_near_its_profile_height() {
-    let (at_1s, at_10s) = standing_heights();
+    let (at_1s, at_10s) = hyq_conformance::standing_heights::<Engine>(&go1(), &Default::default());
     println!(
         "{} go1 standing: {at_1s:.5} m at 1 s, {at_10s:.5} m at 10 s",
         Engine::NAME
