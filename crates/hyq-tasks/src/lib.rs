@@ -12,6 +12,7 @@
 //! | [`terms`] | each reward term as a function of numbers (tracking `exp(−err²/σ)`, the regularisers) |
 //! | [`scales`] | `[velocity]`: every term's scale as a key, and the anchors' presets |
 //! | [`step`] | one step of the task: the terms, their scaled sum and the terminations from a [`step::VelocitySnapshot`] |
+//! | [`regularizers`] | `[regularizers]`: gait regularisers for the spec's goal task, each a [`terms`] function, off unless scaled |
 //! | [`termination`] | Playground's upside-down rule, trunk contact as an option |
 //! | [`error`] | [`ConfigError`]: a key's value refused, named by its dotted key |
 //! | [`observation`] | the task's observation rows (body-frame velocities, projected gravity, command, joints, last action) |
@@ -22,6 +23,7 @@
 pub mod command;
 pub mod error;
 pub mod observation;
+pub mod regularizers;
 pub mod scales;
 pub mod step;
 pub mod termination;
@@ -29,5 +31,9 @@ pub mod terms;
 
 pub use command::{Command, CommandConfig, CommandSampler, ResamplingRule, ResamplingTiming};
 pub use error::ConfigError;
+pub use regularizers::{
+    REGULARIZER_NAMES, RegularizerConfig, RegularizerPreset, RegularizerScales, RegularizerTerms,
+    ReportedRegularizers,
+};
 pub use scales::{Preset, RewardScales, TERM_NAMES, TermScales, TermValues, VelocityConfig};
 pub use step::{AirTime, VelocityOutcome, VelocitySnapshot, evaluate};

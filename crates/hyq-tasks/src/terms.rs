@@ -17,6 +17,8 @@
 //! | `stand_still` | Σ \|q − q₀\|, if standing | both |
 //! | `joint_limits` | Σ max(0, q_lo − q) + max(0, q − q_hi) over the soft limits | both |
 //! | `termination` | 1 on a terminating step | both |
+//! | `base_height` | (h − h_target)², h the trunk's height above the ground | legged_gym |
+//! | `collision` | the number of penalised bodies touching the ground | legged_gym |
 //!
 //! "Moving" and "standing" compare the command's norm with the preset's gate.
 
@@ -137,4 +139,15 @@ pub fn joint_limits(q: &[f64], soft: &[[f64; 2]]) -> f64 {
         .zip(soft)
         .map(|(q, [lo, hi])| (lo - q).max(0.0) + (q - hi).max(0.0))
         .sum()
+}
+
+/// (h − `target`)², the trunk's height above the ground `height` off its target (m²).
+pub fn base_height(height: f64, target: f64) -> f64 {
+    (height - target).powi(2)
+}
+
+/// How many of the penalised bodies touch the ground (legged_gym's `collision`, which counts
+/// the bodies whose contact force exceeds 0.1 N; here a body's contact flag).
+pub fn collision(contacts: &[bool]) -> f64 {
+    contacts.iter().map(|c| f64::from(u8::from(*c))).sum()
 }

@@ -1,0 +1,248 @@
+//! The gait regularisers of `[regularizers]`: each is the velocity task's own function of
+//! numbers, their sum is Σ s·r·Δt over the terms that are on and nothing else, off is exactly
+//! nothing, the preset is legged_gym's, bad keys are named, and a report writes the terms that
+//! are on and reads them back.
+
+use hyq_tasks::regularizers::{REGULARIZER_COUNT, RegularizerSnapshot, reward, values};
+use hyq_tasks::step::AirTime;
+use hyq_tasks::terms;
+use hyq_tasks::{
+    REGULARIZER_NAMES, RegularizerConfig, RegularizerPreset, RegularizerTerms, ReportedRegularizers,
+};
+use proptest::prelude::*;
+
+fn finite() -> impl Strategy<Value = f64> {
+    -100.0..100.0f64
+}
+
+fn scales() -> impl Strategy<Value = [f64; REGULARIZER_COUNT]> {
+    proptest::array::uniform7(prop_oneof![Just(0.0), -10.0..10.0f64])
+}
+
+proptest! {
+    /// (h − h₀)² is 0 exactly at the target, positive elsewhere, symmetric about it.
+    #[test]
+    fn base_height_is_the_squared_distance_to_the_target(h in 0.0..2.0f64, target in 0.01..2.0f64) {
+        let v = terms::base_height(h, target);
+        prop_assert!(v >= 0.0 && v.is_finite());
+        prop_assert_eq!(v == 0.0, h == target);
+        let mirrored = terms::base_height(2.0 * target - h, target);
+        prop_assert!((v - mirrored).abs() <= 1e-12 * (1.0 + v), "{v} vs {mirrored}");
+        prop_assert_eq!(terms::base_height(target, target), 0.0);
+    }
+
+    /// The collision term counts the bodies in contact.
+    #[test]
+    fn collision_counts_the_bodies_in_contact(flags in proptest::collection::vec(any::<bool>(), 0..8)) {
+        let n = flags.iter().filter(|f| **f).count();
+        prop_assert_eq!(terms::collision(&flags), n as f64);
+    }
+
+    /// The sum is Σ s·r·Δt over the terms whose scale is not 0, whatever the others hold
+    /// (not even a NaN of an off term reaches it).
+    #[test]
+    fn the_sum_is_the_scaled_terms_that_are_on(
+        s in scales(),
+        v in proptest::array::uniform7(finite()),
+        dt in 0.001..0.1f64,
+    ) {
+        let scales = RegularizerTerms::from_array(s);
+        let mut poisoned = v;
+        for (k, scale) in s.iter().enumerate() {
+            if *scale == 0.0 {
+                poisoned[k] = f64::NAN;
+            }
+        }
+        let got = reward(&scales, &RegularizerTerms::from_array(poisoned), dt);
+        let mut want = -0.0; // the empty sum, which adds nothing to any number
+        for k in 0..REGULARIZER_COUNT {
+            if s[k] != 0.0 {
+                want += s[k] * v[k] * dt;
+            }
+        }
+        prop_assert!(got.is_finite());
+        prop_assert_eq!(got.to_bits(), want.to_bits());
+    }
+
+    /// Every value is finite for finite inputs, and each is the velocity task's function of the
+    /// same numbers.
+    #[test]
+    fn values_are_the_velocity_tasks_functions(
+        a in proptest::array::uniform12(-1.0..1.0f64),
+        a0 in proptest::array::uniform12(-1.0..1.0f64),
+        tau in proptest::array::uniform12(-150.0..150.0f64),
+        qd in proptest::array::uniform12(-50.0..50.0f64),
+        qd0 in proptest::array::uniform12(-50.0..50.0f64),
+        air in proptest::array::uniform4(prop_oneof![Just(0.0), 0.0..2.0f64]),
+        vel in proptest::array::uniform4([-3.0..3.0f64, -3.0..3.0]),
+        feet in proptest::array::uniform4(any::<bool>()),
+        h in 0.0..1.5f64,
+        trunk in any::<bool>(),
+    ) {
+        let config = RegularizerConfig { preset: RegularizerPreset::LeggedGym, ..Default::default() };
+        let scales = config.resolve(0.6);
+        let dt = 0.01;
+        let v = values(&scales, &RegularizerSnapshot {
+            action: &a,
+            previous_action: &a0,
+            torques: &tau,
+            joint_speeds: &qd,
+            previous_joint_speeds: &qd0,
+            air_at_touchdown: &air,
+            foot_velocity_xy: &vel,
+            foot_contacts: &feet,
+            base_height: h,
+            penalised_contacts: &[trunk],
+            env_dt: dt,
+        });
+        prop_assert!(v.to_array().iter().all(|x| x.is_finite()));
+        prop_assert_eq!(v.action_rate, terms::action_rate(&a, &a0));
+        prop_assert_eq!(v.torques, terms::torques(&tau));
+        prop_assert_eq!(v.joint_acc, terms::joint_acc(&qd, &qd0, dt));
+        prop_assert_eq!(v.feet_air_time, terms::feet_air_time(&air, 0.5, true));
+        prop_assert_eq!(v.foot_slip, terms::foot_slip(&vel, &feet, true));
+        prop_assert_eq!(v.base_height, terms::base_height(h, 0.6));
+        prop_assert_eq!(v.collision, f64::from(u8::from(trunk)));
+        prop_assert!(reward(&scales.terms, &v, dt).is_finite());
+    }
+
+    /// A report writes the terms that are on, in order, and reads back to itself.
+    #[test]
+    fn a_report_writes_the_terms_that_are_on(
+        v in proptest::array::uniform7(finite()),
+        on in proptest::array::uniform7(any::<bool>()),
+    ) {
+        let mut values = v;
+        for k in 0..REGULARIZER_COUNT {
+            if !on[k] {
+                values[k] = 0.0;
+            }
+        }
+        let report = ReportedRegularizers { values: RegularizerTerms::from_array(values), on };
+        let json = serde_json_like(&report);
+        let names: Vec<&str> = report.iter().map(|(n, _)| n).collect();
+        let want: Vec<&str> = REGULARIZER_NAMES.iter().zip(on).filter(|(_, o)| *o).map(|(n, _)| *n).collect();
+        prop_assert_eq!(&names, &want);
+        let back: ReportedRegularizers = toml::from_str(&json).map_err(|e| TestCaseError::fail(e.to_string()))?;
+        prop_assert_eq!(back, report);
+    }
+}
+
+/// The report as TOML text (the crate's dev-dependencies have no JSON writer; the map is the
+/// same either way).
+fn serde_json_like(report: &ReportedRegularizers) -> String {
+    toml::to_string(report).unwrap_or_else(|e| panic!("{e}"))
+}
+
+#[test]
+fn off_by_default_and_the_preset_is_legged_gyms() {
+    let off = RegularizerConfig::default();
+    assert!(off.is_off() && off.is_default());
+    assert_eq!(off.scales(), RegularizerTerms::default());
+    let lg = RegularizerConfig {
+        preset: RegularizerPreset::LeggedGym,
+        ..Default::default()
+    };
+    assert!(!lg.is_off());
+    // legged_gym's LeggedRobotCfg.rewards.scales.
+    let s = lg.scales();
+    assert_eq!(
+        [
+            s.action_rate,
+            s.torques,
+            s.joint_acc,
+            s.feet_air_time,
+            s.collision
+        ],
+        [-0.01, -1.0e-5, -2.5e-7, 1.0, -1.0]
+    );
+    assert_eq!([s.foot_slip, s.base_height], [0.0, 0.0]);
+    // A key over the preset; 0 turns a term off; every term 0 is off.
+    let over = RegularizerConfig {
+        preset: RegularizerPreset::LeggedGym,
+        torques: Some(0.0),
+        foot_slip: Some(-0.1),
+        ..Default::default()
+    };
+    assert_eq!(over.scales().torques, 0.0);
+    assert_eq!(over.scales().foot_slip, -0.1);
+    let zeros = RegularizerConfig {
+        action_rate: Some(0.0),
+        ..Default::default()
+    };
+    assert!(zeros.is_off() && !zeros.is_default());
+    // The settings' defaults: legged_gym's threshold, the robot's standing height.
+    let r = off.resolve(0.5895);
+    assert_eq!(
+        (r.feet_air_time_threshold_s, r.base_height_target_m),
+        (0.5, 0.5895)
+    );
+}
+
+#[test]
+fn bad_keys_are_named() {
+    let cases: [(&str, RegularizerConfig); 5] = [
+        (
+            "regularizers.torques",
+            RegularizerConfig {
+                torques: Some(f64::NAN),
+                ..Default::default()
+            },
+        ),
+        (
+            "regularizers.action_rate",
+            RegularizerConfig {
+                action_rate: Some(-2.0e4),
+                ..Default::default()
+            },
+        ),
+        (
+            "regularizers.collision",
+            RegularizerConfig {
+                collision: Some(f64::INFINITY),
+                ..Default::default()
+            },
+        ),
+        (
+            "regularizers.feet_air_time_threshold_s",
+            RegularizerConfig {
+                feet_air_time_threshold_s: Some(-0.1),
+                ..Default::default()
+            },
+        ),
+        (
+            "regularizers.base_height_target_m",
+            RegularizerConfig {
+                base_height_target_m: Some(0.0),
+                ..Default::default()
+            },
+        ),
+    ];
+    for (key, config) in cases {
+        let e = config
+            .validate()
+            .err()
+            .unwrap_or_else(|| panic!("{key} accepted"));
+        assert_eq!(e.key, key);
+        assert!(!e.to_string().contains('\n'), "{e}");
+    }
+    let unknown = toml::from_str::<RegularizerConfig>("dof_acc = -2.5e-7");
+    assert!(unknown.is_err(), "an unknown key is refused");
+    let unknown_term = toml::from_str::<ReportedRegularizers>("stumble = 1.0");
+    assert!(unknown_term.is_err(), "an unknown term is refused");
+}
+
+#[test]
+fn feet_air_time_counts_a_touchdown_after_time_in_the_air() {
+    // One foot lifted for 0.6 s then put down, at Δt 0.01: its touchdown pays 0.6 − 0.5.
+    let mut air = AirTime::new(1);
+    let mut paid = Vec::new();
+    for step in 0..70 {
+        let contact = !(1..=59).contains(&step);
+        let at = air.update(&[contact], 0.01)[0];
+        paid.push(terms::feet_air_time(&[at], 0.5, true));
+    }
+    let total: f64 = paid.iter().sum();
+    assert!((total - 0.1).abs() < 1e-9, "{total}");
+    assert_eq!(paid.iter().filter(|p| **p != 0.0).count(), 1);
+}
