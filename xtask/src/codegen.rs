@@ -253,6 +253,7 @@ mod generate {
                 .replace("{joints}", &joints.to_string())
                 .replace("{terms}", &term_names())
                 .replace("{randomize}", &randomize_names())
+                .replace("{regularizers}", &regularizer_names())
         };
         let rows: Vec<_> = RECORD_KEYS
             .iter()
@@ -278,6 +279,17 @@ mod generate {
         let prefix = hyq_env::randomize::RANDOMIZE_PREFIX;
         spans(
             RANDOMIZE_INFO_KEYS
+                .iter()
+                .map(|k| k.name.strip_prefix(prefix).unwrap_or(k.name)),
+        )
+    }
+
+    /// The names the record writes under `regularizers`: the info's `regularizers.` term keys
+    /// without their prefix.
+    fn regularizer_names() -> String {
+        let prefix = hyq_env::regularizers::REGULARIZER_PREFIX;
+        spans(
+            hyq_env::REGULARIZER_INFO_KEYS[1..]
                 .iter()
                 .map(|k| k.name.strip_prefix(prefix).unwrap_or(k.name)),
         )

@@ -53,6 +53,7 @@ use crate::error::EnvError;
 use crate::goal::{GoalSampler, episode_rules, sample_reset_state};
 use crate::info::{Reason, Reasons, StepInfo};
 use crate::randomize::{EpisodeDraw, RandomizeInfo, Randomizer, check_for_robot};
+use crate::regularizers::Regularizers;
 use crate::terrain::Ground;
 use crate::velocity::VelocityTask;
 
@@ -222,6 +223,8 @@ pub struct Env<B: Backend> {
     robustness: Option<Box<Robustness>>,
     /// The velocity task's state, under `task.kind = "velocity"`.
     velocity: Option<Box<VelocityTask>>,
+    /// The gait regularisers' state, when `[regularizers]` is on.
+    regularizers: Option<Box<Regularizers>>,
 
     timing_on: bool,
     timing: StepTiming,
@@ -397,6 +400,7 @@ fn info_before_reset(n: usize) -> StepInfo {
         action_clipped: false,
         randomize: None,
         velocity: None,
+        regularizers: None,
     }
 }
 
@@ -458,6 +462,7 @@ impl<B: Backend> Env<B> {
             info: info_before_reset(n),
             robustness,
             velocity,
+            regularizers: Regularizers::new(&model, &config),
             timing_on: false,
             timing: StepTiming::default(),
             backend,
@@ -527,6 +532,10 @@ impl<B: Backend> Env<B> {
             self.backend.link_poses(task.poses_mut());
             task.reset(seed);
         }
+        if let Some(r) = self.regularizers.as_deref_mut() {
+            self.backend.link_poses(r.poses_mut());
+            r.reset();
+        }
         self.observe_reset(&goal)?;
         self.write_reset_info(goal, initial, k);
         self.episode = Some(Episode {
@@ -569,6 +578,9 @@ impl<B: Backend> Env<B> {
         self.info.t += 1;
         if let Some(task) = self.velocity.as_deref_mut() {
             task.begin_step(action.iter().map(|a| a.to_f64()));
+        }
+        if let Some(r) = self.regularizers.as_deref_mut() {
+            r.begin_step(action.iter().map(|a| a.to_f64()));
         }
         let previous = self.state.trunk;
         let mut watch = Stopwatch::start(self.timing_on);
@@ -666,6 +678,7 @@ impl<B: Backend> Env<B> {
             .as_deref()
             .map(|r| RandomizeInfo::at_reset(r.randomizer.draw()));
         info.velocity = self.velocity.as_deref().map(|task| task.info);
+        info.regularizers = self.regularizers.as_deref().map(|r| r.info);
     }
 
     /// The next episode's ground, start state and goal, from the goal, noise and terrain streams
@@ -791,6 +804,16 @@ impl<B: Backend> Env<B> {
                 self.latching[self.trunk_tracked],
             );
         }
+        if let Some(r) = self.regularizers.as_deref_mut() {
+            self.backend.link_poses(r.poses_mut());
+            r.evaluate_step(
+                crate::regularizers::base_height(&self.state.trunk, self.ground.terrain()),
+                &self.state.qd,
+                self.scratch.torques(),
+                &self.latching[..self.num_feet],
+                &self.latching[self.num_feet..],
+            );
+        }
         watch.lap(&mut self.timing.spec);
         let accel = trunk_acceleration(&previous.linvel, &self.state.trunk.linvel, self.env_dt)?;
         self.write_observation(accel, &rules.goal())?;
@@ -826,6 +849,7 @@ impl<B: Backend> Env<B> {
         info.roll = outcome.attitude.roll;
         info.pitch = outcome.attitude.pitch;
         info.yaw = outcome.attitude.yaw;
+        info.regularizers = self.regularizers.as_deref().map(|r| r.info);
     }
 
     /// Reports a diverged step: the last finite observation stays in `obs`, and so do its
@@ -849,6 +873,10 @@ impl<B: Backend> Env<B> {
         }
         info.joint_at_limit = None;
         info.divergence = Some(cause);
+        if let Some(r) = self.regularizers.as_deref_mut() {
+            r.diverged();
+            info.regularizers = Some(r.info);
+        }
     }
 
     /// Under the velocity task, replaces the spec's reward and end reasons with the task's

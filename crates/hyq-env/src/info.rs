@@ -7,6 +7,7 @@ use hyq_spec::{JointLimitHit, LimitSide, RewardBreakdown, Termination, Terminati
 
 use crate::divergence::Divergence;
 use crate::randomize::{EpisodeDraw, RandomizeInfo};
+use crate::regularizers::RegularizerInfo;
 use crate::velocity::VelocityInfo;
 use serde::{Deserialize, Serialize, Serializer};
 use std::fmt;
@@ -227,13 +228,25 @@ pub struct StepInfo {
     /// written.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub velocity: Option<VelocityInfo>,
+    /// When `[regularizers]` is on: the terms that are on and their scaled sum, which the
+    /// step's reward adds to the spec's (absent otherwise, and then not written).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub regularizers: Option<RegularizerInfo>,
 }
 
 impl StepInfo {
-    /// The step's reward: the velocity task's under `task.kind = "velocity"`, else the spec's
-    /// `reward.total`.
+    /// The step's reward: the velocity task's under `task.kind = "velocity"`, else
+    /// [`StepInfo::goal_reward`].
     pub fn total_reward(&self) -> f64 {
-        self.velocity.map_or(self.reward.total, |v| v.reward)
+        self.velocity
+            .map_or_else(|| self.goal_reward(), |v| v.reward)
+    }
+
+    /// The goal task's reward: the spec's `reward.total`, plus the regularisers' sum when
+    /// `[regularizers]` is on (docs/spec.md §7.12; off, the spec's total itself, bit for bit).
+    pub fn goal_reward(&self) -> f64 {
+        self.regularizers
+            .map_or(self.reward.total, |r| self.reward.total + r.reward)
     }
 
     /// The name of the first joint at a limit when `joint_limit` holds (`model` names the
@@ -351,7 +364,7 @@ pub const INFO_KEYS: [InfoKey; 19] = [
     },
     InfoKey {
         name: "reward",
-        value: InfoValue::Float(|i| i.reward.total),
+        value: InfoValue::Float(StepInfo::goal_reward),
         meaning: "the step's reward, the number `step` returns",
     },
     InfoKey {

@@ -52,6 +52,7 @@
 //! | [`randomize`] | `[randomize]`: varied dynamics, actuator and delay, observation noise, pushes |
 //! | [`vec_env`] | [`VecEnv`]: N envs on rayon into flat buffers, autoreset modes |
 //! | [`velocity`] | `task.kind = "velocity"`: the velocity-command task's state, observation group and info (rules in `hyq-tasks`) |
+//! | [`regularizers`] | `[regularizers]`: the gait regularisers' state and info added to the goal task's reward (rules in `hyq-tasks`) |
 //! | [`record`] | [`StepRecord`]: the per-step JSONL schema |
 //! | [`terrain`] | [`terrain::Ground`]: the ground of each episode, the robot put down on it, the goal over it, the curriculum |
 //! | [`testing`] | [`testing::ScriptedBackend`]: a scripted backend for contract tests |
@@ -73,6 +74,7 @@ pub mod observation;
 pub mod policy;
 pub mod randomize;
 pub mod record;
+pub mod regularizers;
 pub mod terrain;
 pub mod testing;
 pub mod vec_env;
@@ -101,6 +103,7 @@ pub use mlp::{MlpError, MlpMetadata, MlpPolicy};
 pub use policy::{Policy, PolicyInput, RandomPolicy, Stand, Trot, TrotParams};
 pub use randomize::{EpisodeDraw, EpisodeRandomization, Preset, RandomizeInfo};
 pub use record::{RECORD_KEYS, RecordKey, StepRecord};
+pub use regularizers::{REGULARIZER_INFO_KEYS, RegularizerInfo, regularizer_info_keys};
 pub use vec_env::{AutoReset, MAX_ENVS, MAX_THREADS, VecEnv, VecEnvError, VecStepOut};
 pub use velocity::{VELOCITY_INFO_KEYS, VelocityInfo};
 

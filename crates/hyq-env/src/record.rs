@@ -20,6 +20,7 @@ use std::borrow::Cow;
 
 use hyq_physics::Backend;
 use hyq_spec::{TaskConfig, TermValues};
+use hyq_tasks::ReportedRegularizers;
 use serde::{Deserialize, Serialize};
 
 use crate::env::Env;
@@ -28,8 +29,9 @@ use crate::randomize::RandomizeInfo;
 
 /// One key of the step record: its name, its JSON type and what it holds. In a type or a
 /// meaning, `{obs}` stands for the robot's observation length, `{joints}` for its joint count,
-/// `{terms}` for the reward terms' names and `{randomize}` for the names of
-/// [`RANDOMIZE_INFO_KEYS`](crate::RANDOMIZE_INFO_KEYS) (the documents write them for HyQ).
+/// `{terms}` for the reward terms' names, `{randomize}` for the names of
+/// [`RANDOMIZE_INFO_KEYS`](crate::RANDOMIZE_INFO_KEYS) and `{regularizers}` for hyq-tasks'
+/// `REGULARIZER_NAMES` (the documents write them for HyQ).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct RecordKey {
     /// The key.
@@ -44,7 +46,7 @@ pub struct RecordKey {
 }
 
 /// The step record's keys, in the order written: its one schema ([`StepRecord`]'s fields).
-pub const RECORD_KEYS: [RecordKey; 19] = [
+pub const RECORD_KEYS: [RecordKey; 20] = [
     RecordKey {
         name: "robot",
         kind: "string",
@@ -93,7 +95,7 @@ pub const RECORD_KEYS: [RecordKey; 19] = [
     RecordKey {
         name: "reward",
         kind: "number",
-        meaning: "the step's reward, `terms` composed",
+        meaning: "the step's reward, `terms` composed, plus `regularizers`' sum when they are on",
         optional: false,
     },
     RecordKey {
@@ -164,6 +166,13 @@ pub const RECORD_KEYS: [RecordKey; 19] = [
                   `randomize.` keys: {randomize}",
         optional: true,
     },
+    RecordKey {
+        name: "regularizers",
+        kind: "object",
+        meaning: "`[regularizers]`' terms that are on, unscaled, by name (any of {regularizers}); \
+                  the step's reward is the spec's plus Σ scale · term · Δt_env over them",
+        optional: true,
+    },
 ];
 
 /// One env step as written to a JSONL record (see the module docs for the schema). Borrows the
@@ -213,6 +222,9 @@ pub struct StepRecord<'a> {
     /// `[randomize]`'s draws and the step's push, when it is on (else not written).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub randomize: Option<Cow<'a, RandomizeInfo>>,
+    /// The regularisers that are on, unscaled, when `[regularizers]` is on (else not written).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub regularizers: Option<ReportedRegularizers>,
 }
 
 impl<'a> StepRecord<'a> {
@@ -234,7 +246,7 @@ impl<'a> StepRecord<'a> {
             true_obs: None,
             action: Cow::Borrowed(action),
             joint_targets: Cow::Borrowed(&info.joint_targets),
-            reward: r.total,
+            reward: info.goal_reward(),
             terms: TermValues::reported(r, task),
             yaw: info.yaw,
             pitch: info.pitch,
@@ -246,6 +258,7 @@ impl<'a> StepRecord<'a> {
             truncated: info.truncated(),
             reasons: info.reasons.iter().collect(),
             randomize: info.randomize.as_ref().map(Cow::Borrowed),
+            regularizers: info.regularizers.map(|r| r.terms),
         }
     }
 

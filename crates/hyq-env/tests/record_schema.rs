@@ -4,7 +4,9 @@
 //! names, and unknown keys are refused when reading; a record written before records named their
 //! robot still reads, and writes out to the same bytes; `randomize` (the episode's draws and the
 //! step's push) is written only when `[randomize]` is on, last, holding every
-//! `RANDOMIZE_INFO_KEYS` value the info reads, and reads back.
+//! `RANDOMIZE_INFO_KEYS` value the info reads, and reads back; `regularizers` (the terms that
+//! are on) is written only when `[regularizers]` is on, last, holding the info's values of the
+//! terms that are on and no other, and reads back.
 
 mod common;
 
@@ -162,8 +164,11 @@ fn randomize_is_written_only_when_randomize_is_on_and_reads_back() {
     assert_eq!(info.pushes, 1);
     let line = StepRecord::from_env(&env, &[0.0; 12]).to_json_line();
     let value: serde_json::Value = serde_json::from_str(&line).unwrap_or_else(|e| panic!("{e}"));
-    // The schema's last key, written last.
-    assert_eq!(RECORD_KEYS.last().map(|k| k.name), Some("randomize"));
+    // The schema's last key but `regularizers`, written after every other that is set.
+    assert_eq!(
+        RECORD_KEYS.iter().rev().nth(1).map(|k| k.name),
+        Some("randomize")
+    );
     assert!(
         line.rfind("\"randomize\":") > line.rfind("\"reasons\":"),
         "{line}"
@@ -251,4 +256,76 @@ fn with_observation_noise_the_record_keeps_the_true_observation_beside_the_noisy
     plain.step(&[0.0; 12]).unwrap_or_else(|e| panic!("{e}"));
     let line = StepRecord::from_env(&plain, &[0.0; 12]).to_json_line();
     assert!(!line.contains("true_obs"), "{line}");
+}
+
+#[test]
+fn regularizers_are_written_only_when_on_last_and_read_back() {
+    let mut env = scripted(&[
+        ("randomize.kp_scale", "[0.8, 1.2]"),
+        ("regularizers.action_rate", "-0.01"),
+        ("regularizers.base_height", "-2"),
+    ]);
+    reset(&mut env, 0);
+    let action = [0.25; 12];
+    env.step(&action).unwrap_or_else(|e| panic!("{e}"));
+    let line = StepRecord::from_env(&env, &action).to_json_line();
+    assert_eq!(RECORD_KEYS.last().map(|k| k.name), Some("regularizers"));
+    assert!(
+        line.rfind("\"regularizers\":") > line.rfind("\"randomize\":"),
+        "{line}"
+    );
+    let value: serde_json::Value = serde_json::from_str(&line).unwrap_or_else(|e| panic!("{e}"));
+    let written = value["regularizers"]
+        .as_object()
+        .unwrap_or_else(|| panic!("no regularizers object: {line}"));
+    let names: Vec<&str> = written.keys().map(String::as_str).collect();
+    assert_eq!(
+        names,
+        ["action_rate", "base_height"],
+        "the terms that are on, no other"
+    );
+    let info = env.info().regularizers.unwrap_or_else(|| panic!("on"));
+    let keys: Vec<&str> = hyq_env::regularizer_info_keys(env.info())
+        .map(|k| k.name)
+        .collect();
+    assert_eq!(
+        keys,
+        [
+            "regularizers.reward",
+            "regularizers.action_rate",
+            "regularizers.base_height"
+        ]
+    );
+    for key in hyq_env::regularizer_info_keys(env.info()).skip(1) {
+        let InfoValue::Float(read) = key.value else {
+            panic!("{}: a number", key.name)
+        };
+        let name = key.name.strip_prefix("regularizers.").unwrap_or(key.name);
+        assert_eq!(
+            written.get(name),
+            Some(&serde_json::json!(read(env.info()))),
+            "{name}"
+        );
+    }
+    assert_eq!(written["action_rate"], serde_json::json!(12.0 * 0.0625));
+    let back = StepRecord::from_json_line(&line).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(back.regularizers, Some(info.terms));
+    assert_eq!(back.to_json_line(), line);
+    assert_eq!(back.reward, env.info().reward.total + info.reward);
+    assert_ne!(info.reward, 0.0);
+    let bad = line.replace("\"base_height\"", "\"stumble\"");
+    assert!(
+        StepRecord::from_json_line(&bad).is_err(),
+        "an unknown term is refused"
+    );
+
+    let mut plain = scripted(&[]);
+    reset(&mut plain, 0);
+    plain.step(&action).unwrap_or_else(|e| panic!("{e}"));
+    assert!(plain.info().regularizers.is_none());
+    assert!(
+        !StepRecord::from_env(&plain, &action)
+            .to_json_line()
+            .contains("regularizers")
+    );
 }

@@ -44,6 +44,9 @@
 //!
 //! [velocity]      # the velocity task's reward scales (see VelocityConfig)
 //! preset = "legged_gym"
+//!
+//! [regularizers]  # gait regularisers added to the goal task's reward, all off by default
+//! action_rate = -0.01
 //! ```
 //!
 //! Every table and every key is optional: a missing one takes its default. Unknown keys are
@@ -67,6 +70,7 @@ mod parse;
 mod physics;
 mod presets;
 mod randomize;
+mod regularizers;
 mod reset;
 mod task;
 mod terrain;
@@ -77,7 +81,7 @@ pub use action::{ActionConfig, ActionMode, OutOfRange};
 pub use control::{ControlConfig, Gains};
 pub use goal::{GoalConfig, GoalMode};
 pub use hyq_spec::{EXP_REW_SCALING_MAX, REWARD_SCALE_MAX, TaskConfig};
-pub use hyq_tasks::{CommandConfig, VelocityConfig};
+pub use hyq_tasks::{CommandConfig, RegularizerConfig, RegularizerPreset, VelocityConfig};
 pub use messages::{ConfigError, LoadError};
 pub use observation::{MAX_SCAN_POINTS, MAX_SCAN_REACH_M, ObservationConfig, ObservationExtra};
 pub use parse::CONFIG_FILE_MAX_BYTES;
@@ -173,6 +177,11 @@ env_config! {
         /// preset, and the table is not written)
         #[serde(skip_serializing_if = "velocity::is_default_velocity")]
         velocity: VelocityConfig,
+        /// Gait regularisers added to the goal task's reward, each a scale over a preset
+        /// (hyq-tasks' [`RegularizerConfig`]; only with `task.kind = "goal"`). (default: all
+        /// off, the spec's reward, and the table is not written)
+        #[serde(skip_serializing_if = "RegularizerConfig::is_default")]
+        regularizers: RegularizerConfig,
     }
 }
 
