@@ -151,10 +151,11 @@ impl LivePlots {
         self.series.push(&PlotRecord {
             t: info.t,
             episode: Some(info.episode),
-            reward: info.reward.total,
+            reward: info.goal_reward(),
             terms: TermValues::all(&info.reward),
             d_n: Some(info.d_n),
             distance_to_goal: info.distance_to_goal,
+            regularizers: info.regularizers.map(|r| r.terms),
         });
     }
 

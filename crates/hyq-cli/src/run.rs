@@ -98,6 +98,29 @@ pub struct EpisodeSummary {
     /// each of the task's terms (else not written; `ret` is then the task's return).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub velocity: Option<VelocitySummary>,
+    /// When `[regularizers]` is on: what the gait regularisers added to the return and the
+    /// sum of each term that is on, unscaled (else not written).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub regularizers: Option<RegularizerSummary>,
+}
+
+/// The gait regularisers' part of an episode's summary.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct RegularizerSummary {
+    /// Σ over the steps of what they added to the reward (Σ scale · term · Δt_env).
+    pub reward: f64,
+    /// The sum over the steps of each term that is on, unscaled, by its name.
+    pub terms: std::collections::BTreeMap<&'static str, f64>,
+}
+
+impl RegularizerSummary {
+    /// Adds a step's report.
+    fn add(&mut self, r: &hyq_env::RegularizerInfo) {
+        self.reward += r.reward;
+        for (name, value) in r.terms.iter() {
+            *self.terms.entry(name).or_default() += value;
+        }
+    }
 }
 
 /// The velocity task's part of an episode's summary.
@@ -383,6 +406,7 @@ impl EpisodeSummary {
                 .as_ref()
                 .map(|r| EpisodeRandomization::starting(&r.draw)),
             velocity: info.velocity.map(|_| VelocitySummary::default()),
+            regularizers: info.regularizers.map(|_| RegularizerSummary::default()),
         }
     }
 
@@ -396,6 +420,9 @@ impl EpisodeSummary {
         self.terms.add(r);
         if let (Some(s), Some(v)) = (self.velocity.as_mut(), &info.velocity) {
             s.add(v, info.t);
+        }
+        if let (Some(s), Some(r)) = (self.regularizers.as_mut(), &info.regularizers) {
+            s.add(r);
         }
         if done {
             self.terminated = step.terminated;

@@ -173,3 +173,59 @@ fn large_sums_are_printed_in_short_scientific_form_small_ones_with_three_decimal
         "{out}"
     );
 }
+
+/// With `[regularizers]` on, the summary says what they added and each term's sum, the return
+/// is the spec's terms' return plus that, and `--plot` draws them; off, none of it is written.
+#[test]
+fn regularizers_are_summed_and_plotted_only_when_on() {
+    let base = [
+        "run",
+        "--json",
+        "--set",
+        "task.max_time_steps=60",
+        "--set",
+        "task.norm_rew_scaling=10",
+    ];
+    let plain: Value = serde_json::from_str(hyq_ok(&base).trim()).unwrap();
+    assert!(plain.get("regularizers").is_none(), "{plain}");
+    let dir = std::env::temp_dir().join(format!("hyq-reg-plots-{}", std::process::id()));
+    let dir_arg = dir.display().to_string();
+    let mut args = base.to_vec();
+    args.extend([
+        "--set",
+        "regularizers.preset=legged_gym",
+        "--set",
+        "regularizers.foot_slip=-0.1",
+        "--plot",
+        &dir_arg,
+    ]);
+    let on: Value = serde_json::from_str(hyq_ok(&args).trim()).unwrap();
+    let reg = &on["regularizers"];
+    let terms = reg["terms"].as_object().unwrap();
+    let names: Vec<&str> = terms.keys().map(String::as_str).collect();
+    let mut want = vec![
+        "action_rate",
+        "collision",
+        "feet_air_time",
+        "foot_slip",
+        "joint_acc",
+        "torques",
+    ];
+    want.sort_unstable();
+    assert_eq!(names, want, "the terms that are on, no other");
+    let added = reg["reward"].as_f64().unwrap();
+    assert!(added < 0.0 && added.is_finite(), "{reg}");
+    // The spec's part is the plain run's (the same physics); the return adds the regularisers.
+    assert_eq!(on["terms"], plain["terms"]);
+    let (ret, plain_ret) = (
+        on["return"].as_f64().unwrap(),
+        plain["return"].as_f64().unwrap(),
+    );
+    assert!(
+        (ret - (plain_ret + added)).abs() < 1e-9,
+        "{ret} vs {plain_ret} + {added}"
+    );
+    assert!(dir.join("episode_001_regularizers.png").is_file());
+    assert!(dir.join("episode_001_rewards.png").is_file());
+    std::fs::remove_dir_all(&dir).unwrap();
+}

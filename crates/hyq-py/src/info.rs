@@ -12,7 +12,10 @@
 //! episode's draws and the step's push, `randomize.<name>`), read the same way, after the
 //! others; an env whose `[randomize]` is off has none of them. Under `task.kind = "velocity"`
 //! the info holds hyq-env's [`VELOCITY_INFO_KEYS`] last (`velocity.<name>`: the command, the
-//! trunk's velocities, the task's reward and terms); the spec's task has none of them.
+//! trunk's velocities, the task's reward and terms); the spec's task has none of them. With
+//! `[regularizers]` on, the info ends with hyq-env's regularizer keys (`regularizers.reward`
+//! and `regularizers.<term>` for each term that is on; [`regularizer_info_keys`]); an env with
+//! them off has none of them.
 //!
 //! The vector info holds the same keys as arrays over the envs, exactly as Gymnasium's
 //! `SyncVectorEnv` builds them from N single infos: int64, float64 and bool arrays, object
@@ -21,6 +24,7 @@
 
 use hyq_env::{
     INFO_KEYS, InfoKey, InfoValue, RANDOMIZE_INFO_KEYS, Reason, StepInfo, VELOCITY_INFO_KEYS,
+    regularizer_info_keys,
 };
 use hyq_physics::RobotModel;
 use numpy::ndarray::Array2;
@@ -42,7 +46,8 @@ pub fn info_schema(keys: &[InfoKey], joints: usize, links: usize) -> Vec<(&'stat
 }
 
 /// The keys an info of `info` holds, in order: [`INFO_KEYS`], then [`RANDOMIZE_INFO_KEYS`] when
-/// the env's `[randomize]` is on, then [`VELOCITY_INFO_KEYS`] under `task.kind = "velocity"`.
+/// the env's `[randomize]` is on, then [`VELOCITY_INFO_KEYS`] under `task.kind = "velocity"`,
+/// then the regularisers' keys that are on ([`regularizer_info_keys`]).
 fn keys_of(info: &StepInfo) -> impl Iterator<Item = &'static InfoKey> {
     let randomized: &'static [InfoKey] = if info.randomize.is_some() {
         &RANDOMIZE_INFO_KEYS
@@ -54,7 +59,11 @@ fn keys_of(info: &StepInfo) -> impl Iterator<Item = &'static InfoKey> {
     } else {
         &[]
     };
-    INFO_KEYS.iter().chain(randomized).chain(velocity)
+    INFO_KEYS
+        .iter()
+        .chain(randomized)
+        .chain(velocity)
+        .chain(regularizer_info_keys(info))
 }
 
 /// The single env's info dict (see the module docs): every key of [`INFO_KEYS`] in its order,

@@ -103,5 +103,19 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
         "REWARD_TERMS",
         pyo3::types::PyTuple::new(m.py(), hyq_spec::TERM_NAMES)?,
     )?;
+    // The gait regularisers' names (`[regularizers]`, docs/regularizers.md): the info's
+    // `regularizers.<name>` keys of the terms that are on.
+    let regularizers: Vec<&str> = hyq_env::REGULARIZER_INFO_KEYS[1..]
+        .iter()
+        .map(|k| {
+            k.name
+                .strip_prefix(hyq_env::regularizers::REGULARIZER_PREFIX)
+                .unwrap_or(k.name)
+        })
+        .collect();
+    m.add(
+        "REGULARIZER_TERMS",
+        pyo3::types::PyTuple::new(m.py(), regularizers)?,
+    )?;
     Ok(())
 }

@@ -88,6 +88,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             terms: TermValues::all(&b),
             d_n: outcome.normalised_distance,
             distance_to_goal: outcome.distance,
+            regularizers: None,
         };
         writeln!(log, "{}", serde_json::to_string(&record)?)?;
 

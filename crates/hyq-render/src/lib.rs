@@ -104,8 +104,9 @@ pub use frame::Frame;
 /// A record's reward terms by name (hyq-spec's type, which [`PlotRecord::terms`] holds).
 pub use hyq_spec::TermValues;
 pub use plot::{
-    DISTANCE_PLOT_SIZE, EpisodePlots, JsonlPlots, PlotOptions, REWARD_PLOT_SIZE, plot_distance,
-    plot_episode, plot_jsonl, plot_records, plot_reward_terms, reward_plot_legend,
+    DISTANCE_PLOT_SIZE, EpisodePlots, JsonlPlots, PlotOptions, REGULARIZER_PLOT_CELL,
+    REWARD_PLOT_SIZE, plot_distance, plot_episode, plot_jsonl, plot_records, plot_regularizers,
+    plot_reward_terms, reward_plot_legend,
 };
 pub use records::{
     EpisodeSeries, JsonlRecords, MAX_RECORD_LINE_BYTES, PlotRecord, cumulative, parse_jsonl,

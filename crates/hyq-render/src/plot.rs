@@ -554,6 +554,56 @@ pub fn plot_reward_terms(
     })
 }
 
+/// The width of the regularisers' plot and the height of each of its rows of two panels.
+pub const REGULARIZER_PLOT_CELL: (u32, u32) = (1280, 300);
+
+/// Writes the gait regularisers' plot of one episode to `path`: each term the records hold,
+/// unscaled, in a panel of its own (two to a row of [`REGULARIZER_PLOT_CELL`]'s height). An
+/// episode without regularisers is an error.
+pub fn plot_regularizers(
+    series: &EpisodeSeries,
+    options: &PlotOptions,
+    path: impl AsRef<Path>,
+) -> Result<(), PlotError> {
+    series.validate()?;
+    check_options(options)?;
+    if series.regularizers.is_empty() {
+        return Err(PlotError::Empty {
+            what: "the episode's gait regularisers".into(),
+        });
+    }
+    let (t, x_desc) = options.time_axis(&series.t);
+    let t = &t;
+    let rows = series.regularizers.len().div_ceil(2);
+    let (width, row_height) = REGULARIZER_PLOT_CELL;
+    let height = 60 + row_height * u32::try_from(rows).unwrap_or(u32::MAX / row_height / 2);
+    let title = heading(
+        &options.title,
+        &format!("gait regularisers, unscaled ({} steps)", series.len()),
+    );
+    const COLOURS: [RGBColor; 7] = [BLUE, ORANGE, GREEN, RED, TEAL, PURPLE, BROWN];
+    render_png(path.as_ref(), (width, height), "regularizers", |root| {
+        let body = root
+            .titled(
+                &title,
+                (FAMILY, 24, FontStyle::Bold).into_font().color(&INK),
+            )
+            .map_err(|e| e.to_string())?;
+        let areas = body.split_evenly((rows, 2));
+        for (k, (area, (name, column))) in areas.iter().zip(&series.regularizers).enumerate() {
+            let lines = [Line {
+                label: (*name).to_owned(),
+                colour: COLOURS[k % COLOURS.len()],
+                ys: column,
+                width: 2,
+            }];
+            let y_range = padded_range(column.iter(), &[0.0]);
+            line_panel(area, name, (t, x_desc), &lines, "per step", y_range, &[])?;
+        }
+        Ok(())
+    })
+}
+
 /// Writes the distance plot of one episode ([`DISTANCE_PLOT_SIZE`]) to `path`: D_n over time,
 /// and R_e(D_n) with the episode's points.
 pub fn plot_distance(
@@ -713,10 +763,14 @@ pub struct EpisodePlots {
     pub rewards: PathBuf,
     /// `<stem>_distance.png`, from [`plot_distance`].
     pub distance: PathBuf,
+    /// `<stem>_regularizers.png`, from [`plot_regularizers`], when the episode's records hold
+    /// gait regularisers.
+    pub regularizers: Option<PathBuf>,
 }
 
 /// Writes both plots of one episode into `dir` (created if missing) as `<stem>_rewards.png` and
-/// `<stem>_distance.png`.
+/// `<stem>_distance.png`, and `<stem>_regularizers.png` when its records hold gait
+/// regularisers.
 pub fn plot_episode(
     series: &EpisodeSeries,
     options: &PlotOptions,
@@ -731,9 +785,14 @@ pub fn plot_episode(
     let plots = EpisodePlots {
         rewards: dir.join(format!("{stem}_rewards.png")),
         distance: dir.join(format!("{stem}_distance.png")),
+        regularizers: (!series.regularizers.is_empty())
+            .then(|| dir.join(format!("{stem}_regularizers.png"))),
     };
     plot_reward_terms(series, options, &plots.rewards)?;
     plot_distance(series, options, &plots.distance)?;
+    if let Some(path) = &plots.regularizers {
+        plot_regularizers(series, options, path)?;
+    }
     Ok(plots)
 }
 

@@ -7,7 +7,8 @@
 //! `terms` (every reward term of `hyq_spec::REWARD_TERMS` by name, an opt-in one such as
 //! `m_height` optional: the spec's per-term breakdown, penalties as the positive amounts
 //! subtracted), `d_n` (D_n^t; `null` is read as unknown, as older records held it) and
-//! `distance_to_goal` (D^t, m), and `episode` (the episode's number; optional here). Other keys
+//! `distance_to_goal` (D^t, m), `episode` (the episode's number; optional here) and
+//! `regularizers` (the gait regularisers that were on, unscaled; optional). Other keys
 //! (`obs`, `action`, `goal`, …) are ignored, so the environment can log more without breaking
 //! the plots.
 //!
@@ -27,6 +28,7 @@ use std::path::Path;
 
 use hyq_physics::input::{self, Line};
 use hyq_spec::{NUM_REWARD_TERMS, REWARD_TERMS, TermValues, terms::term_index};
+use hyq_tasks::ReportedRegularizers;
 use serde::{Deserialize, Serialize};
 
 use crate::error::PlotError;
@@ -51,6 +53,9 @@ pub struct PlotRecord {
     pub d_n: Option<f64>,
     /// D^t, the distance from the trunk to the goal (m).
     pub distance_to_goal: f64,
+    /// The gait regularisers that were on, unscaled (`[regularizers]`; absent when off).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub regularizers: Option<ReportedRegularizers>,
 }
 
 /// The longest line of a JSONL record file read (bytes): 1 MiB, several hundred times a step
@@ -183,6 +188,9 @@ pub struct EpisodeSeries {
     pub d_n: Vec<Option<f64>>,
     /// D per step (m).
     pub distance_to_goal: Vec<f64>,
+    /// Each gait regulariser the records hold (`[regularizers]`, the terms that were on),
+    /// unscaled, one value per step, in hyq-tasks' order; empty when they were off.
+    pub regularizers: Vec<(&'static str, Vec<f64>)>,
 }
 
 impl EpisodeSeries {
@@ -210,6 +218,26 @@ impl EpisodeSeries {
         }
         self.d_n.push(r.d_n);
         self.distance_to_goal.push(r.distance_to_goal);
+        self.push_regularizers(r.regularizers.as_ref());
+    }
+
+    /// Appends one step's regularisers: a term first seen now starts at 0 for the earlier
+    /// steps, a term a step lacks reads 0 there.
+    fn push_regularizers(&mut self, reported: Option<&ReportedRegularizers>) {
+        let steps = self.t.len();
+        for (name, v) in reported.into_iter().flat_map(ReportedRegularizers::iter) {
+            match self.regularizers.iter_mut().find(|(n, _)| *n == name) {
+                Some((_, column)) => column.push(v),
+                None => {
+                    let mut column = vec![0.0; steps - 1];
+                    column.push(v);
+                    self.regularizers.push((name, column));
+                }
+            }
+        }
+        for (_, column) in &mut self.regularizers {
+            column.resize(steps, 0.0);
+        }
     }
 
     /// The column of the term named `name` (`None` for a name that is no term).
@@ -234,6 +262,7 @@ impl EpisodeSeries {
             .chain(REWARD_TERMS.iter().map(|t| t.name).zip(&self.terms))
             .chain([("distance_to_goal", &self.distance_to_goal)])
             .map(|(name, column)| (name, column.as_slice()))
+            .chain(self.regularizers.iter().map(|(n, c)| (*n, c.as_slice())))
     }
 
     /// Checks that the series is non-empty, every column has one value per step and every

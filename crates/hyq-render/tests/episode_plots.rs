@@ -10,8 +10,9 @@ mod common;
 
 use common::*;
 use hyq_render::{
-    DISTANCE_PLOT_SIZE, EpisodeSeries, PlotError, PlotOptions, PlotRecord, REWARD_PLOT_SIZE,
-    TermValues, cumulative, parse_jsonl, plot_distance, plot_episode, plot_jsonl, split_episodes,
+    DISTANCE_PLOT_SIZE, EpisodeSeries, PlotError, PlotOptions, PlotRecord, REGULARIZER_PLOT_CELL,
+    REWARD_PLOT_SIZE, TermValues, cumulative, parse_jsonl, plot_distance, plot_episode, plot_jsonl,
+    split_episodes,
 };
 use hyq_spec::nalgebra::{Point3, UnitQuaternion};
 use hyq_spec::reward::exponential::cumulative_exponential_reward;
@@ -62,6 +63,7 @@ fn spec_episode() -> Vec<PlotRecord> {
             terms: TermValues::all(&b),
             d_n: outcome.normalised_distance,
             distance_to_goal: outcome.distance,
+            regularizers: None,
         });
     }
     records
@@ -94,6 +96,11 @@ fn episode_plots_are_written_with_their_size_and_real_content() {
     let plots = plot_episode(&series, &PlotOptions::default(), &dir, "ep").unwrap();
     assert_eq!(plots.rewards, dir.join("ep_rewards.png"));
     assert_eq!(plots.distance, dir.join("ep_distance.png"));
+    assert_eq!(
+        plots.regularizers, None,
+        "no regularisers in the records, no plot of them"
+    );
+    assert!(!dir.join("ep_regularizers.png").exists());
     for (path, size) in [
         (&plots.rewards, REWARD_PLOT_SIZE),
         (&plots.distance, DISTANCE_PLOT_SIZE),
@@ -315,4 +322,47 @@ fn a_line_longer_than_the_limit_is_refused_without_reading_on() {
         "read {} bytes",
         taken.get()
     );
+}
+
+/// Records holding gait regularisers (`[regularizers]`, the terms that were on) get a third plot,
+/// a panel per term, unscaled; the series holds each term's column in the records' order; the
+/// spec's two plots are drawn from the same series as without them.
+#[test]
+fn records_with_regularisers_get_a_panel_per_term() {
+    let dir = scratch_dir("regularizers");
+    let mut records = spec_episode();
+    for (i, r) in records.iter_mut().enumerate() {
+        let line = format!(
+            r#"{{"action_rate": {}, "foot_slip": 0.25, "collision": 0.0}}"#,
+            i as f64 * 0.5
+        );
+        r.regularizers = Some(serde_json::from_str(&line).unwrap());
+    }
+    let series = EpisodeSeries::from_records(&records);
+    let names: Vec<&str> = series.regularizers.iter().map(|(n, _)| *n).collect();
+    assert_eq!(names, ["action_rate", "foot_slip", "collision"]);
+    assert_eq!(series.regularizers[0].1[3], 1.5);
+    let jsonl = to_jsonl(&records);
+    let parsed = parse_jsonl(jsonl.as_bytes(), "mem").unwrap();
+    let back: Vec<_> = parsed.records.iter().map(|r| r.regularizers).collect();
+    let written: Vec<_> = records.iter().map(|r| r.regularizers).collect();
+    assert!(
+        back == written,
+        "the record's regularizers object reads back"
+    );
+    let plots = plot_episode(&series, &PlotOptions::default(), &dir, "ep").unwrap();
+    let path = plots.regularizers.clone().unwrap();
+    assert_eq!(path, dir.join("ep_regularizers.png"));
+    let (size, colours) = png_size_and_colours(&path);
+    assert_eq!(
+        size,
+        (REGULARIZER_PLOT_CELL.0, 60 + 2 * REGULARIZER_PLOT_CELL.1)
+    );
+    assert!(colours > 50, "{colours} colours");
+    // A non-finite value is refused by the term's name.
+    let mut bad = series.clone();
+    bad.regularizers[1].1[7] = f64::NAN;
+    let e = hyq_render::plot_regularizers(&bad, &PlotOptions::default(), dir.join("x.png"));
+    assert!(e.unwrap_err().to_string().contains("foot_slip"));
+    std::fs::remove_dir_all(dir).unwrap();
 }

@@ -42,6 +42,11 @@ BACKENDS: tuple[str, ...] = tuple(_core.backends())
 #: The reward terms, in the order the info and the records hold them (hyq-spec's table).
 REWARD_TERMS: tuple[str, ...] = tuple(_core.REWARD_TERMS)
 
+#: The gait regularisers ``regularizers={...}`` can switch on (docs/regularizers.md), in the
+#: order the info holds them: ``info["regularizers.<name>"]`` for each one that is on, beside
+#: ``info["regularizers.reward"]``, what they add to the spec's reward.
+REGULARIZER_TERMS: tuple[str, ...] = tuple(_core.REGULARIZER_TERMS)
+
 #: The registered id of each bundled robot other than the default: the same env with its
 #: ``robot``.
 ROBOT_IDS = {"anymal_c": "ANYmalC-v0", "go1": "Go1-v0"}
@@ -86,6 +91,7 @@ __all__ = [
     "INFO_SCHEMA",
     "MAX_EPISODE_STEPS",
     "OBSERVATION_TABLE",
+    "REGULARIZER_TERMS",
     "REWARD_TERMS",
     "ROBOTS",
     "ROBOT_IDS",

@@ -9,6 +9,10 @@ The configuration mirrors the TOML file (``hyq run --config``) table for table:
   ``action={"mode": "absolute"}``, ``physics={...}``, ...;
 * dotted keys as the file and ``hyq run --set`` name them: ``{"task.kind": "velocity",
   "command.lin_vel_x": [0.5, 0.5]}`` (``kind="velocity"`` is the same as ``task.kind``);
+* gait regularisers added to the spec's reward, all off by default:
+  ``regularizers={"preset": "legged_gym"}`` or a scale per term, e.g.
+  ``regularizers={"action_rate": -0.01, "foot_slip": -0.1}`` (``hyq.REGULARIZER_TERMS``,
+  docs/regularizers.md);
 * ``config_file="hyq.toml"``: a TOML file read first, the keyword arguments applied on top.
 
 ``robot`` (a bundled robot's name, ``"hyq"`` or ``"anymal_c"``, or the path to a robot profile)

@@ -129,7 +129,10 @@ class HyQEnv(gymnasium.Env):
     **Reward and info**: the spec's reward; ``info`` holds every term of
     ``hyq.REWARD_TERMS``, every reason the episode ended (``reasons`` and one flag each), the
     distance to the goal, the attitude, the goal and the joint targets: every key of
-    ``hyq.INFO_SCHEMA`` on every step, each with one type.
+    ``hyq.INFO_SCHEMA`` on every step, each with one type. ``regularizers={"preset":
+    "legged_gym"}`` (or a scale per term of ``hyq.REGULARIZER_TERMS``; all off by default) adds
+    gait regularisers to the reward, Σ scale · term · Δt, and ``info["regularizers.reward"]``
+    and ``info["regularizers.<term>"]`` for each term that is on (docs/regularizers.md).
 
     **Episode end**: ``terminated`` when the goal is reached, a joint reaches a limit, the
     trunk touches the ground, or the physics diverges; ``truncated`` at ``max_time_steps``
