@@ -812,7 +812,7 @@ impl<B: Backend> Env<B> {
                 self.scratch.torques(),
                 &self.latching[..self.num_feet],
                 &self.latching[self.num_feet..],
-            );
+            )?;
         }
         watch.lap(&mut self.timing.spec);
         let accel = trunk_acceleration(&previous.linvel, &self.state.trunk.linvel, self.env_dt)?;

@@ -289,6 +289,38 @@ fn a_fall_pays_its_penalty_and_the_regularisers_and_a_divergence_pays_nothing() 
     assert_eq!((r.reward, r.terms.get("action_rate")), (0.0, Some(0.0)));
 }
 
+/// A term that overflows (a joint speed's change over a vanishing Δt_env) ends the episode as
+/// `diverged`, naming the term, and nothing non-finite is emitted.
+#[test]
+fn a_term_that_overflows_ends_the_episode_as_diverged() {
+    let mut env = scripted(&[
+        ("physics.dt", "1e-200"),
+        ("control.sim_steps_per_env_step", "1"),
+        ("regularizers.joint_acc", "-2.5e-7"),
+    ]);
+    reset(&mut env, 0);
+    env.backend_mut().set_script(|w| {
+        w.qd[0] = 1.0e3;
+        Ok(())
+    });
+    let s = env.step(&[0.0; 12]).unwrap_or_else(|e| panic!("{e}"));
+    assert!(
+        s.info.reasons.contains(Reason::Diverged),
+        "{:?}",
+        s.info.reasons
+    );
+    assert_eq!(s.reward, 0.0);
+    let why = s
+        .info
+        .divergence
+        .as_ref()
+        .map(ToString::to_string)
+        .unwrap_or_default();
+    assert!(why.contains("regularizers.joint_acc"), "{why}");
+    let r = s.info.regularizers.unwrap_or_else(|| panic!("on"));
+    assert!(r.reward == 0.0 && r.terms.iter().all(|(_, v)| v == 0.0));
+}
+
 /// The table's keys are checked and named; the velocity task refuses it (its regularisers are
 /// `[velocity]`'s).
 #[test]

@@ -15,6 +15,7 @@ use hyq_tasks::{REGULARIZER_NAMES, RegularizerScales, ReportedRegularizers};
 use serde::Serialize;
 
 use crate::config::{EnvConfig, TaskKind};
+use crate::divergence::Divergence;
 
 /// What the regularisers report on a step (the info's `regularizers`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
@@ -121,6 +122,8 @@ impl Regularizers {
     /// Judges the step that ended in `trunk` (its height above the ground `base_height`) and
     /// `qd`, with the last sub-step's `torques`, the latched `feet` flags and the `penalised`
     /// bodies' latched flags (the body poses were just read into [`Regularizers::poses_mut`]).
+    /// A term that is on and not finite (a joint speed's change over a Δt_env of 10⁻²⁰⁰ s, say)
+    /// is the step's divergence: nothing non-finite is reported.
     pub(crate) fn evaluate_step(
         &mut self,
         base_height: f64,
@@ -128,7 +131,7 @@ impl Regularizers {
         torques: &[f64],
         feet: &[bool],
         penalised: &[bool],
-    ) {
+    ) -> Result<(), Divergence> {
         for (k, &link) in self.feet.iter().enumerate() {
             let p = self.poses[link].translation.vector;
             let [x0, y0] = self.feet_xy[k];
@@ -159,13 +162,27 @@ impl Regularizers {
                 *x = 0.0;
             }
         }
+        let total = reward(&self.scales.terms, &v, self.env_dt);
+        let bad = REGULARIZER_NAMES
+            .iter()
+            .zip(masked)
+            .map(|(name, x)| (*name, x))
+            .chain([("reward", total)])
+            .find(|(_, x)| !x.is_finite());
+        if let Some((name, value)) = bad {
+            return Err(Divergence::NonFiniteReading {
+                what: format!("regularizers.{name}"),
+                value,
+            });
+        }
         self.info = RegularizerInfo {
             terms: ReportedRegularizers {
                 values: hyq_tasks::RegularizerTerms::from_array(masked),
                 on: self.on,
             },
-            reward: reward(&self.scales.terms, &v, self.env_dt),
+            reward: total,
         };
+        Ok(())
     }
 
     /// Reports a diverged step: reward and terms 0.
