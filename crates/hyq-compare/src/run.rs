@@ -193,7 +193,8 @@ pub fn run_episode<B: Backend>(
         let info = step.info;
         let r = &info.reward;
         traj.sums.terms.add(r);
-        traj.sums.ret += r.total;
+        // The step's reward: the spec's total, plus the gait regularisers' sum when they are on.
+        traj.sums.ret += info.goal_reward();
         traj.targets.extend_from_slice(&info.joint_targets);
         traj.actions.extend_from_slice(&action);
         traj.reasons = info.reasons;
