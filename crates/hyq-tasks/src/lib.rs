@@ -36,4 +36,4 @@ pub use regularizers::{
     ReportedRegularizers,
 };
 pub use scales::{Preset, RewardScales, TERM_NAMES, TermScales, TermValues, VelocityConfig};
-pub use step::{AirTime, VelocityOutcome, VelocitySnapshot, evaluate};
+pub use step::{AirTime, FootVelocity, VelocityOutcome, VelocitySnapshot, evaluate};

@@ -170,3 +170,47 @@ impl AirTime {
         &self.air
     }
 }
+
+/// Each foot's horizontal velocity over the last env step, from its positions at the steps'
+/// ends (no engine reports body velocities through the seam): (p − p_prev) / Δt, world frame.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct FootVelocity {
+    xy: Vec<[f64; 2]>,
+    velocity: Vec<[f64; 2]>,
+}
+
+impl FootVelocity {
+    /// The velocities of `feet` feet, all 0, at positions 0.
+    pub fn new(feet: usize) -> Self {
+        Self {
+            xy: vec![[0.0; 2]; feet],
+            velocity: vec![[0.0; 2]; feet],
+        }
+    }
+
+    /// Starts from the feet at `positions` (one per foot), at rest.
+    pub fn reset(&mut self, positions: impl IntoIterator<Item = [f64; 2]>) {
+        for (xy, p) in self.xy.iter_mut().zip(positions) {
+            *xy = p;
+        }
+        self.velocity.fill([0.0; 2]);
+    }
+
+    /// Moves the feet to `positions` after a step of `dt`; returns each foot's velocity over it.
+    pub fn update(
+        &mut self,
+        positions: impl IntoIterator<Item = [f64; 2]>,
+        dt: f64,
+    ) -> &[[f64; 2]] {
+        for ((xy, v), p) in self.xy.iter_mut().zip(&mut self.velocity).zip(positions) {
+            *v = [(p[0] - xy[0]) / dt, (p[1] - xy[1]) / dt];
+            *xy = p;
+        }
+        &self.velocity
+    }
+
+    /// Each foot's velocity over the last step (m/s).
+    pub fn velocity(&self) -> &[[f64; 2]] {
+        &self.velocity
+    }
+}

@@ -246,3 +246,14 @@ fn feet_air_time_counts_a_touchdown_after_time_in_the_air() {
     assert!((total - 0.1).abs() < 1e-9, "{total}");
     assert_eq!(paid.iter().filter(|p| **p != 0.0).count(), 1);
 }
+
+#[test]
+fn foot_velocity_is_the_displacement_over_the_step() {
+    let mut feet = hyq_tasks::FootVelocity::new(2);
+    feet.reset([[1.0, 2.0], [0.0, 0.0]]);
+    assert_eq!(feet.velocity(), &[[0.0, 0.0], [0.0, 0.0]]);
+    let v = feet.update([[1.5, 1.0], [0.0, 0.0]], 0.5).to_vec();
+    assert_eq!(v, [[1.0, -2.0], [0.0, 0.0]]);
+    let v = feet.update([[1.5, 1.0], [0.25, 0.0]], 0.5).to_vec();
+    assert_eq!(v, [[0.0, 0.0], [0.5, 0.0]]);
+}

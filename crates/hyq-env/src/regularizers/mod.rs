@@ -10,12 +10,13 @@
 use hyq_physics::na::Isometry3;
 use hyq_physics::{RobotModel, TrunkState};
 use hyq_tasks::regularizers::{RegularizerSnapshot, reward, values};
-use hyq_tasks::step::AirTime;
+use hyq_tasks::step::{AirTime, FootVelocity};
 use hyq_tasks::{REGULARIZER_NAMES, RegularizerScales, ReportedRegularizers};
 use serde::Serialize;
 
 use crate::config::{EnvConfig, TaskKind};
 use crate::divergence::Divergence;
+use crate::velocity::body_xy;
 
 /// What the regularisers report on a step (the info's `regularizers`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
@@ -43,8 +44,7 @@ pub(crate) struct Regularizers {
     /// The feet's body indices.
     feet: Vec<usize>,
     poses: Vec<Isometry3<f64>>,
-    feet_xy: Vec<[f64; 2]>,
-    foot_velocity: Vec<[f64; 2]>,
+    foot_velocity: FootVelocity,
     env_dt: f64,
     /// What the last reset or step reported.
     pub(crate) info: RegularizerInfo,
@@ -72,8 +72,7 @@ impl Regularizers {
             previous_action: vec![0.0; n],
             previous_qd: vec![0.0; n],
             poses: vec![Isometry3::identity(); model.links().len()],
-            feet_xy: vec![[0.0; 2]; feet.len()],
-            foot_velocity: vec![[0.0; 2]; feet.len()],
+            foot_velocity: FootVelocity::new(feet.len()),
             feet,
             env_dt: config.env_dt(),
             info: RegularizerInfo::default(),
@@ -98,11 +97,9 @@ impl Regularizers {
         self.action.fill(0.0);
         self.previous_action.fill(0.0);
         self.previous_qd.fill(0.0);
-        for (k, &link) in self.feet.iter().enumerate() {
-            let p = self.poses[link].translation.vector;
-            self.feet_xy[k] = [p.x, p.y];
-        }
-        self.foot_velocity.fill([0.0; 2]);
+        let poses = &self.poses;
+        self.foot_velocity
+            .reset(self.feet.iter().map(|&link| body_xy(&poses[link])));
         self.info = self.neutral();
     }
 
@@ -132,12 +129,9 @@ impl Regularizers {
         feet: &[bool],
         penalised: &[bool],
     ) -> Result<(), Divergence> {
-        for (k, &link) in self.feet.iter().enumerate() {
-            let p = self.poses[link].translation.vector;
-            let [x0, y0] = self.feet_xy[k];
-            self.foot_velocity[k] = [(p.x - x0) / self.env_dt, (p.y - y0) / self.env_dt];
-            self.feet_xy[k] = [p.x, p.y];
-        }
+        let poses = &self.poses;
+        let positions = self.feet.iter().map(|&link| body_xy(&poses[link]));
+        self.foot_velocity.update(positions, self.env_dt);
         let air = self.air.update(feet, self.env_dt);
         let v = values(
             &self.scales,
@@ -148,7 +142,7 @@ impl Regularizers {
                 joint_speeds: qd,
                 previous_joint_speeds: &self.previous_qd,
                 air_at_touchdown: air,
-                foot_velocity_xy: &self.foot_velocity,
+                foot_velocity_xy: self.foot_velocity.velocity(),
                 foot_contacts: feet,
                 base_height,
                 penalised_contacts: penalised,

@@ -13,7 +13,7 @@ use hyq_physics::na::Isometry3;
 use hyq_physics::{RobotModel, TrunkState};
 use hyq_spec::ObservationLayout;
 use hyq_tasks::observation::{GroupValues, JointRows, in_body_frame, projected_gravity};
-use hyq_tasks::step::{AirTime, VelocitySnapshot, evaluate};
+use hyq_tasks::step::{AirTime, FootVelocity, VelocitySnapshot, evaluate};
 use hyq_tasks::{Command, CommandSampler, RewardScales, TermValues, terms};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -90,8 +90,7 @@ pub(crate) struct VelocityTask {
     /// The feet's body indices.
     feet: Vec<usize>,
     poses: Vec<Isometry3<f64>>,
-    feet_xy: Vec<[f64; 2]>,
-    foot_velocity: Vec<[f64; 2]>,
+    foot_velocity: FootVelocity,
     env_dt: f64,
     /// What the last reset or step reported.
     pub(crate) info: VelocityInfo,
@@ -129,8 +128,7 @@ impl VelocityTask {
             previous_action: vec![0.0; n],
             previous_qd: vec![0.0; n],
             poses: vec![Isometry3::identity(); model.links().len()],
-            feet_xy: vec![[0.0; 2]; feet.len()],
-            foot_velocity: vec![[0.0; 2]; feet.len()],
+            foot_velocity: FootVelocity::new(feet.len()),
             feet,
             env_dt: config.env_dt(),
             info: VelocityInfo::default(),
@@ -189,12 +187,9 @@ impl VelocityTask {
         let rotation = &trunk.pose.rotation;
         let lin_vel = in_body_frame(rotation, &trunk.linvel);
         let ang_vel = in_body_frame(rotation, &trunk.angvel);
-        for (k, &link) in self.feet.iter().enumerate() {
-            let p = self.poses[link].translation.vector;
-            let [x0, y0] = self.feet_xy[k];
-            self.foot_velocity[k] = [(p.x - x0) / self.env_dt, (p.y - y0) / self.env_dt];
-            self.feet_xy[k] = [p.x, p.y];
-        }
+        let poses = &self.poses;
+        let positions = self.feet.iter().map(|&link| body_xy(&poses[link]));
+        self.foot_velocity.update(positions, self.env_dt);
         let air = self.air.update(feet, self.env_dt);
         let outcome = evaluate(
             &self.scales,
@@ -212,7 +207,7 @@ impl VelocityTask {
                 action: &self.action,
                 previous_action: &self.previous_action,
                 foot_contacts: feet,
-                foot_velocity_xy: &self.foot_velocity,
+                foot_velocity_xy: self.foot_velocity.velocity(),
                 air_at_touchdown: air,
                 trunk_contact,
                 trunk_contact_ends: self.trunk_contact_ends,
@@ -264,12 +259,16 @@ impl VelocityTask {
 
     /// Keeps the feet's horizontal positions from the body poses; their speeds start at 0.
     fn store_feet(&mut self) {
-        for (k, &link) in self.feet.iter().enumerate() {
-            let p = self.poses[link].translation.vector;
-            self.feet_xy[k] = [p.x, p.y];
-        }
-        self.foot_velocity.fill([0.0; 2]);
+        let poses = &self.poses;
+        self.foot_velocity
+            .reset(self.feet.iter().map(|&link| body_xy(&poses[link])));
     }
+}
+
+/// A body's horizontal position (m, world) from its pose.
+pub(crate) fn body_xy(pose: &Isometry3<f64>) -> [f64; 2] {
+    let p = pose.translation.vector;
+    [p.x, p.y]
 }
 
 /// The command stream of `seed`.
