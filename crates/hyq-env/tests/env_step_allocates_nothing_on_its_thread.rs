@@ -176,6 +176,29 @@ fn scripted_env_steps_allocate_nothing() {
     }
 }
 
+/// With every gait regulariser on, a step still allocates nothing (their state is built with
+/// the environment).
+#[test]
+fn scripted_env_steps_with_regularisers_allocate_nothing() {
+    let mut c = config("100");
+    c.set_all(&[
+        ("regularizers.preset", "legged_gym"),
+        ("regularizers.foot_slip", "-0.1"),
+        ("regularizers.base_height", "-1"),
+    ])
+    .unwrap_or_else(|e| panic!("{e}"));
+    let mut env = Env::<ScriptedBackend>::new(hyq_physics::bundled::hyq(), c)
+        .unwrap_or_else(|e| panic!("{e}"));
+    env.reset(Some(3), &ResetOptions::default())
+        .unwrap_or_else(|e| panic!("{e}"));
+    let zero = vec![0.0f64; env.action_space().len()];
+    env.step(&zero).unwrap_or_else(|e| panic!("{e}"));
+    assert!(env.info().regularizers.is_some());
+    let (count, steps, ended) = counted_steps(&mut env, 1000, 4);
+    assert!(ended >= 5, "{ended} episodes ended");
+    assert_eq!(count, 0, "{count} allocations in {steps} env steps");
+}
+
 #[test]
 fn the_counter_sees_allocations_on_this_thread_only() {
     let (here, v) = allocations(|| vec![1u8; 64]);
