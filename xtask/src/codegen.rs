@@ -254,6 +254,10 @@ mod generate {
                 .replace("{terms}", &term_names())
                 .replace("{randomize}", &randomize_names())
                 .replace("{regularizers}", &regularizer_names())
+                .replace(
+                    "{velocity}",
+                    &spans(hyq_env::velocity::TERM_NAMES.iter().copied()),
+                )
         };
         let rows: Vec<_> = RECORD_KEYS
             .iter()

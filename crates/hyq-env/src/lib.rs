@@ -102,7 +102,7 @@ pub use info::{
 pub use mlp::{MlpError, MlpMetadata, MlpPolicy};
 pub use policy::{Policy, PolicyInput, RandomPolicy, Stand, Trot, TrotParams};
 pub use randomize::{EpisodeDraw, EpisodeRandomization, Preset, RandomizeInfo};
-pub use record::{RECORD_KEYS, RecordKey, StepRecord};
+pub use record::{RECORD_KEYS, RecordKey, StepRecord, VelocityRecord};
 pub use regularizers::{REGULARIZER_INFO_KEYS, RegularizerInfo, regularizer_info_keys};
 pub use vec_env::{AutoReset, MAX_ENVS, MAX_THREADS, VecEnv, VecEnvError, VecStepOut};
 pub use velocity::{VELOCITY_INFO_KEYS, VelocityInfo};

@@ -30,8 +30,9 @@ use crate::randomize::RandomizeInfo;
 /// One key of the step record: its name, its JSON type and what it holds. In a type or a
 /// meaning, `{obs}` stands for the robot's observation length, `{joints}` for its joint count,
 /// `{terms}` for the reward terms' names, `{randomize}` for the names of
-/// [`RANDOMIZE_INFO_KEYS`](crate::RANDOMIZE_INFO_KEYS) and `{regularizers}` for hyq-tasks'
-/// `REGULARIZER_NAMES` (the documents write them for HyQ).
+/// [`RANDOMIZE_INFO_KEYS`](crate::RANDOMIZE_INFO_KEYS), `{regularizers}` for hyq-tasks'
+/// `REGULARIZER_NAMES` and `{velocity}` for the velocity task's
+/// [`TERM_NAMES`](crate::velocity::TERM_NAMES) (the documents write them for HyQ).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct RecordKey {
     /// The key.
@@ -46,7 +47,7 @@ pub struct RecordKey {
 }
 
 /// The step record's keys, in the order written: its one schema ([`StepRecord`]'s fields).
-pub const RECORD_KEYS: [RecordKey; 20] = [
+pub const RECORD_KEYS: [RecordKey; 21] = [
     RecordKey {
         name: "robot",
         kind: "string",
@@ -95,7 +96,8 @@ pub const RECORD_KEYS: [RecordKey; 20] = [
     RecordKey {
         name: "reward",
         kind: "number",
-        meaning: "the step's reward, `terms` composed, plus `regularizers`' sum when they are on",
+        meaning: "the step's reward: `terms` composed, plus `regularizers`' sum when they are on; \
+                  under `task.kind = \"velocity\"`, the task's (`velocity.reward`)",
         optional: false,
     },
     RecordKey {
@@ -167,6 +169,14 @@ pub const RECORD_KEYS: [RecordKey; 20] = [
         optional: true,
     },
     RecordKey {
+        name: "velocity",
+        kind: "object",
+        meaning: "under `task.kind = \"velocity\"`: the `command` the step was judged by \
+                  (v_x, v_y in m/s, ω_z in rad/s), every task term unscaled (`terms`: {velocity}) \
+                  and the task's `reward`",
+        optional: true,
+    },
+    RecordKey {
         name: "regularizers",
         kind: "object",
         meaning: "`[regularizers]`' terms that are on, unscaled, by name (any of {regularizers}); \
@@ -222,9 +232,26 @@ pub struct StepRecord<'a> {
     /// `[randomize]`'s draws and the step's push, when it is on (else not written).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub randomize: Option<Cow<'a, RandomizeInfo>>,
+    /// The velocity task's command, terms and reward, under `task.kind = "velocity"` (else not
+    /// written).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub velocity: Option<VelocityRecord>,
     /// The regularisers that are on, unscaled, when `[regularizers]` is on (else not written).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub regularizers: Option<ReportedRegularizers>,
+}
+
+/// The velocity task's part of a step's record (the info's `velocity`, less what the rest of the
+/// record already holds).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct VelocityRecord {
+    /// The command the step was judged by, observation order: v_x, v_y (m/s), ω_z (rad/s).
+    pub command: [f64; 3],
+    /// Every term of the task, unscaled (hyq-tasks' `TERM_NAMES`).
+    pub terms: hyq_tasks::TermValues,
+    /// The task's reward (the record's `reward` too).
+    pub reward: f64,
 }
 
 impl<'a> StepRecord<'a> {
@@ -246,7 +273,7 @@ impl<'a> StepRecord<'a> {
             true_obs: None,
             action: Cow::Borrowed(action),
             joint_targets: Cow::Borrowed(&info.joint_targets),
-            reward: info.goal_reward(),
+            reward: info.total_reward(),
             terms: TermValues::reported(r, task),
             yaw: info.yaw,
             pitch: info.pitch,
@@ -258,6 +285,11 @@ impl<'a> StepRecord<'a> {
             truncated: info.truncated(),
             reasons: info.reasons.iter().collect(),
             randomize: info.randomize.as_ref().map(Cow::Borrowed),
+            velocity: info.velocity.map(|v| VelocityRecord {
+                command: v.command,
+                terms: v.terms,
+                reward: v.reward,
+            }),
             regularizers: info.regularizers.map(|r| r.terms),
         }
     }

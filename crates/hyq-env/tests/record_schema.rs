@@ -10,7 +10,7 @@
 
 mod common;
 
-use common::{reset, scripted};
+use common::{rapier, reset, scripted, stand_action};
 use hyq_env::randomize::RANDOMIZE_PREFIX;
 use hyq_env::{InfoValue, RANDOMIZE_INFO_KEYS, RECORD_KEYS, Reason, StepRecord};
 
@@ -164,9 +164,10 @@ fn randomize_is_written_only_when_randomize_is_on_and_reads_back() {
     assert_eq!(info.pushes, 1);
     let line = StepRecord::from_env(&env, &[0.0; 12]).to_json_line();
     let value: serde_json::Value = serde_json::from_str(&line).unwrap_or_else(|e| panic!("{e}"));
-    // The schema's last key but `regularizers`, written after every other that is set.
+    // The schema's last key but `velocity` and `regularizers`, written after every other that is
+    // set.
     assert_eq!(
-        RECORD_KEYS.iter().rev().nth(1).map(|k| k.name),
+        RECORD_KEYS.iter().rev().nth(2).map(|k| k.name),
         Some("randomize")
     );
     assert!(
@@ -327,5 +328,52 @@ fn regularizers_are_written_only_when_on_last_and_read_back() {
         !StepRecord::from_env(&plain, &action)
             .to_json_line()
             .contains("regularizers")
+    );
+}
+
+#[test]
+fn a_velocity_task_record_holds_the_tasks_reward_command_and_terms_and_reads_back() {
+    // On rapier, standing: the scripted backend's still trunk earns a clipped 0, which the
+    // spec's neutral reward would equal.
+    let mut env = rapier(&[("task.kind", "velocity")]);
+    reset(&mut env, 3);
+    let action = stand_action(&env);
+    for _ in 0..5 {
+        env.step(&action).unwrap_or_else(|e| panic!("{e}"));
+    }
+    let task = env
+        .info()
+        .velocity
+        .unwrap_or_else(|| panic!("velocity task"));
+    assert_ne!(task.reward, 0.0, "a step of the task earns a reward");
+    let line = StepRecord::from_env(&env, &action).to_json_line();
+    let value: serde_json::Value = serde_json::from_str(&line).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(value["reward"], serde_json::json!(task.reward), "{line}");
+    assert_eq!(value["velocity"]["reward"], serde_json::json!(task.reward));
+    assert_eq!(
+        value["velocity"]["command"],
+        serde_json::json!(task.command)
+    );
+    let terms = value["velocity"]["terms"]
+        .as_object()
+        .unwrap_or_else(|| panic!("no terms object: {line}"));
+    assert_eq!(terms.len(), hyq_env::velocity::TERM_NAMES.len());
+    for (name, v) in hyq_env::velocity::TERM_NAMES
+        .iter()
+        .zip(task.terms.to_array())
+    {
+        assert_eq!(terms[*name], serde_json::json!(v), "{name}");
+    }
+    let back = StepRecord::from_json_line(&line).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(back.to_json_line(), line);
+    assert_eq!(back.reward, task.reward);
+
+    let mut plain = rapier(&[]);
+    reset(&mut plain, 3);
+    plain.step(&action).unwrap_or_else(|e| panic!("{e}"));
+    assert!(
+        !StepRecord::from_env(&plain, &action)
+            .to_json_line()
+            .contains("\"velocity\"")
     );
 }

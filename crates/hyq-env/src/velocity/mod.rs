@@ -23,6 +23,7 @@ use crate::action::ActionSpace;
 use crate::config::EnvConfig;
 
 mod keys;
+pub use hyq_tasks::TERM_NAMES;
 pub use keys::{VELOCITY_INFO_KEYS, VELOCITY_PREFIX};
 
 /// The command stream's ChaCha stream number (the goal, noise and terrain streams are 0–2).
