@@ -364,7 +364,7 @@ pub const INFO_KEYS: [InfoKey; 19] = [
     },
     InfoKey {
         name: "reward",
-        value: InfoValue::Float(StepInfo::goal_reward),
+        value: InfoValue::Float(StepInfo::total_reward),
         meaning: "the step's reward, the number `step` returns",
     },
     InfoKey {

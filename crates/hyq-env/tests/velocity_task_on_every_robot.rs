@@ -286,3 +286,29 @@ fn the_info_keys_name_every_term_in_order() {
         .collect();
     assert_eq!(names, hyq_tasks::TERM_NAMES);
 }
+
+#[test]
+fn the_info_reward_key_reads_the_reward_step_returns() {
+    let config = velocity_config(&[]);
+    let model = bundled::hyq();
+    let mut env =
+        Env::<RapierBackend>::new(model.clone(), config).unwrap_or_else(|e| panic!("{e}"));
+    env.reset(Some(2), &ResetOptions::default())
+        .unwrap_or_else(|e| panic!("{e}"));
+    let key = hyq_env::INFO_KEYS
+        .iter()
+        .find(|k| k.name == "reward")
+        .unwrap_or_else(|| panic!("the info has a reward key"));
+    let hyq_env::InfoValue::Float(read) = key.value else {
+        panic!("reward is a number")
+    };
+    let mut a = vec![0.0; model.num_joints()];
+    let mut earned = 0;
+    for _ in 0..20 {
+        Stand.act(&env.policy_input(), &mut a);
+        let reward = env.step(&a).unwrap_or_else(|e| panic!("{e}")).reward;
+        assert_eq!(read(env.info()).to_bits(), reward.to_bits());
+        earned += usize::from(reward != 0.0);
+    }
+    assert!(earned > 0, "standing steps of the task earn a reward");
+}
