@@ -97,10 +97,10 @@ fn the_same_seed_draws_the_same_on_every_backend_and_in_a_vec_env() {
     );
     assert_ne!(on_rapier[0], on_rapier[4], "another seed, other draws");
     let d = &on_rapier[0];
-    assert!((0.4..1.2).contains(&d.ground_friction));
+    assert!((0.4..1.2).contains(&d.dynamics.ground_friction));
     assert!(d.actuator_delay_substeps <= 5);
-    assert_eq!(d.link_mass_scale.len(), 13);
-    assert_eq!(d.kp_scale.len(), 12);
+    assert_eq!(d.dynamics.link_mass_scale.len(), 13);
+    assert_eq!(d.actuator.kp.len(), 12);
 
     // A VecEnv seeds env i with s + i, as single envs would be.
     let model = hyq_physics::bundled::hyq();
@@ -123,9 +123,9 @@ fn turning_one_option_on_changes_no_other_draw() {
     );
     let everything = draws(&mut scripted(ALL_OPTIONS), &seeds);
     for (a, b) in friction.iter().zip(&everything) {
-        assert_eq!(a.ground_friction, b.ground_friction);
+        assert_eq!(a.dynamics.ground_friction, b.dynamics.ground_friction);
         assert_eq!(
-            a.kp_scale,
+            a.actuator.kp,
             vec![1.0; 12],
             "an option that is off stays nominal"
         );
@@ -150,21 +150,21 @@ fn the_drawn_values_reach_the_physics() {
         let b = env.backend();
         let trunk = &model.links()[0];
         let held = b.body_mass_properties(0);
-        let expected = trunk.mass * d.link_mass_scale[0] + d.trunk_added_mass_kg;
+        let expected = trunk.mass * d.dynamics.link_mass_scale[0] + d.dynamics.trunk_added_mass_kg;
         assert!(
             (held.mass - expected).abs() < 1e-4,
             "{} vs {expected}",
             held.mass
         );
         let offset = held.com - trunk.com;
-        for (axis, o) in d.trunk_com_offset_m.iter().enumerate() {
+        for (axis, o) in d.dynamics.trunk_com_offset_m.iter().enumerate() {
             assert!((offset[axis] - o).abs() < 1e-6, "{offset:?} vs {o}");
         }
         let act = env.actuator();
         let base = hyq_physics::Actuator::new(&model);
         for j in 0..12 {
-            assert_eq!(act.kp()[j], base.kp()[j] * d.kp_scale[j]);
-            assert_eq!(act.effort()[j], base.effort()[j] * d.effort_scale[j]);
+            assert_eq!(act.kp()[j], base.kp()[j] * d.actuator.kp[j]);
+            assert_eq!(act.effort()[j], base.effort()[j] * d.actuator.effort[j]);
         }
     }
 }

@@ -25,6 +25,7 @@
 //! and in the added mass, so a range whose corners are inside the table has every draw inside.
 
 use nalgebra::Vector3;
+use serde::Deserialize;
 
 use crate::bounds;
 use crate::error::PhysicsError;
@@ -221,8 +222,9 @@ pub fn check_draw_ranges(model: &RobotModel, ranges: &DrawRanges) -> Result<(), 
 
 /// One episode's drawn physical variations, as factors and offsets of the model's values;
 /// [`DynamicsDraw::dynamics`] turns them into the [`Dynamics`] a backend takes (see the module
-/// documentation for the rules). [`DynamicsDraw::nominal`] changes nothing.
-#[derive(Debug, Clone, PartialEq)]
+/// documentation for the rules). [`DynamicsDraw::nominal`] changes nothing. Its field names
+/// are the configuration keys that draw them (and the names an environment's records use).
+#[derive(Debug, Clone, PartialEq, Deserialize)]
 pub struct DynamicsDraw {
     /// The ground friction coefficient itself (not a factor).
     pub ground_friction: f64,
@@ -304,16 +306,21 @@ impl DynamicsDraw {
 }
 
 /// Factors of the shared actuator's per-joint values for one episode (profile order): the PD
-/// gains, the effort limit and the joint friction (see [`crate::Actuator::scale_from`]).
-#[derive(Debug, Clone, PartialEq)]
+/// gains, the effort limit and the joint friction (see [`crate::Actuator::scale_from`]). Each
+/// reads under the configuration key that draws it (and the name an environment's records use).
+#[derive(Debug, Clone, PartialEq, Deserialize)]
 pub struct ActuatorScales {
     /// Factor of each joint's proportional gain (> 0).
+    #[serde(rename = "kp_scale")]
     pub kp: Vec<f64>,
     /// Factor of each joint's derivative gain (> 0).
+    #[serde(rename = "kd_scale")]
     pub kd: Vec<f64>,
     /// Factor of each joint's effort limit (> 0).
+    #[serde(rename = "effort_scale")]
     pub effort: Vec<f64>,
     /// Factor of each joint's Coulomb friction (≥ 0).
+    #[serde(rename = "joint_friction_scale")]
     pub friction: Vec<f64>,
 }
 
