@@ -460,7 +460,7 @@ fn factors(info: &StepInfo, read: fn(&EpisodeDraw) -> &[f64]) -> &[f64] {
 /// on every step and reset, in the order a front writes them (an environment with it off has
 /// none of them). The names after [`RANDOMIZE_PREFIX`](crate::randomize::RANDOMIZE_PREFIX) are the configuration keys that drew
 /// each value.
-pub const RANDOMIZE_INFO_KEYS: [InfoKey; 12] = [
+pub const RANDOMIZE_INFO_KEYS: [InfoKey; 15] = [
     InfoKey {
         name: "randomize.ground_friction",
         value: InfoValue::Float(|i| draw(i).map_or(0.0, |d| d.dynamics.ground_friction)),
@@ -519,6 +519,25 @@ pub const RANDOMIZE_INFO_KEYS: [InfoKey; 12] = [
         name: "randomize.actuator_delay_substeps",
         value: InfoValue::Int(|i| draw(i).map_or(0, |d| u64::from(d.actuator_delay_substeps))),
         meaning: "the actuator's delay (physics sub-steps)",
+    },
+    InfoKey {
+        name: "randomize.contact_stiffness_scale",
+        value: InfoValue::Float(|i| {
+            draw(i).map_or(1.0, |d| d.dynamics.contact.contact_stiffness_scale)
+        }),
+        meaning: "factor of the engine's own ground-contact stiffness",
+    },
+    InfoKey {
+        name: "randomize.contact_damping_scale",
+        value: InfoValue::Float(|i| {
+            draw(i).map_or(1.0, |d| d.dynamics.contact.contact_damping_scale)
+        }),
+        meaning: "factor of the engine's own ground-contact damping",
+    },
+    InfoKey {
+        name: "randomize.restitution",
+        value: InfoValue::Float(|i| draw(i).map_or(0.0, |d| d.dynamics.contact.restitution)),
+        meaning: "the ground contact's restitution coefficient",
     },
     InfoKey {
         name: "randomize.push_velocity_mps",

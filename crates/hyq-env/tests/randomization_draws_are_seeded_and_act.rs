@@ -56,6 +56,9 @@ const ALL_OPTIONS: &[(&str, &str)] = &[
     ("randomize.joint_damping_scale", "[0.5, 2.0]"),
     ("randomize.joint_friction_scale", "[0.9, 1.1]"),
     ("randomize.actuator_delay_substeps", "[0, 5]"),
+    ("randomize.contact_stiffness_scale", "[0.5, 2.0]"),
+    ("randomize.contact_damping_scale", "[0.5, 2.0]"),
+    ("randomize.restitution", "[0.0, 0.3]"),
 ];
 
 #[test]
@@ -77,6 +80,9 @@ fn off_by_default_and_nominal_draws_are_the_spec_environment_bit_for_bit() {
         ("randomize.effort_scale", "[1.0, 1.0]"),
         ("randomize.joint_damping_scale", "[1.0, 1.0]"),
         ("randomize.actuator_delay_substeps", "[0, 0]"),
+        ("randomize.contact_stiffness_scale", "[1.0, 1.0]"),
+        ("randomize.contact_damping_scale", "[1.0, 1.0]"),
+        ("randomize.restitution", "[0.0, 0.0]"),
         ("task.max_time_steps", "60"),
     ];
     let plain = run_bits(&mut rapier(&[("task.max_time_steps", "60")]), 5, 150);
@@ -101,6 +107,10 @@ fn the_same_seed_draws_the_same_on_every_backend_and_in_a_vec_env() {
     assert!(d.actuator_delay_substeps <= 5);
     assert_eq!(d.dynamics.link_mass_scale.len(), 13);
     assert_eq!(d.actuator.kp.len(), 12);
+    let c = &d.dynamics.contact;
+    assert!((0.5..2.0).contains(&c.contact_stiffness_scale));
+    assert!((0.5..2.0).contains(&c.contact_damping_scale));
+    assert!((0.0..0.3).contains(&c.restitution));
 
     // A VecEnv seeds env i with s + i, as single envs would be.
     let model = hyq_physics::bundled::hyq();

@@ -5,7 +5,7 @@
 use std::ops::Range as IndexRange;
 
 use hyq_physics::na::Vector3;
-use hyq_physics::{ActuatorScales, DynamicsDraw, PhysicsParams, RobotModel};
+use hyq_physics::{ActuatorScales, ContactDraw, DynamicsDraw, PhysicsParams, RobotModel};
 use hyq_spec::ObservationLayout;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -35,11 +35,14 @@ enum EpisodeOption {
     JointDampingScale,
     JointFrictionScale,
     ActuatorDelay,
+    ContactStiffnessScale,
+    ContactDampingScale,
+    Restitution,
 }
 
 /// How many options draw per episode: one past the last in stream order, so a new option
 /// placed last in [`EpisodeOption`] gets its stream without a count kept by hand.
-const OPTIONS: usize = EpisodeOption::ActuatorDelay as usize + 1;
+const OPTIONS: usize = EpisodeOption::Restitution as usize + 1;
 
 /// One episode's drawn variations, as the info and the records report them: the values in
 /// effect, the nominal ones (the configured friction, factors of 1, no added mass, offset or
@@ -48,7 +51,8 @@ const OPTIONS: usize = EpisodeOption::ActuatorDelay as usize + 1;
 /// Each drawn quantity is declared once, in the half that acts on it: hyq-physics's
 /// [`DynamicsDraw`] (ground friction, the trunk's added mass and offset, the bodies' mass
 /// factors, the joints' damping factors), which it turns into an engine's dynamics, and
-/// [`ActuatorScales`] (kp, kd, effort limit, joint friction), which scale the shared
+/// (and the ground contact's factors and restitution, [`hyq_physics::ContactDraw`]),
+/// and [`ActuatorScales`] (kp, kd, effort limit, joint friction), which scale the shared
 /// actuator; the delay is the environment's own. Serialised flat, under the configuration
 /// keys' names, in the order of [`RANDOMIZE_INFO_KEYS`](crate::RANDOMIZE_INFO_KEYS) (which
 /// puts the joint factors together, so the order is written out in [`Serialize`] below).
@@ -67,7 +71,7 @@ pub struct EpisodeDraw {
 impl Serialize for EpisodeDraw {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         let (d, a) = (&self.dynamics, &self.actuator);
-        let mut s = serializer.serialize_struct("EpisodeDraw", 10)?;
+        let mut s = serializer.serialize_struct("EpisodeDraw", 13)?;
         s.serialize_field("ground_friction", &d.ground_friction)?;
         s.serialize_field("trunk_added_mass_kg", &d.trunk_added_mass_kg)?;
         s.serialize_field("trunk_com_offset_m", &d.trunk_com_offset_m)?;
@@ -78,6 +82,10 @@ impl Serialize for EpisodeDraw {
         s.serialize_field("joint_damping_scale", &d.joint_damping_scale)?;
         s.serialize_field("joint_friction_scale", &a.friction)?;
         s.serialize_field("actuator_delay_substeps", &self.actuator_delay_substeps)?;
+        let c = &d.contact;
+        s.serialize_field("contact_stiffness_scale", &c.contact_stiffness_scale)?;
+        s.serialize_field("contact_damping_scale", &c.contact_damping_scale)?;
+        s.serialize_field("restitution", &c.restitution)?;
         s.end()
     }
 }
@@ -108,6 +116,31 @@ fn uniform(rng: &mut ChaCha8Rng, [lo, hi]: [f64; 2]) -> f64 {
 /// in magnitude, since 1 − u ≥ 2⁻⁵³.
 fn normal(u: f64, u2: f64) -> f64 {
     (-2.0 * (1.0 - u).ln()).sqrt() * (std::f64::consts::TAU * u2).cos()
+}
+
+/// Draws the ground contact's options that are on into `contact`, each from its stream in `g`.
+fn draw_contact(c: &RandomizeConfig, g: &mut [ChaCha8Rng; OPTIONS], contact: &mut ContactDraw) {
+    for (o, r, out) in [
+        (
+            EpisodeOption::ContactStiffnessScale,
+            c.contact_stiffness_scale,
+            &mut contact.contact_stiffness_scale,
+        ),
+        (
+            EpisodeOption::ContactDampingScale,
+            c.contact_damping_scale,
+            &mut contact.contact_damping_scale,
+        ),
+        (
+            EpisodeOption::Restitution,
+            c.restitution,
+            &mut contact.restitution,
+        ),
+    ] {
+        if let Some(r) = r {
+            *out = uniform(&mut g[o as usize], r);
+        }
+    }
 }
 
 /// Draws an episode's variations, a step's noise and pushes (see the module docs).
@@ -206,6 +239,7 @@ impl Randomizer {
             let span = f64::from(hi - lo + 1);
             draw.actuator_delay_substeps = (lo + (u * span) as u32).min(hi);
         }
+        draw_contact(c, g, &mut draw.dynamics.contact);
         self.draw = draw;
         self.pushes = 0;
         self.pushed = [0.0; 3];
