@@ -45,14 +45,14 @@ enum EpisodeOption {
 const OPTIONS: usize = EpisodeOption::Restitution as usize + 1;
 
 /// One episode's drawn variations, as the info and the records report them: the values in
-/// effect, the nominal ones (the configured friction, factors of 1, no added mass, offset or
-/// delay) for options that are off.
+/// effect, the nominal ones (the configured friction, factors of 1, no added mass, offset,
+/// delay or restitution) for options that are off.
 ///
 /// Each drawn quantity is declared once, in the half that acts on it: hyq-physics's
 /// [`DynamicsDraw`] (ground friction, the trunk's added mass and offset, the bodies' mass
-/// factors, the joints' damping factors), which it turns into an engine's dynamics, and
-/// (and the ground contact's factors and restitution, [`hyq_physics::ContactDraw`]),
-/// and [`ActuatorScales`] (kp, kd, effort limit, joint friction), which scale the shared
+/// factors, the joints' damping factors, the ground contact's factors and restitution in
+/// [`ContactDraw`]), which it turns into an engine's dynamics, and [`ActuatorScales`] (kp,
+/// kd, effort limit, joint friction), which scale the shared
 /// actuator; the delay is the environment's own. Serialised flat, under the configuration
 /// keys' names, in the order of [`RANDOMIZE_INFO_KEYS`](crate::RANDOMIZE_INFO_KEYS) (which
 /// puts the joint factors together, so the order is written out in [`Serialize`] below).
