@@ -89,7 +89,7 @@ mod tests {
 
     fn drawn(friction: f64, pushes: u64) -> EpisodeRandomization {
         let mut draw = EpisodeDraw::nominal(&bundled::hyq(), &PhysicsParams::default());
-        draw.ground_friction = friction;
+        draw.dynamics.ground_friction = friction;
         EpisodeRandomization { draw, pushes }
     }
 

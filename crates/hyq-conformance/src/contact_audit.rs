@@ -42,7 +42,7 @@ use nalgebra::{Isometry3, Vector3};
 
 use super::fixtures::{Robot, build, read_contacts, set, step_zero, steps_for};
 use hyq_physics::model::Shape;
-use hyq_physics::{Backend, PhysicsParams, RobotState};
+use hyq_physics::{Backend, ContactDraw, Dynamics, PhysicsError, PhysicsParams, RobotState};
 
 /// The friction coefficient of every audit (a legged-robot floor's typical value; the
 /// environment's default, 1.0, would put the stick-slip angle at 45°).
@@ -391,12 +391,31 @@ pub fn sled_breaks_away_along_the_diagonal<B: Backend>(
 /// above where it lies at the end (mm); how far its bottom is below the ground at the end
 /// (mm)).
 fn drop_foot<B: Backend>(robot: &Robot, options: &B::Options) -> (f64, f64) {
+    drop_foot_under::<B>(robot, options, &ContactDraw::NOMINAL, 0.05)
+        .unwrap_or_else(|e| panic!("{} refused the nominal contact: {e}", B::NAME))
+}
+
+/// As [`drop_foot`], from `height` (m) above the ground, the engine's contact given
+/// `contact`'s factors and restitution first ([`Backend::set_dynamics`]; not given when
+/// nominal, so the nominal figures are the audit's own); the engine's refusal as the error.
+fn drop_foot_under<B: Backend>(
+    robot: &Robot,
+    options: &B::Options,
+    contact: &ContactDraw,
+    height: f64,
+) -> Result<(f64, f64), PhysicsError> {
     let r = foot_radius(robot);
     let probe = foot(robot);
     let p = params(0.0, 0.0);
     let mut b: B = build(&probe, &p, options);
+    if !contact.is_nominal() {
+        b.set_dynamics(&Dynamics {
+            contact: *contact,
+            ..Dynamics::nominal(&probe.model, &p)
+        })?;
+    }
     let mut s: RobotState = probe.model.spawn_state();
-    s.trunk.pose = Isometry3::translation(0.0, 0.0, r + 0.05);
+    s.trunk.pose = Isometry3::translation(0.0, 0.0, r + height);
     set(&mut b, &s);
     let trunk = probe.model.trunk_tracked_index();
     let (mut touched, mut rebounding, mut peak) = (false, false, f64::NEG_INFINITY);
@@ -410,7 +429,42 @@ fn drop_foot<B: Backend>(robot: &Robot, options: &B::Options) -> (f64, f64) {
     }
     let rest = position(&b).z;
     assert!(rebounding, "{}: the dropped foot never landed", B::NAME);
-    (1e3 * (peak - rest), 1e3 * (r - rest))
+    Ok((1e3 * (peak - rest), 1e3 * (r - rest)))
+}
+
+/// The drawn contact's stiffness factor in action: the foot dropped 5 cm, a second later, how
+/// deep its bottom is below the ground (mm) with the engine's contact stiffness times
+/// `stiffness_scale` (damping as the engine's own); the engine's refusal as the error. A
+/// stiffer contact sinks less under the same load.
+pub fn penetration_at_rest_with_stiffness<B: Backend>(
+    robot: &Robot,
+    options: &B::Options,
+    stiffness_scale: f64,
+) -> Result<f64, PhysicsError> {
+    let contact = ContactDraw {
+        contact_stiffness_scale: stiffness_scale,
+        ..ContactDraw::NOMINAL
+    };
+    Ok(drop_foot_under::<B>(robot, options, &contact, 0.05)?.1)
+}
+
+/// The drop height of [`bounce_with_restitution`] (m): an impact at 1.98 m/s, well above
+/// the engines' thresholds for applying restitution (DART's 0.1 m/s, rapier's none).
+pub const RESTITUTION_DROP_M: f64 = 0.2;
+
+/// The drawn restitution in action: the foot dropped [`RESTITUTION_DROP_M`], how high it
+/// bounces above where it comes to rest (mm) with the contact's restitution coefficient
+/// `restitution`; the engine's refusal as the error. Physics: e² times the drop height.
+pub fn bounce_with_restitution<B: Backend>(
+    robot: &Robot,
+    options: &B::Options,
+    restitution: f64,
+) -> Result<f64, PhysicsError> {
+    let contact = ContactDraw {
+        restitution,
+        ..ContactDraw::NOMINAL
+    };
+    Ok(drop_foot_under::<B>(robot, options, &contact, RESTITUTION_DROP_M)?.0)
 }
 
 /// The foot dropped 5 cm: how high it bounces above where it comes to rest (mm).

@@ -83,6 +83,9 @@ class Sim {
   // the next step. The friction coefficient of every shape, the ground's
   // included.
   void set_friction(double friction);
+  // The restitution coefficient of every shape, the ground's included (a
+  // contact's is the product of its two shapes').
+  void set_restitution(double restitution);
   // A body's mass, centre of mass and inertia (its description frame); the
   // root's frames follow its centre of mass.
   void set_inertial(std::size_t body, const Inertial& inertial);

@@ -292,9 +292,12 @@ impl DartBackend {
         self.sim.time()
     }
 
-    /// Gives the DART world `d`'s friction, mass properties and damping.
+    /// Gives the DART world `d`'s friction, restitution, mass properties and damping. DART
+    /// takes the product of a contact's two restitution coefficients, so every shape holds
+    /// √e for a contact's to be e.
     fn give_dynamics(&mut self, d: &Dynamics) -> Result<(), DartError> {
         self.sim.set_friction(d.ground_friction)?;
+        self.sim.set_restitution(d.contact.restitution.sqrt())?;
         for (i, b) in d.bodies.iter().enumerate() {
             let t = b.inertia;
             let inertial = Inertial {
@@ -503,6 +506,20 @@ impl Backend for DartBackend {
     }
 
     fn apply_dynamics(&mut self, dynamics: &Dynamics) -> Result<(), PhysicsError> {
+        let c = &dynamics.contact;
+        if c.contact_stiffness_scale != 1.0 || c.contact_damping_scale != 1.0 {
+            // Refused before anything is given, so the world keeps its dynamics.
+            return Err(PhysicsError::Backend {
+                backend: Self::NAME,
+                message: format!(
+                    "randomize.contact_stiffness_scale / contact_damping_scale drew {} / {}, but \
+                     DART 6.12's contact is rigid (an LCP): its only softness settings, the \
+                     error reduction and constraint force mixing, are process-wide, so one \
+                     world's episode cannot vary them",
+                    c.contact_stiffness_scale, c.contact_damping_scale
+                ),
+            });
+        }
         let result = self.give_dynamics(dynamics);
         // Dynamics DART refuses after validation may be half given: the world refuses to step
         // until dynamics it takes are given.

@@ -199,6 +199,9 @@ pub(crate) mod ffi {
         /// Sets the friction coefficient of every shape, the ground's included (set_state must
         /// follow before a step, as for the three setters below).
         fn set_friction(self: Pin<&mut Sim>, friction: f64) -> Result<()>;
+        /// Sets the restitution coefficient of every shape, the ground's included (DART takes
+        /// the product of a contact's two).
+        fn set_restitution(self: Pin<&mut Sim>, restitution: f64) -> Result<()>;
         /// Sets a body's mass properties (description frame); the root's frames follow its
         /// centre of mass.
         fn set_inertial(self: Pin<&mut Sim>, body: usize, inertial: &Inertial) -> Result<()>;

@@ -805,6 +805,21 @@ void Sim::set_friction(double friction) {
   }
 }
 
+void Sim::set_restitution(double restitution) {
+  require(restitution >= 0.0 && restitution <= 1.0,
+          "set_restitution: restitution must be in [0, 1], got " + std::to_string(restitution));
+  // A ground shape given later (set_ground_heights, set_ground_flat) gets it too.
+  impl_->restitution = restitution;
+  for (const auto& skeleton : {impl_->robot, impl_->ground}) {
+    for (std::size_t b = 0; b < skeleton->getNumBodyNodes(); ++b) {
+      BodyNode* node = skeleton->getBodyNode(b);
+      for (ShapeNode* shape : node->getShapeNodesWith<dart::dynamics::DynamicsAspect>()) {
+        shape->getDynamicsAspect()->setRestitutionCoeff(restitution);
+      }
+    }
+  }
+}
+
 void Sim::set_inertial(std::size_t body, const Inertial& in) {
   using dart::dynamics::Inertia;
   Impl& s = *impl_;

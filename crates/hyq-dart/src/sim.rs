@@ -151,6 +151,12 @@ impl Sim {
         Ok(())
     }
 
+    /// Sets the restitution coefficient of every shape, the ground's included.
+    pub(crate) fn set_restitution(&mut self, restitution: f64) -> Result<(), DartError> {
+        self.pin().set_restitution(restitution)?;
+        Ok(())
+    }
+
     /// Sets body `body`'s mass properties (description frame).
     pub(crate) fn set_inertial(
         &mut self,

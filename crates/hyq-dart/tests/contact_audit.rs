@@ -156,3 +156,46 @@ fn prints_the_contact_audit_table() {
         }
     }
 }
+
+/// `randomize.restitution` on DART (every shape's coefficient √e, DART taking the product of
+/// a contact's two): none gives no bounce, 0.5 bounces the foot dropped 20 cm e² h = 5 cm.
+#[test]
+fn restitution_raises_the_bounce() {
+    let robot = Robot::bundled("hyq");
+    let bounce = |e: f64| {
+        hyq_conformance::contact_audit::bounce_with_restitution::<hyq_dart::DartBackend>(
+            &robot,
+            &hyq_dart::DartOptions::default(),
+            e,
+        )
+        .unwrap_or_else(|err| panic!("DART refused a restitution of {e}: {err}"))
+    };
+    let (none, half) = (bounce(0.0), bounce(0.5));
+    let physics = 0.25 * 1e3 * hyq_conformance::contact_audit::RESTITUTION_DROP_M;
+    println!("DART bounce from 20 cm: e = 0 {none:.3} mm, e = 0.5 {half:.3} mm (e²h {physics} mm)");
+    assert!(none < 0.5, "no restitution, no bounce: {none} mm");
+    assert!(
+        (half - physics).abs() < 0.1 * physics,
+        "e = 0.5 bounced {half} mm, e²h = {physics} mm"
+    );
+}
+
+/// `randomize.contact_stiffness_scale` and `contact_damping_scale` on DART: its contact is
+/// rigid and its only softness settings are process-wide, so a factor other than 1 is refused
+/// in one line naming the options; 1 is taken.
+#[test]
+fn contact_stiffness_is_refused_by_name() {
+    let robot = Robot::bundled("hyq");
+    let depth =
+        |s: f64| {
+            hyq_conformance::contact_audit::penetration_at_rest_with_stiffness::<
+                hyq_dart::DartBackend,
+            >(&robot, &hyq_dart::DartOptions::default(), s)
+        };
+    let err = depth(4.0).expect_err("DART cannot vary it").to_string();
+    assert!(
+        err.contains("randomize.contact_stiffness_scale") && !err.contains('\n'),
+        "{err}"
+    );
+    assert!(depth(1.0).is_ok());
+}

@@ -1005,8 +1005,7 @@ impl<B: Backend> Env<B> {
         r.randomizer.begin_episode(&self.model, params);
         let draw = r.randomizer.draw();
         let outcome = (|| {
-            self.actuator
-                .scale_from(&r.base_actuator, &draw.actuator_scales())?;
+            self.actuator.scale_from(&r.base_actuator, &draw.actuator)?;
             r.delay.set_substeps(
                 draw.actuator_delay_substeps,
                 self.config.control.sim_steps_per_env_step,
@@ -1014,7 +1013,7 @@ impl<B: Backend> Env<B> {
             if !r.randomizer.config().varies_dynamics() {
                 return Ok(false);
             }
-            let dynamics = draw.dynamics_draw().dynamics(&self.model)?;
+            let dynamics = draw.dynamics.dynamics(&self.model)?;
             self.backend.reset_with_dynamics(&dynamics, state)?;
             Ok(true)
         })();

@@ -473,65 +473,84 @@ fn factors(info: &StepInfo, read: fn(&EpisodeDraw) -> &[f64]) -> &[f64] {
 /// on every step and reset, in the order a front writes them (an environment with it off has
 /// none of them). The names after [`RANDOMIZE_PREFIX`](crate::randomize::RANDOMIZE_PREFIX) are the configuration keys that drew
 /// each value.
-pub const RANDOMIZE_INFO_KEYS: [InfoKey; 12] = [
+pub const RANDOMIZE_INFO_KEYS: [InfoKey; 15] = [
     InfoKey {
         name: "randomize.ground_friction",
-        value: InfoValue::Float(|i| draw(i).map_or(0.0, |d| d.ground_friction)),
+        value: InfoValue::Float(|i| draw(i).map_or(0.0, |d| d.dynamics.ground_friction)),
         meaning: "the episode's ground friction coefficient",
     },
     InfoKey {
         name: "randomize.trunk_added_mass_kg",
-        value: InfoValue::Float(|i| draw(i).map_or(0.0, |d| d.trunk_added_mass_kg)),
+        value: InfoValue::Float(|i| draw(i).map_or(0.0, |d| d.dynamics.trunk_added_mass_kg)),
         meaning: "mass added to the trunk (kg)",
     },
     InfoKey {
         name: "randomize.trunk_com_offset_m",
         value: InfoValue::Vector(
-            |i| draw(i).map_or(&[], |d| &d.trunk_com_offset_m),
+            |i| draw(i).map_or(&[], |d| &d.dynamics.trunk_com_offset_m),
             VectorLen::Three,
         ),
         meaning: "offset of the trunk's centre of mass (m, trunk frame)",
     },
     InfoKey {
         name: "randomize.link_mass_scale",
-        value: InfoValue::Vector(|i| factors(i, |d| &d.link_mass_scale), VectorLen::Links),
+        value: InfoValue::Vector(
+            |i| factors(i, |d| &d.dynamics.link_mass_scale),
+            VectorLen::Links,
+        ),
         meaning: "factor of each body's mass and inertia (model order)",
     },
     InfoKey {
         name: "randomize.kp_scale",
-        value: InfoValue::Vector(|i| factors(i, |d| &d.kp_scale), VectorLen::Joints),
+        value: InfoValue::Vector(|i| factors(i, |d| &d.actuator.kp), VectorLen::Joints),
         meaning: "factor of each joint's kp (action order)",
     },
     InfoKey {
         name: "randomize.kd_scale",
-        value: InfoValue::Vector(|i| factors(i, |d| &d.kd_scale), VectorLen::Joints),
+        value: InfoValue::Vector(|i| factors(i, |d| &d.actuator.kd), VectorLen::Joints),
         meaning: "factor of each joint's kd",
     },
     InfoKey {
         name: "randomize.effort_scale",
-        value: InfoValue::Vector(|i| factors(i, |d| &d.effort_scale), VectorLen::Joints),
+        value: InfoValue::Vector(|i| factors(i, |d| &d.actuator.effort), VectorLen::Joints),
         meaning: "factor of each joint's effort limit",
     },
     InfoKey {
         name: "randomize.joint_damping_scale",
         value: InfoValue::Vector(
-            |i| factors(i, |d| &d.joint_damping_scale),
+            |i| factors(i, |d| &d.dynamics.joint_damping_scale),
             VectorLen::Joints,
         ),
         meaning: "factor of each joint's damping",
     },
     InfoKey {
         name: "randomize.joint_friction_scale",
-        value: InfoValue::Vector(
-            |i| factors(i, |d| &d.joint_friction_scale),
-            VectorLen::Joints,
-        ),
+        value: InfoValue::Vector(|i| factors(i, |d| &d.actuator.friction), VectorLen::Joints),
         meaning: "factor of each joint's Coulomb friction",
     },
     InfoKey {
         name: "randomize.actuator_delay_substeps",
         value: InfoValue::Int(|i| draw(i).map_or(0, |d| u64::from(d.actuator_delay_substeps))),
         meaning: "the actuator's delay (physics sub-steps)",
+    },
+    InfoKey {
+        name: "randomize.contact_stiffness_scale",
+        value: InfoValue::Float(|i| {
+            draw(i).map_or(1.0, |d| d.dynamics.contact.contact_stiffness_scale)
+        }),
+        meaning: "factor of the engine's own ground-contact stiffness",
+    },
+    InfoKey {
+        name: "randomize.contact_damping_scale",
+        value: InfoValue::Float(|i| {
+            draw(i).map_or(1.0, |d| d.dynamics.contact.contact_damping_scale)
+        }),
+        meaning: "factor of the engine's own ground-contact damping",
+    },
+    InfoKey {
+        name: "randomize.restitution",
+        value: InfoValue::Float(|i| draw(i).map_or(0.0, |d| d.dynamics.contact.restitution)),
+        meaning: "the ground contact's restitution coefficient",
     },
     InfoKey {
         name: "randomize.push_velocity_mps",

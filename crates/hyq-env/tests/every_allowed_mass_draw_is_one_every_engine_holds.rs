@@ -73,7 +73,7 @@ fn run<B: Backend>(env: &mut Env<B>, seed: u64) {
         assert!(reset.observation.iter().all(|v| v.is_finite()));
         let draw = env.episode_draw().expect("randomisation is on").clone();
         let dynamics = draw
-            .dynamics_draw()
+            .dynamics
             .dynamics(env.model())
             .unwrap_or_else(|e| panic!("an accepted draw is valid: {e}"));
         for body in &dynamics.bodies {

@@ -43,6 +43,18 @@ fn each_bad_value_names_its_key_and_value() {
             "longer than an env step",
         ),
         ("randomize.actuator_delay_substeps", "[3, 2]", "lo <= hi"),
+        (
+            "randomize.contact_stiffness_scale",
+            "[0.001, 1.0]",
+            "lo >= 0.01",
+        ),
+        (
+            "randomize.contact_damping_scale",
+            "[1.0, 200.0]",
+            "hi <= 100",
+        ),
+        ("randomize.restitution", "[0.5, 1.5]", "hi <= 1"),
+        ("randomize.restitution", "[-0.1, 0.5]", "lo >= 0"),
         ("randomize.obs_noise.joint_angle", "-0.01", "deviation"),
         ("randomize.obs_noise.quaternion", "nan", "deviation"),
         ("randomize.obs_noise.contact_flip", "1.5", "probability"),

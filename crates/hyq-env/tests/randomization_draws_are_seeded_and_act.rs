@@ -56,6 +56,9 @@ const ALL_OPTIONS: &[(&str, &str)] = &[
     ("randomize.joint_damping_scale", "[0.5, 2.0]"),
     ("randomize.joint_friction_scale", "[0.9, 1.1]"),
     ("randomize.actuator_delay_substeps", "[0, 5]"),
+    ("randomize.contact_stiffness_scale", "[0.5, 2.0]"),
+    ("randomize.contact_damping_scale", "[0.5, 2.0]"),
+    ("randomize.restitution", "[0.0, 0.3]"),
 ];
 
 #[test]
@@ -77,6 +80,9 @@ fn off_by_default_and_nominal_draws_are_the_spec_environment_bit_for_bit() {
         ("randomize.effort_scale", "[1.0, 1.0]"),
         ("randomize.joint_damping_scale", "[1.0, 1.0]"),
         ("randomize.actuator_delay_substeps", "[0, 0]"),
+        ("randomize.contact_stiffness_scale", "[1.0, 1.0]"),
+        ("randomize.contact_damping_scale", "[1.0, 1.0]"),
+        ("randomize.restitution", "[0.0, 0.0]"),
         ("task.max_time_steps", "60"),
     ];
     let plain = run_bits(&mut rapier(&[("task.max_time_steps", "60")]), 5, 150);
@@ -97,10 +103,14 @@ fn the_same_seed_draws_the_same_on_every_backend_and_in_a_vec_env() {
     );
     assert_ne!(on_rapier[0], on_rapier[4], "another seed, other draws");
     let d = &on_rapier[0];
-    assert!((0.4..1.2).contains(&d.ground_friction));
+    assert!((0.4..1.2).contains(&d.dynamics.ground_friction));
     assert!(d.actuator_delay_substeps <= 5);
-    assert_eq!(d.link_mass_scale.len(), 13);
-    assert_eq!(d.kp_scale.len(), 12);
+    assert_eq!(d.dynamics.link_mass_scale.len(), 13);
+    assert_eq!(d.actuator.kp.len(), 12);
+    let c = &d.dynamics.contact;
+    assert!((0.5..2.0).contains(&c.contact_stiffness_scale));
+    assert!((0.5..2.0).contains(&c.contact_damping_scale));
+    assert!((0.0..0.3).contains(&c.restitution));
 
     // A VecEnv seeds env i with s + i, as single envs would be.
     let model = hyq_physics::bundled::hyq();
@@ -123,9 +133,9 @@ fn turning_one_option_on_changes_no_other_draw() {
     );
     let everything = draws(&mut scripted(ALL_OPTIONS), &seeds);
     for (a, b) in friction.iter().zip(&everything) {
-        assert_eq!(a.ground_friction, b.ground_friction);
+        assert_eq!(a.dynamics.ground_friction, b.dynamics.ground_friction);
         assert_eq!(
-            a.kp_scale,
+            a.actuator.kp,
             vec![1.0; 12],
             "an option that is off stays nominal"
         );
@@ -150,21 +160,21 @@ fn the_drawn_values_reach_the_physics() {
         let b = env.backend();
         let trunk = &model.links()[0];
         let held = b.body_mass_properties(0);
-        let expected = trunk.mass * d.link_mass_scale[0] + d.trunk_added_mass_kg;
+        let expected = trunk.mass * d.dynamics.link_mass_scale[0] + d.dynamics.trunk_added_mass_kg;
         assert!(
             (held.mass - expected).abs() < 1e-4,
             "{} vs {expected}",
             held.mass
         );
         let offset = held.com - trunk.com;
-        for (axis, o) in d.trunk_com_offset_m.iter().enumerate() {
+        for (axis, o) in d.dynamics.trunk_com_offset_m.iter().enumerate() {
             assert!((offset[axis] - o).abs() < 1e-6, "{offset:?} vs {o}");
         }
         let act = env.actuator();
         let base = hyq_physics::Actuator::new(&model);
         for j in 0..12 {
-            assert_eq!(act.kp()[j], base.kp()[j] * d.kp_scale[j]);
-            assert_eq!(act.effort()[j], base.effort()[j] * d.effort_scale[j]);
+            assert_eq!(act.kp()[j], base.kp()[j] * d.actuator.kp[j]);
+            assert_eq!(act.effort()[j], base.effort()[j] * d.actuator.effort[j]);
         }
     }
 }

@@ -188,6 +188,17 @@ fn randomize_is_written_only_when_randomize_is_on_and_reads_back() {
         };
         assert_eq!(written.get(name), Some(&read), "{name}");
     }
+    // Written in the key list's order (the draw's two halves interleave there).
+    let tail = &line[line.rfind("\"randomize\":").unwrap_or(0)..];
+    let at: Vec<Option<usize>> = RANDOMIZE_INFO_KEYS
+        .iter()
+        .map(|k| {
+            let name = k.name.strip_prefix(RANDOMIZE_PREFIX).unwrap_or(k.name);
+            tail.find(&format!("\"{name}\":"))
+        })
+        .collect();
+    assert!(at.iter().all(Option::is_some), "{tail}");
+    assert!(at.windows(2).all(|w| w[0] < w[1]), "out of order: {tail}");
     assert_ne!(value["randomize"]["kp_scale"][0], serde_json::json!(1.0));
     let back = StepRecord::from_json_line(&line).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(back.randomize.as_deref(), Some(&info));

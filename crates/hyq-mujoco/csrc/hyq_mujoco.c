@@ -166,6 +166,9 @@ struct hyq_mj {
   mjtByte* body_sameframe0;
   mjtByte* geom_sameframe0;
   uint8_t* modified;
+  /* The compiled contact solref of every geom (2 per geom), which the drawn contact factors
+   * scale. */
+  double* geom_solref0;
 };
 
 static void free_world(hyq_mj* w) {
@@ -190,6 +193,7 @@ static void free_world(hyq_mj* w) {
   free(w->body_sameframe0);
   free(w->geom_sameframe0);
   free(w->modified);
+  free(w->geom_solref0);
   free(w);
 }
 
@@ -215,8 +219,9 @@ static int save_compiled_masses(hyq_mj* w, char* err, int err_len) {
   w->body_sameframe0 = calloc(nb + 1, 1);
   w->geom_sameframe0 = calloc((size_t)m->ngeom + 1, 1);
   w->modified = calloc(nb + 1, 1);
+  w->geom_solref0 = calloc(mjNREF * (size_t)m->ngeom + 1, sizeof(double));
   if (!w->mass0 || !w->ipos0 || !w->iquat0 || !w->inertia0 || !w->body_sameframe0 ||
-      !w->geom_sameframe0 || !w->modified) {
+      !w->geom_sameframe0 || !w->modified || !w->geom_solref0) {
     copy_message(err, err_len, "out of memory");
     return -1;
   }
@@ -229,6 +234,7 @@ static int save_compiled_masses(hyq_mj* w, char* err, int err_len) {
     w->body_sameframe0[b] = m->body_sameframe[id];
   }
   memcpy(w->geom_sameframe0, m->geom_sameframe, (size_t)m->ngeom);
+  memcpy(w->geom_solref0, m->geom_solref, mjNREF * (size_t)m->ngeom * sizeof(double));
   return 0;
 }
 
@@ -599,12 +605,34 @@ static int write_body(hyq_mj* w, int b, const double v[10], char* err, int err_l
   return 0;
 }
 
-int hyq_mj_set_dynamics(hyq_mj* w, double friction, const uint8_t* nominal,
-                        const double* bodies, const double* damping, char* err, int err_len) {
+/* Every geom's contact solref for a stiffness factor `s` and a damping factor `c` on its
+ * compiled one. MuJoCo's reference acceleration is -b v - k r; in the positive form (timeconst
+ * tc, dampratio z) b = 2 / (dmax tc) and k = d / (dmax² tc² z²), so tc / c and z c / √s scale
+ * b by c and k by s; in the negative form (-k, -b) the two are scaled directly. Factors of 1
+ * write the compiled values back bit for bit. */
+static void scale_contact(hyq_mj* w, double s, double c) {
+  mjModel* m = w->m;
+  for (int g = 0; g < (int)m->ngeom; g++) {
+    const double* r0 = w->geom_solref0 + mjNREF * g;
+    double* r = m->geom_solref + mjNREF * g;
+    if (r0[0] < 0.0) {
+      r[0] = r0[0] * s;
+      r[1] = r0[1] * c;
+    } else {
+      r[0] = r0[0] / c;
+      r[1] = r0[1] * c / sqrt(s);
+    }
+  }
+}
+
+int hyq_mj_set_dynamics(hyq_mj* w, double friction, double stiffness_scale,
+                        double damping_scale, const uint8_t* nominal, const double* bodies,
+                        const double* damping, char* err, int err_len) {
   mjModel* m = w->m;
   for (int g = 0; g < (int)m->ngeom; g++) {
     m->geom_friction[3 * g] = friction;
   }
+  scale_contact(w, stiffness_scale, damping_scale);
   for (int j = 0; j < w->num_joints; j++) {
     m->dof_damping[w->dof_of[j]] = damping[j];
   }

@@ -131,6 +131,18 @@ impl MujocoBackend {
     /// Dynamics MuJoCo refuses after validation may be half given: the world then refuses to
     /// step until dynamics it takes are given.
     fn give_dynamics(&mut self, dynamics: &Dynamics) -> Result<(), PhysicsError> {
+        let contact = &dynamics.contact;
+        if contact.restitution != 0.0 {
+            return Err(PhysicsError::Backend {
+                backend: Self::NAME,
+                message: format!(
+                    "randomize.restitution drew {}, but MuJoCo's contact has no restitution \
+                     coefficient (a bounce comes from its solref damping ratio: draw \
+                     randomize.contact_damping_scale instead)",
+                    contact.restitution
+                ),
+            });
+        }
         // A body whose values are the model's own gets MuJoCo's compiled values back bit for
         // bit (MuJoCo diagonalised the tensor when it compiled the model).
         let nominal: Vec<bool> = dynamics
@@ -160,6 +172,10 @@ impl MujocoBackend {
             .collect();
         let result = self.world.set_dynamics(
             dynamics.ground_friction,
+            [
+                contact.contact_stiffness_scale,
+                contact.contact_damping_scale,
+            ],
             &nominal,
             &bodies,
             &dynamics.joint_damping,

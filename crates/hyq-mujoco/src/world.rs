@@ -82,6 +82,8 @@ unsafe extern "C" {
     fn hyq_mj_set_dynamics(
         w: *mut RawWorld,
         friction: f64,
+        stiffness_scale: f64,
+        damping_scale: f64,
         nominal: *const u8,
         bodies: *const f64,
         damping: *const f64,
@@ -417,13 +419,16 @@ impl World {
         unsafe { hyq_mj_total_mass(self.raw.as_ptr()) }
     }
 
-    /// Sets the friction of every geom, each joint's damping and each layout body's mass
+    /// Sets the friction of every geom, every geom's contact solref for `contact`'s factors
+    /// (stiffness, damping) of its compiled contact stiffness and damping (factors of 1 restore
+    /// the compiled solref bit for bit), each joint's damping and each layout body's mass
     /// properties: `nominal[b]` true restores body `b`'s compiled ones, else `bodies[b]` holds
     /// its mass, centre of mass (body frame) and tensor about it (ixx, iyy, izz, ixy, ixz,
     /// iyz). [`World::set_state`] must follow before a step.
     pub fn set_dynamics(
         &mut self,
         friction: f64,
+        contact: [f64; 2],
         nominal: &[bool],
         bodies: &[[f64; 10]],
         damping: &[f64],
@@ -440,6 +445,8 @@ impl World {
             hyq_mj_set_dynamics(
                 self.raw.as_ptr(),
                 friction,
+                contact[0],
+                contact[1],
                 flags.as_ptr(),
                 flat.as_ptr(),
                 damping.as_ptr(),

@@ -124,8 +124,12 @@ pub trait Backend: Sized + Send + 'static {
     // ---------------------------------------------------------------------------------------
 
     /// Gives the world these (already validated) dynamics, as if it had been built with them:
-    /// the ground friction acts on whatever shape the ground has, and every body's mass
-    /// properties and joint damping are replaced. What the world does before the next
+    /// the ground friction acts on whatever shape the ground has, every body's mass
+    /// properties and joint damping are replaced, and the ground contact takes the drawn
+    /// stiffness and damping factors and restitution ([`crate::ContactDraw`]) as the engine's
+    /// model allows: an engine whose contact has no such quantity refuses a value other than
+    /// the nominal one, before changing anything, with an error naming the
+    /// `randomize.` option. What the world does before the next
     /// [`Backend::apply_state`] is unspecified (an engine may have to move internal frames);
     /// that call must follow before a step.
     ///

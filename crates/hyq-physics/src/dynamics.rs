@@ -1,5 +1,6 @@
 //! Per-episode variations of the physics (domain randomisation), as plain data: what a backend
-//! takes ([`Dynamics`]: ground friction, every body's mass properties, joint damping), the
+//! takes ([`Dynamics`]: ground friction, every body's mass properties, joint damping, the
+//! ground contact's stiffness and damping factors and restitution ([`ContactDraw`])), the
 //! draw an environment makes of it from a model ([`DynamicsDraw`]), and the shared actuator's
 //! variations ([`ActuatorScales`], [`TargetDelay`]).
 //!
@@ -25,6 +26,7 @@
 //! and in the added mass, so a range whose corners are inside the table has every draw inside.
 
 use nalgebra::Vector3;
+use serde::Deserialize;
 
 use crate::bounds;
 use crate::error::PhysicsError;
@@ -46,6 +48,70 @@ pub struct Dynamics {
     pub bodies: Vec<MassProperties>,
     /// Viscous damping of every joint (N·m·s/rad, finite, ≥ 0), profile order.
     pub joint_damping: Vec<f64>,
+    /// The contact: factors of the engine's own ground-contact stiffness and damping, and the
+    /// restitution coefficient (see [`ContactDraw`]; each engine maps them onto its model).
+    pub contact: ContactDraw,
+}
+
+/// The ground contact's variations: factors of each engine's nominal contact stiffness and
+/// damping (> 0; 1 is the engine's own), and a restitution coefficient (in [0, 1]; 0, every
+/// engine's nominal, is inelastic). Their field names are the configuration keys that draw
+/// them. How each engine maps them is its `apply_dynamics`'s to say (docs/randomization.md):
+/// an engine whose contact model has no such quantity refuses a value other than the nominal
+/// one with an error naming it. A record that has none of them reads as nominal.
+#[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
+pub struct ContactDraw {
+    /// Factor of the contact's stiffness (> 0).
+    #[serde(default = "one")]
+    pub contact_stiffness_scale: f64,
+    /// Factor of the contact's damping (> 0).
+    #[serde(default = "one")]
+    pub contact_damping_scale: f64,
+    /// The contact's restitution coefficient (in [0, 1]).
+    #[serde(default)]
+    pub restitution: f64,
+}
+
+/// A factor's nominal value, for a record written before the contact was drawn.
+fn one() -> f64 {
+    1.0
+}
+
+impl ContactDraw {
+    /// Every engine's own contact: factors of 1, no restitution.
+    pub const NOMINAL: Self = Self {
+        contact_stiffness_scale: 1.0,
+        contact_damping_scale: 1.0,
+        restitution: 0.0,
+    };
+
+    /// Whether this is [`ContactDraw::NOMINAL`].
+    pub fn is_nominal(&self) -> bool {
+        *self == Self::NOMINAL
+    }
+
+    /// Checks the factors finite and positive and the restitution in [0, 1] (the
+    /// configuration holds the factors to a narrower range). The error names the quantity and
+    /// the value.
+    pub fn validate(&self) -> Result<(), PhysicsError> {
+        let invalid = |what: &str, reason: String| PhysicsError::InvalidState {
+            what: what.into(),
+            reason,
+        };
+        for (what, v) in [
+            ("contact stiffness scale", self.contact_stiffness_scale),
+            ("contact damping scale", self.contact_damping_scale),
+        ] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(invalid(what, format!("{v} must be finite and positive")));
+            }
+        }
+        let e = self.restitution;
+        if !(0.0..=1.0).contains(&e) {
+            return Err(invalid("restitution", format!("{e} must be in [0, 1]")));
+        }
+        Ok(())
+    }
 }
 
 impl Dynamics {
@@ -63,6 +129,7 @@ impl Dynamics {
                 })
                 .collect(),
             joint_damping: model.joints().iter().map(|j| j.damping).collect(),
+            contact: ContactDraw::NOMINAL,
         }
     }
 
@@ -109,7 +176,7 @@ impl Dynamics {
                 .check(*d)
                 .map_err(|reason| invalid(format!("damping of joint {}", joint.name), reason))?;
         }
-        Ok(())
+        self.contact.validate()
     }
 }
 
@@ -191,6 +258,7 @@ pub fn check_draw_ranges(model: &RobotModel, ranges: &DrawRanges) -> Result<(), 
         trunk_com_offset_m: [0.0; 3],
         link_mass_scale: vec![scale; model.num_links()],
         joint_damping_scale: vec![damping; model.num_joints()],
+        contact: ContactDraw::NOMINAL,
     };
     let fault = |quantity, e: PhysicsError| DrawRangeFault {
         quantity,
@@ -221,8 +289,9 @@ pub fn check_draw_ranges(model: &RobotModel, ranges: &DrawRanges) -> Result<(), 
 
 /// One episode's drawn physical variations, as factors and offsets of the model's values;
 /// [`DynamicsDraw::dynamics`] turns them into the [`Dynamics`] a backend takes (see the module
-/// documentation for the rules). [`DynamicsDraw::nominal`] changes nothing.
-#[derive(Debug, Clone, PartialEq)]
+/// documentation for the rules). [`DynamicsDraw::nominal`] changes nothing. Its field names
+/// are the configuration keys that draw them (and the names an environment's records use).
+#[derive(Debug, Clone, PartialEq, Deserialize)]
 pub struct DynamicsDraw {
     /// The ground friction coefficient itself (not a factor).
     pub ground_friction: f64,
@@ -234,6 +303,9 @@ pub struct DynamicsDraw {
     pub link_mass_scale: Vec<f64>,
     /// Factor of every joint's viscous damping (profile order).
     pub joint_damping_scale: Vec<f64>,
+    /// The ground contact's factors and restitution.
+    #[serde(flatten)]
+    pub contact: ContactDraw,
 }
 
 impl DynamicsDraw {
@@ -245,6 +317,7 @@ impl DynamicsDraw {
             trunk_com_offset_m: [0.0; 3],
             link_mass_scale: vec![1.0; model.num_links()],
             joint_damping_scale: vec![1.0; model.num_joints()],
+            contact: ContactDraw::NOMINAL,
         }
     }
 
@@ -297,6 +370,7 @@ impl DynamicsDraw {
                 .zip(&self.joint_damping_scale)
                 .map(|(j, &s)| j.damping * s)
                 .collect(),
+            contact: self.contact,
         };
         dynamics.validate(model)?;
         Ok(dynamics)
@@ -304,16 +378,21 @@ impl DynamicsDraw {
 }
 
 /// Factors of the shared actuator's per-joint values for one episode (profile order): the PD
-/// gains, the effort limit and the joint friction (see [`crate::Actuator::scale_from`]).
-#[derive(Debug, Clone, PartialEq)]
+/// gains, the effort limit and the joint friction (see [`crate::Actuator::scale_from`]). Each
+/// reads under the configuration key that draws it (and the name an environment's records use).
+#[derive(Debug, Clone, PartialEq, Deserialize)]
 pub struct ActuatorScales {
     /// Factor of each joint's proportional gain (> 0).
+    #[serde(rename = "kp_scale")]
     pub kp: Vec<f64>,
     /// Factor of each joint's derivative gain (> 0).
+    #[serde(rename = "kd_scale")]
     pub kd: Vec<f64>,
     /// Factor of each joint's effort limit (> 0).
+    #[serde(rename = "effort_scale")]
     pub effort: Vec<f64>,
     /// Factor of each joint's Coulomb friction (≥ 0).
+    #[serde(rename = "joint_friction_scale")]
     pub friction: Vec<f64>,
 }
 
@@ -527,6 +606,36 @@ mod tests {
                     ..nominal.clone()
                 },
                 "link mass scales",
+            ),
+            (
+                DynamicsDraw {
+                    contact: ContactDraw {
+                        contact_stiffness_scale: 0.0,
+                        ..ContactDraw::NOMINAL
+                    },
+                    ..nominal.clone()
+                },
+                "contact stiffness scale",
+            ),
+            (
+                DynamicsDraw {
+                    contact: ContactDraw {
+                        contact_damping_scale: f64::INFINITY,
+                        ..ContactDraw::NOMINAL
+                    },
+                    ..nominal.clone()
+                },
+                "contact damping scale",
+            ),
+            (
+                DynamicsDraw {
+                    contact: ContactDraw {
+                        restitution: 1.5,
+                        ..ContactDraw::NOMINAL
+                    },
+                    ..nominal.clone()
+                },
+                "restitution",
             ),
         ];
         for (draw, says) in cases {

@@ -49,8 +49,8 @@ pub use actuator::{Actuator, PdScratch, apply_pd, apply_pd_to_valid_targets, pd_
 pub use backend::{Backend, check_joint_values};
 pub use bundled::resolve as resolve_robot;
 pub use dynamics::{
-    ActuatorScales, DrawRangeFault, DrawRanges, DrawnQuantity, Dynamics, DynamicsDraw, TargetDelay,
-    check_draw_ranges,
+    ActuatorScales, ContactDraw, DrawRangeFault, DrawRanges, DrawnQuantity, Dynamics, DynamicsDraw,
+    TargetDelay, check_draw_ranges,
 };
 pub use error::{ModelError, PhysicsError, one_line, printable};
 pub use inertia::MassProperties;

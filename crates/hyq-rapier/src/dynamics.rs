@@ -4,7 +4,7 @@
 //! [`Backend::apply_dynamics`]: hyq_physics::Backend::apply_dynamics
 
 use hyq_physics::na::{Matrix3, Vector3};
-use hyq_physics::{Dynamics, MassProperties, RobotModel};
+use hyq_physics::{ContactDraw, Dynamics, MassProperties, RobotModel};
 use rapier3d::prelude::*;
 
 use crate::build::{Sets, body_mass, collider_frame, joint_parent_frame};
@@ -24,15 +24,19 @@ pub(crate) struct Handles<'a> {
     pub(crate) joint_dofs: &'a [usize],
 }
 
-/// Gives `world` the dynamics `d` (validated): every collider's friction (the ground's,
-/// whatever its shape, and the robot's, so that rapier's average of the two is `d`'s), every
+/// Gives `world` the dynamics `d` (validated): every collider's friction and restitution (the
+/// ground's, whatever its shape, and the robot's, so that rapier's average of the two is
+/// `d`'s), every
 /// body's mass properties, the per-DoF damping, and, since the trunk's rigid body sits at its
 /// centre of mass, the trunk's collider and child-joint frames for its centre of mass. The
 /// bodies' poses follow at the next `apply_state`.
 pub(crate) fn apply(world: &mut Sets, model: &RobotModel, h: &Handles<'_>, d: &Dynamics) {
     let friction = d.ground_friction as Real;
+    let restitution = d.contact.restitution as Real;
     for (_, collider) in world.colliders.iter_mut() {
         collider.set_friction(friction);
+        // rapier averages a contact's two coefficients, so both sides hold the drawn one.
+        collider.set_restitution(restitution);
     }
     let trunk_com = d.bodies[0].com;
     for (i, (&handle, props)) in h.bodies.iter().zip(&d.bodies).enumerate() {
@@ -75,4 +79,20 @@ pub(crate) fn read(body: &RigidBody, i: usize, trunk_com: &Vector3<f64>) -> Mass
         com,
         inertia: Matrix3::from_columns(&cols),
     }
+}
+
+/// The ground contact's spring for `contact`'s factors on the options' nominal one (natural
+/// frequency ω₀, damping ratio ζ₀). rapier's soft contact is a spring k = m ω² and a damper
+/// c = 2 m ζ ω on the contact's effective mass m, so a stiffness factor s and a damping
+/// factor d give ω = ω₀ √s and ζ = ζ₀ d / √s; factors of 1 give the options' values exactly.
+pub(crate) fn contact_softness(
+    frequency: f64,
+    damping_ratio: f64,
+    contact: &ContactDraw,
+) -> SpringCoefficients<Real> {
+    let root = contact.contact_stiffness_scale.sqrt();
+    SpringCoefficients::new(
+        (frequency * root) as Real,
+        (damping_ratio * contact.contact_damping_scale / root) as Real,
+    )
 }

@@ -40,8 +40,10 @@
 //!
 //! # Per-episode dynamics and pushes
 //! [`Backend::apply_dynamics`] changes the world and its pristine copy in place
-//! (`dynamics.rs`): every collider's friction (rapier averages a contact's two, so the ground's
-//! and the robot's are set alike, whatever the ground's shape), each body's additional mass
+//! (`dynamics.rs`): every collider's friction and restitution (rapier averages a contact's two,
+//! so the ground's and the robot's are set alike, whatever the ground's shape), the ground
+//! contact's spring for the drawn stiffness and damping factors (natural frequency times √s,
+//! damping ratio times d / √s, on the options' own), each body's additional mass
 //! properties, the multibody's per-DoF damping, and, since the trunk's rigid body sits at its
 //! centre of mass, the frames of the trunk's colliders and child joints for a moved centre of
 //! mass, with the formulas the build uses: a world given dynamics runs bit for bit as one
@@ -161,6 +163,11 @@ impl RapierBackend {
         dynamics::apply(&mut self.world, &self.model, &handles, d);
         dynamics::apply(&mut self.pristine, &self.model, &handles, d);
         self.trunk_com = d.bodies[0].com;
+        self.integration.static_contact_softness = dynamics::contact_softness(
+            self.options.ground_contact_frequency,
+            self.options.ground_contact_damping_ratio,
+            &d.contact,
+        );
     }
 
     fn multibody(&self) -> &Multibody {

@@ -28,6 +28,11 @@ pub const PUSH_SPEED_MAX_MPS: f64 = 100.0;
 /// when an environment is built ([`crate::randomize::check_for_robot`]).
 pub const ADDED_MASS_MAX_KG: f64 = hyq_physics::bounds::BODY_MASS.high;
 
+/// The smallest contact stiffness or damping factor: a contact 100 times softer (or less
+/// damped) than an engine's own lets a standing robot sink centimetres, beyond any variation in
+/// use.
+pub const CONTACT_SCALE_MIN: f64 = 0.01;
+
 /// The largest ground friction coefficient.
 pub const FRICTION_MAX: f64 = 10.0;
 
@@ -84,6 +89,17 @@ pub struct RandomizeConfig {
     /// (`control.sim_steps_per_env_step`). (default: off, 0)
     #[serde(skip_serializing_if = "Option::is_none")]
     pub actuator_delay_substeps: Option<[u32; 2]>,
+    /// Factor of the engine's own ground-contact stiffness, in [0.01, 100]; each engine maps
+    /// it onto its contact model (docs/randomization.md). (default: off, 1)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub contact_stiffness_scale: Option<Range>,
+    /// Factor of the engine's own ground-contact damping, in [0.01, 100]. (default: off, 1)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub contact_damping_scale: Option<Range>,
+    /// The ground contact's restitution coefficient, in [0, 1] (0 is inelastic, the spec's
+    /// contact). (default: off, 0)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub restitution: Option<Range>,
     /// Noise on what the policy observes, drawn per step. (default: off)
     #[serde(skip_serializing_if = "ObsNoiseConfig::is_off")]
     pub obs_noise: ObsNoiseConfig,
@@ -198,6 +214,11 @@ impl RandomizeConfig {
             actuator_delay_substeps: self
                 .actuator_delay_substeps
                 .or(base.actuator_delay_substeps),
+            contact_stiffness_scale: self
+                .contact_stiffness_scale
+                .or(base.contact_stiffness_scale),
+            contact_damping_scale: self.contact_damping_scale.or(base.contact_damping_scale),
+            restitution: self.restitution.or(base.restitution),
             obs_noise: self.obs_noise.over(&base.obs_noise),
             push_interval_s: self.push_interval_s.or(base.push_interval_s),
             push_velocity_xy_mps: self.push_velocity_xy_mps.or(base.push_velocity_xy_mps),
@@ -205,13 +226,17 @@ impl RandomizeConfig {
         }
     }
 
-    /// Whether an option that changes the physics (friction, masses, damping) is on.
+    /// Whether an option that changes the physics (friction, masses, damping, the contact) is
+    /// on.
     pub fn varies_dynamics(&self) -> bool {
         self.ground_friction.is_some()
             || self.trunk_added_mass_kg.is_some()
             || self.trunk_com_offset_m.is_some()
             || self.link_mass_scale.is_some()
             || self.joint_damping_scale.is_some()
+            || self.contact_stiffness_scale.is_some()
+            || self.contact_damping_scale.is_some()
+            || self.restitution.is_some()
     }
 
     /// Whether pushes are on.
@@ -267,6 +292,16 @@ impl RandomizeConfig {
         ] {
             range(key, r, 0.0, SCALE_MAX, false)?;
         }
+        for (key, r) in [
+            (
+                "randomize.contact_stiffness_scale",
+                e.contact_stiffness_scale,
+            ),
+            ("randomize.contact_damping_scale", e.contact_damping_scale),
+        ] {
+            range(key, r, CONTACT_SCALE_MIN, SCALE_MAX, false)?;
+        }
+        range("randomize.restitution", e.restitution, 0.0, 1.0, false)?;
         if let Some([lo, hi]) = e.actuator_delay_substeps
             && (lo > hi || hi > substeps)
         {

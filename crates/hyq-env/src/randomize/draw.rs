@@ -5,11 +5,12 @@
 use std::ops::Range as IndexRange;
 
 use hyq_physics::na::Vector3;
-use hyq_physics::{ActuatorScales, DynamicsDraw, PhysicsParams, RobotModel};
+use hyq_physics::{ActuatorScales, ContactDraw, DynamicsDraw, PhysicsParams, RobotModel};
 use hyq_spec::ObservationLayout;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use serde::{Deserialize, Serialize};
+use serde::ser::SerializeStruct;
+use serde::{Deserialize, Serialize, Serializer};
 
 use crate::config::{NoiseDistribution, RandomizeConfig};
 
@@ -34,75 +35,68 @@ enum EpisodeOption {
     JointDampingScale,
     JointFrictionScale,
     ActuatorDelay,
+    ContactStiffnessScale,
+    ContactDampingScale,
+    Restitution,
 }
 
 /// How many options draw per episode: one past the last in stream order, so a new option
 /// placed last in [`EpisodeOption`] gets its stream without a count kept by hand.
-const OPTIONS: usize = EpisodeOption::ActuatorDelay as usize + 1;
+const OPTIONS: usize = EpisodeOption::Restitution as usize + 1;
 
 /// One episode's drawn variations, as the info and the records report them: the values in
-/// effect, the nominal ones (the configured friction, factors of 1, no added mass, offset or
-/// delay) for options that are off.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+/// effect, the nominal ones (the configured friction, factors of 1, no added mass, offset,
+/// delay or restitution) for options that are off.
+///
+/// Each drawn quantity is declared once, in the half that acts on it: hyq-physics's
+/// [`DynamicsDraw`] (ground friction, the trunk's added mass and offset, the bodies' mass
+/// factors, the joints' damping factors, the ground contact's factors and restitution in
+/// [`ContactDraw`]), which it turns into an engine's dynamics, and [`ActuatorScales`] (kp,
+/// kd, effort limit, joint friction), which scale the shared
+/// actuator; the delay is the environment's own. Serialised flat, under the configuration
+/// keys' names, in the order of [`RANDOMIZE_INFO_KEYS`](crate::RANDOMIZE_INFO_KEYS) (which
+/// puts the joint factors together, so the order is written out in [`Serialize`] below).
+#[derive(Clone, Debug, PartialEq, Deserialize)]
 pub struct EpisodeDraw {
-    /// Ground friction coefficient.
-    pub ground_friction: f64,
-    /// Mass added to the trunk (kg).
-    pub trunk_added_mass_kg: f64,
-    /// Offset of the trunk's centre of mass, link frame (m).
-    pub trunk_com_offset_m: [f64; 3],
-    /// Factor of each body's mass and inertia (model order).
-    pub link_mass_scale: Vec<f64>,
-    /// Factor of each joint's kp (action order).
-    pub kp_scale: Vec<f64>,
-    /// Factor of each joint's kd.
-    pub kd_scale: Vec<f64>,
-    /// Factor of each joint's effort limit.
-    pub effort_scale: Vec<f64>,
-    /// Factor of each joint's damping.
-    pub joint_damping_scale: Vec<f64>,
-    /// Factor of each joint's Coulomb friction.
-    pub joint_friction_scale: Vec<f64>,
+    /// The physical half, for hyq-physics to turn into dynamics.
+    #[serde(flatten)]
+    pub dynamics: DynamicsDraw,
+    /// The actuator's factors (action order).
+    #[serde(flatten)]
+    pub actuator: ActuatorScales,
     /// The actuator's delay (physics sub-steps).
     pub actuator_delay_substeps: u32,
+}
+
+impl Serialize for EpisodeDraw {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let (d, a) = (&self.dynamics, &self.actuator);
+        let mut s = serializer.serialize_struct("EpisodeDraw", 13)?;
+        s.serialize_field("ground_friction", &d.ground_friction)?;
+        s.serialize_field("trunk_added_mass_kg", &d.trunk_added_mass_kg)?;
+        s.serialize_field("trunk_com_offset_m", &d.trunk_com_offset_m)?;
+        s.serialize_field("link_mass_scale", &d.link_mass_scale)?;
+        s.serialize_field("kp_scale", &a.kp)?;
+        s.serialize_field("kd_scale", &a.kd)?;
+        s.serialize_field("effort_scale", &a.effort)?;
+        s.serialize_field("joint_damping_scale", &d.joint_damping_scale)?;
+        s.serialize_field("joint_friction_scale", &a.friction)?;
+        s.serialize_field("actuator_delay_substeps", &self.actuator_delay_substeps)?;
+        let c = &d.contact;
+        s.serialize_field("contact_stiffness_scale", &c.contact_stiffness_scale)?;
+        s.serialize_field("contact_damping_scale", &c.contact_damping_scale)?;
+        s.serialize_field("restitution", &c.restitution)?;
+        s.end()
+    }
 }
 
 impl EpisodeDraw {
     /// No variation for `model` with `params`' friction.
     pub fn nominal(model: &RobotModel, params: &PhysicsParams) -> Self {
-        let (links, joints) = (model.num_links(), model.num_joints());
         Self {
-            ground_friction: params.ground_friction,
-            trunk_added_mass_kg: 0.0,
-            trunk_com_offset_m: [0.0; 3],
-            link_mass_scale: vec![1.0; links],
-            kp_scale: vec![1.0; joints],
-            kd_scale: vec![1.0; joints],
-            effort_scale: vec![1.0; joints],
-            joint_damping_scale: vec![1.0; joints],
-            joint_friction_scale: vec![1.0; joints],
+            dynamics: DynamicsDraw::nominal(model, params),
+            actuator: ActuatorScales::nominal(model.num_joints()),
             actuator_delay_substeps: 0,
-        }
-    }
-
-    /// The physical half of the draw, for hyq-physics to turn into dynamics.
-    pub fn dynamics_draw(&self) -> DynamicsDraw {
-        DynamicsDraw {
-            ground_friction: self.ground_friction,
-            trunk_added_mass_kg: self.trunk_added_mass_kg,
-            trunk_com_offset_m: self.trunk_com_offset_m,
-            link_mass_scale: self.link_mass_scale.clone(),
-            joint_damping_scale: self.joint_damping_scale.clone(),
-        }
-    }
-
-    /// The actuator half of the draw.
-    pub fn actuator_scales(&self) -> ActuatorScales {
-        ActuatorScales {
-            kp: self.kp_scale.clone(),
-            kd: self.kd_scale.clone(),
-            effort: self.effort_scale.clone(),
-            friction: self.joint_friction_scale.clone(),
         }
     }
 }
@@ -122,6 +116,31 @@ fn uniform(rng: &mut ChaCha8Rng, [lo, hi]: [f64; 2]) -> f64 {
 /// in magnitude, since 1 − u ≥ 2⁻⁵³.
 fn normal(u: f64, u2: f64) -> f64 {
     (-2.0 * (1.0 - u).ln()).sqrt() * (std::f64::consts::TAU * u2).cos()
+}
+
+/// Draws the ground contact's options that are on into `contact`, each from its stream in `g`.
+fn draw_contact(c: &RandomizeConfig, g: &mut [ChaCha8Rng; OPTIONS], contact: &mut ContactDraw) {
+    for (o, r, out) in [
+        (
+            EpisodeOption::ContactStiffnessScale,
+            c.contact_stiffness_scale,
+            &mut contact.contact_stiffness_scale,
+        ),
+        (
+            EpisodeOption::ContactDampingScale,
+            c.contact_damping_scale,
+            &mut contact.contact_damping_scale,
+        ),
+        (
+            EpisodeOption::Restitution,
+            c.restitution,
+            &mut contact.restitution,
+        ),
+    ] {
+        if let Some(r) = r {
+            *out = uniform(&mut g[o as usize], r);
+        }
+    }
 }
 
 /// Draws an episode's variations, a step's noise and pushes (see the module docs).
@@ -178,7 +197,8 @@ impl Randomizer {
     pub fn begin_episode(&mut self, model: &RobotModel, params: &PhysicsParams) {
         let c = &self.config;
         let g = &mut self.options;
-        let mut d = EpisodeDraw::nominal(model, params);
+        let mut draw = EpisodeDraw::nominal(model, params);
+        let (d, a) = (&mut draw.dynamics, &mut draw.actuator);
         if let Some(r) = c.ground_friction {
             d.ground_friction = uniform(&mut g[EpisodeOption::GroundFriction as usize], r);
         }
@@ -195,13 +215,9 @@ impl Randomizer {
                 c.link_mass_scale,
                 &mut d.link_mass_scale,
             ),
-            (EpisodeOption::KpScale, c.kp_scale, &mut d.kp_scale),
-            (EpisodeOption::KdScale, c.kd_scale, &mut d.kd_scale),
-            (
-                EpisodeOption::EffortScale,
-                c.effort_scale,
-                &mut d.effort_scale,
-            ),
+            (EpisodeOption::KpScale, c.kp_scale, &mut a.kp),
+            (EpisodeOption::KdScale, c.kd_scale, &mut a.kd),
+            (EpisodeOption::EffortScale, c.effort_scale, &mut a.effort),
             (
                 EpisodeOption::JointDampingScale,
                 c.joint_damping_scale,
@@ -210,7 +226,7 @@ impl Randomizer {
             (
                 EpisodeOption::JointFrictionScale,
                 c.joint_friction_scale,
-                &mut d.joint_friction_scale,
+                &mut a.friction,
             ),
         ] {
             if let Some(r) = r {
@@ -221,9 +237,10 @@ impl Randomizer {
         if let Some([lo, hi]) = c.actuator_delay_substeps {
             let u = g[EpisodeOption::ActuatorDelay as usize].random::<f64>();
             let span = f64::from(hi - lo + 1);
-            d.actuator_delay_substeps = (lo + (u * span) as u32).min(hi);
+            draw.actuator_delay_substeps = (lo + (u * span) as u32).min(hi);
         }
-        self.draw = d;
+        draw_contact(c, g, &mut draw.dynamics.contact);
+        self.draw = draw;
         self.pushes = 0;
         self.pushed = [0.0; 3];
         self.next_push_s = match c.push_interval_s {
@@ -350,12 +367,13 @@ mod tests {
             a.begin_episode(&model, &params);
             b.begin_episode(&model, &params);
             let (da, db) = (a.draw(), b.draw());
-            assert_eq!(da.ground_friction, db.ground_friction);
-            assert!((0.3..1.2).contains(&da.ground_friction));
-            assert_eq!(da.kp_scale, vec![1.0; 12], "off: nominal");
-            assert!(db.kp_scale.iter().all(|s| (0.8..1.2).contains(s)));
+            let friction = da.dynamics.ground_friction;
+            assert_eq!(friction, db.dynamics.ground_friction);
+            assert!((0.3..1.2).contains(&friction));
+            assert_eq!(da.actuator.kp, vec![1.0; 12], "off: nominal");
+            assert!(db.actuator.kp.iter().all(|s| (0.8..1.2).contains(s)));
             assert!(
-                db.kp_scale.windows(2).any(|w| w[0] != w[1]),
+                db.actuator.kp.windows(2).any(|w| w[0] != w[1]),
                 "drawn per joint"
             );
         }
