@@ -141,12 +141,8 @@ fn bad_mixes_are_one_line_usage_errors() {
     assert!(err.contains("--num-envs of at least 2"), "{err}");
     let err = fails(&["bench", "--backends", default, "--backend", default]);
     assert!(err.contains("--backend"), "{err}");
-    let policy = concat!(
-        "mlp:",
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../assets/policies/hyq_walk.safetensors"
-    );
-    let err = fails(&["bench", "--backends", default, "--policy", policy]);
+    let policy = common::policy_arg(&common::committed_policy());
+    let err = fails(&["bench", "--backends", default, "--policy", &policy]);
     assert!(err.contains("leave out --backends"), "{err}");
 }
 

@@ -18,8 +18,8 @@ episode's first observation, as rsl_rl expects) and fills those keys::
 The observation group is ``"policy"`` (map it with ``obs_groups = {"actor": ["policy"],
 "critic": ["policy"]}``). ``extras["log"]`` holds, over the episodes that ended in the step,
 ``hyq/distance_m`` (K − D^T), ``hyq/reach_rate``, ``hyq/fall_rate``,
-``hyq/joint_limit_rate`` and ``hyq/episode_return`` (on several engines, also
-``hyq/<engine>/distance_m`` and ``hyq/<engine>/reach_rate``); rsl_rl's logger averages each
+``hyq/joint_limit_rate`` and ``hyq/episode_return`` (on several engines, also each engine's
+``hyq/<engine>_distance_m`` and ``hyq/<engine>_reach_rate``); rsl_rl's logger averages each
 over the iteration. Episode lengths belong to the core: ``episode_length_buf`` reports them, and
 assigning it (rsl_rl's ``init_at_random_ep_len``) is refused.
 
@@ -180,8 +180,8 @@ class HyQRslRlVecEnv(VecEnv):
             # On several engines, each engine's distance and reach rate too.
             for engine in dict.fromkeys(info["backend"] for info in infos):
                 mine = [info for info in infos if info["backend"] == engine]
-                log[f"hyq/{engine}/distance_m"] = column([_distance_walked(i) for i in mine])
-                log[f"hyq/{engine}/reach_rate"] = column([float(i["reached"]) for i in mine])
+                log[f"hyq/{engine}_distance_m"] = column([_distance_walked(i) for i in mine])
+                log[f"hyq/{engine}_reach_rate"] = column([float(i["reached"]) for i in mine])
         return log
 
     def final_info(self, i: int) -> dict[str, Any] | None:
