@@ -34,6 +34,10 @@ use crate::backends::Mujoco;
 use crate::backends::Rapier;
 
 /// One engine's backend, whichever engine it is (see the module docs).
+// rapier's world lives inline (about 10 kB) and MuJoCo's and DART's behind their C pointers:
+// every value is built once and stays inside its env, never moved on a hot path, so the size
+// costs 10 kB per env and boxing rapier would add a pointer chase to every backend call.
+#[allow(clippy::large_enum_variant)]
 pub enum AnyBackend {
     /// On rapier.
     #[cfg(feature = "rapier")]
