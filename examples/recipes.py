@@ -113,14 +113,32 @@ EVAL_EPISODES = 20
 EVAL_SEED = 2000
 
 
-def check_backend(backend: str) -> None:
-    """Exits with one line when the package was built without `backend`."""
+def check_backend(backend: str, option: str | None = None) -> None:
+    """Exits with one line when the package was built without `backend` (asked for by
+    `option`, `--backend <name>` unless given)."""
     if backend not in hyq.BACKENDS:
         raise SystemExit(
-            f"error: --backend {backend}: this build of the hyq package has {list(hyq.BACKENDS)}; "
+            f"error: {option or '--backend ' + backend}: this build of the hyq package has {list(hyq.BACKENDS)}; "
             f"build it with `maturin develop --release --features {backend}` (after `cargo xtask "
             f"setup mujoco` for MuJoCo) or pass --backend rapier"
         )
+
+
+def engines_of(backend: str | None, backends: str | None, default: str) -> list[str]:
+    """The engines a run trains on: `--backends A,B,...` (each env of the vector env on the next
+    engine of the list, round-robin), else `--backend`, else the recipe's; each built in."""
+    if backend is not None and backends is not None:
+        raise SystemExit("error: --backend and --backends: give one of them")
+    if backends is None:
+        names = [backend or default]
+    else:
+        names = [name.strip() for name in backends.split(",")]
+        if not all(names):
+            raise SystemExit(f"error: --backends {backends!r}: expected engine names separated "
+                             "by commas, e.g. rapier,dart,mujoco")
+    for name in dict.fromkeys(names):
+        check_backend(name, None if backends is None else f"--backends {backends}")
+    return names
 
 
 def merge(base: dict[str, Any], changes: dict[str, Any]) -> dict[str, Any]:
@@ -181,13 +199,68 @@ def evaluate(
     }
 
 
+def evaluate_engines(
+    act: Callable[[np.ndarray], np.ndarray],
+    env: dict[str, Any],
+    robot: str,
+    backends: list[str],
+) -> dict[str, Any]:
+    """`evaluate` on every engine of `backends` (each once, in the list's order). One engine:
+    its result as `evaluate` gives it. Several: the means over all their episodes, each
+    engine's result under `per_engine`, and `worst_reach_rate`, the lowest engine's reach rate,
+    which chooses the best checkpoint (`checkpoint_score`): a policy must reach on every engine
+    it was trained on."""
+    engines = list(dict.fromkeys(backends))
+    per_engine = {name: evaluate(act, env, robot, name) for name in engines}
+    if len(engines) == 1:
+        return per_engine[engines[0]]
+    done = [e for result in per_engine.values() for e in result["episodes"]]
+    return {
+        "episodes": done,
+        "mean_return": float(np.mean([e["return"] for e in done])),
+        "mean_distance_m": float(np.mean([e["distance_m"] for e in done])),
+        "fall_rate": float(np.mean(["fell" in e["reasons"] for e in done])),
+        "joint_limit_rate": float(np.mean(["joint_limit" in e["reasons"] for e in done])),
+        "reach_rate": float(np.mean(["reached" in e["reasons"] for e in done])),
+        "worst_reach_rate": min(r["reach_rate"] for r in per_engine.values()),
+        "per_engine": per_engine,
+    }
+
+
+def checkpoint_score(result: dict[str, Any]) -> tuple[float, float]:
+    """What the best checkpoint maximises: the reach rate (on several engines, the worst
+    engine's), then the mean return."""
+    return (result.get("worst_reach_rate", result["reach_rate"]), result["mean_return"])
+
+
+def eval_fields(backends: list[str]) -> list[str]:
+    """evals.csv's columns: EVAL_FIELDS, then, on several engines, each engine's distance and
+    reach rate (`<engine>_mean_distance_m`, `<engine>_reach_rate`)."""
+    engines = list(dict.fromkeys(backends))
+    if len(engines) == 1:
+        return EVAL_FIELDS
+    return EVAL_FIELDS + [f"{e}_{k}" for e in engines for k in ("mean_distance_m", "reach_rate")]
+
+
+def eval_row(env_steps: int, result: dict[str, Any], fields: list[str]) -> dict[str, float]:
+    """evals.csv's row of `result` (see `eval_fields`)."""
+    row = {"env_steps": env_steps, **{k: result[k] for k in EVAL_FIELDS[1:]}}
+    for engine, r in result.get("per_engine", {}).items():
+        for key in ("mean_distance_m", "reach_rate"):
+            row[f"{engine}_{key}"] = r[key]
+    return {k: row[k] for k in fields}
+
+
 def eval_summary(result: dict[str, Any]) -> str:
-    """One line of an evaluation's means."""
-    return (
+    """One line of an evaluation's means (on several engines, then each engine's)."""
+    line = (
         f"return {result['mean_return']:.2f}, distance {result['mean_distance_m']:.2f} m, "
         f"fell {result['fall_rate']:.0%}, joint limit {result['joint_limit_rate']:.0%}, "
         f"reached {result['reach_rate']:.0%}"
     )
+    for engine, r in result.get("per_engine", {}).items():
+        line += f"; {engine}: distance {r['mean_distance_m']:.2f} m, reached {r['reach_rate']:.0%}"
+    return line
 
 
 def git_commit() -> str:

@@ -9,7 +9,9 @@ PPO bootstraps the time limit, the episodes' distance walked, reach, fall and jo
 in rsl_rl's logger (tensorboard files in OUT). The recipe's environment, robot and engine are
 examples/recipes.py's, shared with examples/train_sb3_ppo.py; rsl_rl's settings are TRAIN_CFG
 here (rsl_rl's own defaults but where the comment says why). Every part can be changed from the
-command line (--robot, --backend, --env, --cfg, --iterations, --seed). Same seed and
+command line (--robot, --backend, --env, --cfg, --iterations, --seed); --backends
+rapier,dart,mujoco trains on several engines at once and evaluates on each, as
+train_sb3_ppo.py does. Same seed and
 --torch-threads: the same run, bit for bit. It writes into OUT:
 
     model_<iteration>.pt       rsl_rl's checkpoints (every --checkpoint-every iterations and the
@@ -136,6 +138,11 @@ def parse_args() -> argparse.Namespace:
                         help="the environment, robot and engine (examples/recipes.py; default: walk)")
     parser.add_argument("--robot", help="the robot (default: the recipe's)")
     parser.add_argument("--backend", help="the engine (default: the recipe's)")
+    parser.add_argument("--backends", metavar="A,B,...",
+                        help="train on several engines at once: the vector env's envs assigned "
+                             "round-robin to these engines (e.g. rapier,dart,mujoco; --envs at "
+                             "least their number), each checkpoint evaluated on every one of "
+                             "them and the best chosen by the worst engine's reach rate")
     parser.add_argument("--iterations", type=int, help="learning iterations (default: the recipe's)")
     parser.add_argument("--envs", type=int, default=16, help="parallel envs (default: 16)")
     parser.add_argument("--seed", type=int, default=0)
@@ -168,7 +175,7 @@ def evaluate(runner: OnPolicyRunner, run: dict[str, Any]) -> dict[str, Any]:
             return policy(group).numpy()
 
     try:
-        return recipes.evaluate(act, run["eval_env"], run["robot"], run["backend"])
+        return recipes.evaluate_engines(act, run["eval_env"], run["robot"], run["backends"])
     finally:
         runner.alg.train_mode()
 
@@ -231,11 +238,12 @@ def main() -> None:
     run = {
         "recipe": args.recipe,
         "robot": args.robot or recipe["robot"],
-        "backend": args.backend or recipe["backend"],
+        "backends": recipes.engines_of(args.backend, args.backends, recipe["backend"]),
         "env": env_keys,
         "eval_env": recipes.merge(env_keys, recipe.get("eval_env", {})),
     }
-    recipes.check_backend(run["backend"])
+    # The engines' names joined, for titles and config.json ("mujoco"; "rapier,dart,mujoco").
+    run["backend"] = ",".join(run["backends"])
     if args.resume and not args.resume.is_file():
         # Before OUT is made, so a mistyped checkpoint leaves nothing behind.
         raise SystemExit(f"error: --resume {args.resume}: no such checkpoint file")
@@ -261,12 +269,12 @@ def main() -> None:
     episodes = recipes.EpisodeLog(args.curve_episodes)
     progress = recipes.CurveFile(args.out / "progress.csv", recipes.PROGRESS_FIELDS)
     env = TimedEnv(clock, episodes, progress, num_envs=args.envs, seed=args.seed, robot=run["robot"],
-                   backend=run["backend"], **run["env"])
+                   backend=run["backends"], **run["env"])
     runner = Runner(env, copy.deepcopy(cfg), log_dir=str(args.out), device="cpu")
     per_iteration = cfg["num_steps_per_env"] * args.envs
     if args.resume:
         resume(runner, args.resume, env.observation_names, per_iteration)
-    evals = recipes.CurveFile(args.out / "evals.csv", recipes.EVAL_FIELDS)
+    evals = recipes.CurveFile(args.out / "evals.csv", recipes.eval_fields(run["backends"]))
     title = (f"PPO (rsl_rl) on {run['robot']}, {run['backend']}: "
              f"examples/train_rsl_rl.py --recipe {args.recipe}")
     done = 0
@@ -279,7 +287,7 @@ def main() -> None:
         start = time.monotonic()
         result = evaluate(runner, run)
         clock.eval_s += time.monotonic() - start
-        evals.add({"env_steps": steps, **{k: result[k] for k in recipes.EVAL_FIELDS[1:]}})
+        evals.add(recipes.eval_row(steps, result, evals.fields))
         print(f"[{steps} env steps] deterministic eval: {recipes.eval_summary(result)}", flush=True)
         recipes.plot_curve(progress.rows, evals.rows, args.out / "progress.png", title)
     timing = clock.summary(done * per_iteration)
@@ -289,7 +297,8 @@ def main() -> None:
     result["timing"] = timing
     recipes.write_json(args.out / "eval.json", result)
     print(recipes.timing_line(timing))
-    print(f"eval over {recipes.EVAL_EPISODES} episodes: {recipes.eval_summary(result)}")
+    per = " per engine" if len(set(run["backends"])) > 1 else ""
+    print(f"eval over {recipes.EVAL_EPISODES} episodes{per}: {recipes.eval_summary(result)}")
 
 
 if __name__ == "__main__":

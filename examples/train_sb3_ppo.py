@@ -12,7 +12,9 @@ A recipe (examples/recipes.py; docs/training.md says why each setting is there) 
 environment, the robot and the engine; its PPO settings and budget are RECIPE_PPO, RECIPE_NET
 and RECIPE_STEPS here. Every part can be changed from the command line (--robot, --backend,
 --env, --ppo, --net, --steps, --seed), so the same script trains on other robots, engines and
-environment settings. N envs stepped in Rust (hyq.sb3.HyQVecEnv, same-step resets with SB3's
+environment settings; --backends rapier,dart,mujoco trains on several engines at once (the
+envs assigned round-robin to them), evaluates every checkpoint on each and keeps the one whose
+worst engine reaches most often (eval.json and evals.csv then hold each engine's figures). N envs stepped in Rust (hyq.sb3.HyQVecEnv, same-step resets with SB3's
 terminal_observation and TimeLimit.truncated, so PPO bootstraps timeouts), VecNormalize on
 observations and rewards, a fixed budget of env steps. Same seed and --torch-threads: the same
 run, bit for bit. It writes into OUT:
@@ -119,7 +121,7 @@ class Curve(BaseCallback):
         self.out = out
         self.episodes = recipes.EpisodeLog(min_episodes)
         self.progress = recipes.CurveFile(out / "progress.csv", recipes.PROGRESS_FIELDS)
-        self.evals = recipes.CurveFile(out / "evals.csv", recipes.EVAL_FIELDS)
+        self.evals = recipes.CurveFile(out / "evals.csv", recipes.eval_fields(run["backends"]))
         self.every = every
         self.next = every
         self.run = run
@@ -144,8 +146,8 @@ class Curve(BaseCallback):
         start = time.monotonic()
         result = evaluate(self.model, norm, self.run)
         self.clock.eval_s += time.monotonic() - start
-        self.evals.add({"env_steps": self.num_timesteps, **{k: result[k] for k in recipes.EVAL_FIELDS[1:]}})
-        score = (result["reach_rate"], result["mean_return"])
+        self.evals.add(recipes.eval_row(self.num_timesteps, result, self.evals.fields))
+        score = recipes.checkpoint_score(result)
         if self.best is None or score > self.best[0]:
             self.best = (score, self.num_timesteps)
         print(f"[{self.num_timesteps} env steps] deterministic eval: {recipes.eval_summary(result)}", flush=True)
@@ -176,7 +178,7 @@ def evaluate(model: PPO, obs_norm: VecNormalize, run: dict[str, Any]) -> dict[st
         action, _ = model.predict(obs_norm.normalize_obs(obs), deterministic=True)
         return action
 
-    return recipes.evaluate(act, run["eval_env"], run["robot"], run["backend"])
+    return recipes.evaluate_engines(act, run["eval_env"], run["robot"], run["backends"])
 
 
 def parse_args() -> argparse.Namespace:
@@ -186,6 +188,11 @@ def parse_args() -> argparse.Namespace:
                         help="the environment, robot and engine (examples/recipes.py; default: walk)")
     parser.add_argument("--robot", help="the robot (default: the recipe's)")
     parser.add_argument("--backend", help="the engine (default: the recipe's)")
+    parser.add_argument("--backends", metavar="A,B,...",
+                        help="train on several engines at once: the vector env's envs assigned "
+                             "round-robin to these engines (e.g. rapier,dart,mujoco; --envs at "
+                             "least their number), each checkpoint evaluated on every one of "
+                             "them and the best chosen by the worst engine's reach rate")
     parser.add_argument("--steps", type=int, help="total env steps (default: the recipe's)")
     parser.add_argument("--envs", type=int, default=16, help="parallel envs (default: 16)")
     parser.add_argument("--seed", type=int, default=0)
@@ -210,11 +217,12 @@ def main() -> None:
     run = {
         "recipe": args.recipe,
         "robot": args.robot or recipe["robot"],
-        "backend": args.backend or recipe["backend"],
+        "backends": recipes.engines_of(args.backend, args.backends, recipe["backend"]),
         "env": env_keys,
         "eval_env": recipes.merge(env_keys, recipe.get("eval_env", {})),
     }
-    recipes.check_backend(run["backend"])
+    # The engines' names joined, for titles and config.json ("mujoco"; "rapier,dart,mujoco").
+    run["backend"] = ",".join(run["backends"])
     ppo_kwargs = {**RECIPE_PPO, **RECIPE_PPO_CHANGES.get(args.recipe, {}), **args.ppo}
     net = {**RECIPE_NET, **args.net}
     if net["activation"] not in ACTIVATIONS:
@@ -233,7 +241,7 @@ def main() -> None:
     set_random_seed(args.seed)
     clock = recipes.Clock()
     venv = TimedVecEnv(clock, num_envs=args.envs, seed=args.seed, robot=run["robot"],
-                       backend=run["backend"], **run["env"])
+                       backend=run["backends"], **run["env"])
     venv = VecNormalize(VecMonitor(venv), norm_obs=True, norm_reward=True, clip_obs=10.0,
                         gamma=ppo_kwargs["gamma"])
     # Saved with the statistics, so an export can tell them from another robot's.
@@ -274,7 +282,8 @@ def main() -> None:
         result["best_checkpoint_env_steps"] = curve.best[1]
     recipes.write_json(args.out / "eval.json", result)
     print(recipes.timing_line(timing))
-    print(f"eval over {recipes.EVAL_EPISODES} episodes: {recipes.eval_summary(result)}")
+    per = " per engine" if len(set(run["backends"])) > 1 else ""
+    print(f"eval over {recipes.EVAL_EPISODES} episodes{per}: {recipes.eval_summary(result)}")
 
 
 if __name__ == "__main__":

@@ -76,6 +76,24 @@ pub fn not_built(choice: BackendChoice, option: &str) -> crate::Failure {
     }
 }
 
+/// A list of backends separated by commas (`rapier,dart,mujoco`), each a name of hyq-engines'
+/// table: `hyq compare --backends` (which then asks for two or three different ones) and
+/// `hyq bench --backends` (any number, repeats allowed). Whether each is built is checked where
+/// the list is used, with [`not_built`]'s error.
+pub fn parse_backend_list(s: &str) -> Result<Vec<BackendChoice>, String> {
+    s.split(',')
+        .map(str::trim)
+        .map(|name| {
+            <BackendChoice as ValueEnum>::from_str(name, false).map_err(|_| {
+                format!(
+                    "unknown backend {name:?} (possible backends: {})",
+                    hyq_engines::NAMES.join(", ")
+                )
+            })
+        })
+        .collect()
+}
+
 /// Evaluates `$body` with the type alias `$b` bound to the chosen backend type; a choice that
 /// was not built evaluates to `Err(not_built(choice, "--backend <name>"))`.
 macro_rules! with_backend {

@@ -31,6 +31,14 @@
 //! per-part timing; the report is a [`VecBenchReport`]. Comparing `--threads 1` with
 //! `--threads 2` at N = 2 measures how the vector env scales.
 //!
+//! # A mix of engines (`--backends A,B,...`)
+//! The batched mode on one vector env whose env i runs on the (i mod length)-th engine of the
+//! list (`VecEnv<hyq_engines::AnyBackend>`), e.g. `--backends rapier,dart,mujoco --num-envs 6`;
+//! the report's `backend` is the list. Every env is its own task of the pool, so the threads
+//! share the engines' different costs. `--backends rapier` runs one engine through the mixed
+//! backend, against `--backend rapier`, which names the engine's own type: the difference is the
+//! cost of the mixed backend's dispatch.
+//!
 //! # JSON (`--json`): one object, keys stable (`schema_version` 1)
 //! See [`BenchReport`] and [`VecBenchReport`]; every key is documented there and in the
 //! crate's README.
@@ -41,6 +49,7 @@ use std::fmt::Write as _;
 
 use clap::Args;
 use cpu_time::ProcessTime;
+use hyq_engines::{AnyBackend, AnyOptions};
 use hyq_env::{
     AutoReset, Env, MlpPolicy, Policy, RandomPolicy, Reason, ResetOptions, StepTiming, VecEnv,
     VecStepOut,
@@ -49,7 +58,7 @@ use hyq_physics::Backend;
 use serde::Serialize;
 
 use crate::Failure;
-use crate::backend::with_backend;
+use crate::backend::{BackendChoice, not_built, parse_backend_list, with_backend};
 use crate::options::{EnvArgs, PolicyChoice, make_env, read_mlp, usage};
 use crate::output::{print, print_json_line};
 
@@ -78,10 +87,23 @@ pub struct BenchArgs {
     /// vector steps, each of N env steps.
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..=hyq_env::MAX_ENVS as u64))]
     num_envs: u64,
+    /// A mix of engines (batched mode): a comma-separated list of backends assigned round-robin
+    /// to the N envs (env i on the (i mod length)-th), e.g. rapier,dart,mujoco; each must be
+    /// built in, and N at least the list's length. Instead of --backend.
+    #[arg(long, value_name = "A,B,...", value_parser = parse_backend_list_arg, conflicts_with = "backend")]
+    backends: Option<BackendList>,
     /// Threads of the vector env's pool (batched mode only; default: N, at most the number of
     /// cores).
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..=hyq_env::MAX_THREADS as u64))]
     threads: Option<u64>,
+}
+
+/// `--backends`: the engines of a mix, in slot order.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct BackendList(Vec<BackendChoice>);
+
+fn parse_backend_list_arg(s: &str) -> Result<BackendList, String> {
+    parse_backend_list(s).map(BackendList)
 }
 
 fn parse_bench_policy(text: &str) -> Result<PolicyChoice, String> {
@@ -196,8 +218,9 @@ pub struct VecBenchReport {
     pub schema_version: u32,
     /// `"env_random_vec"`: `env_random` in every env of a vector env.
     pub workload: &'static str,
-    /// The backend's name (`"rapier"`, `"dart"`, `"mujoco"`).
-    pub backend: &'static str,
+    /// The backend's name (`"rapier"`, `"dart"`, `"mujoco"`), or with `--backends` the list
+    /// as given (`"rapier,dart,mujoco"`: env i on the (i mod length)-th).
+    pub backend: String,
     /// The robot's name (its profile's `name`: `"hyq"`, `"anymal_c"`, ...).
     pub robot: String,
     /// `"release"` or `"debug"`.
@@ -256,9 +279,17 @@ pub fn execute(args: BenchArgs) -> Result<(), Failure> {
             args.policy, args.num_envs
         )));
     }
+    if let Some(list) = &args.backends {
+        if mlp.is_some() {
+            return Err(usage(format!(
+                "--policy {} runs one env on one engine: leave out --backends",
+                args.policy
+            )));
+        }
+        return bench_mix(&args, &list.0, model, config);
+    }
     if args.num_envs >= 2 {
-        let cores = std::thread::available_parallelism().map_or(1, |n| n.get() as u64);
-        let threads = args.threads.unwrap_or(args.num_envs.min(cores));
+        let threads = pool_threads(&args);
         return with_backend!(args.env.backend, B => {
             let n = usize::try_from(args.num_envs)
                 .map_err(|_| usage(format!("--num-envs {}: too many", args.num_envs)))?;
@@ -290,6 +321,52 @@ pub fn execute(args: BenchArgs) -> Result<(), Failure> {
         let report = bench_with(&mut env, args.steps, args.seed, mlp)?;
         print_report(&report, args.json)
     })
+}
+
+/// The vector env's threads: `--threads`, else N capped at the machine's cores.
+fn pool_threads(args: &BenchArgs) -> u64 {
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get() as u64);
+    args.threads.unwrap_or(args.num_envs.min(cores))
+}
+
+/// `hyq bench --backends A,B,...`: the batched pass on a vector env whose env i runs on the
+/// (i mod length)-th engine of `list` (one `VecEnv<AnyBackend>`).
+fn bench_mix(
+    args: &BenchArgs,
+    list: &[BackendChoice],
+    model: std::sync::Arc<hyq_physics::RobotModel>,
+    config: hyq_env::EnvConfig,
+) -> Result<(), Failure> {
+    let names: Vec<&str> = list.iter().map(|c| c.name()).collect();
+    let option = format!("--backends {}", names.join(","));
+    if let Some(choice) = list.iter().find(|c| !c.built()) {
+        return Err(not_built(*choice, &option));
+    }
+    if args.num_envs < list.len() as u64 {
+        return Err(usage(format!(
+            "{option} needs --num-envs of at least {} (one env per listed engine), got {}",
+            list.len(),
+            args.num_envs
+        )));
+    }
+    let n = usize::try_from(args.num_envs)
+        .map_err(|_| usage(format!("--num-envs {}: too many", args.num_envs)))?;
+    let physics = config.physics.clone();
+    let vec = VecEnv::<AnyBackend>::with_options(model, config, n, AutoReset::NextStep, |i| {
+        let name = names[i % names.len()];
+        // Every name was checked to be built above, so each reads to Some.
+        Ok(AnyOptions::read(name, &physics)?.unwrap_or_default())
+    })
+    .map_err(|e| usage(format!("cannot build the {option} vector env: {e}")))?;
+    let threads = pool_threads(args);
+    let t =
+        usize::try_from(threads).map_err(|_| usage(format!("--threads {threads}: too many")))?;
+    let mut vec = vec
+        .with_threads(t)
+        .map_err(|e| failure(format!("vector env: {e}")))?;
+    let mut report = bench_vec(&mut vec, args.steps, args.seed, threads)?;
+    report.backend = names.join(",");
+    print_vec_report(&report, args.json)
 }
 
 /// The batched pass: `steps` vector steps of `vec` under random actions.
@@ -350,7 +427,7 @@ pub fn bench_vec<B: Backend>(
     Ok(VecBenchReport {
         schema_version: 1,
         workload: "env_random_vec",
-        backend: B::NAME,
+        backend: B::NAME.to_owned(),
         robot: vec.env(0).model().name().to_owned(),
         profile: if cfg!(debug_assertions) {
             "debug"

@@ -16,8 +16,8 @@
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
+use clap::Args;
 use clap::builder::TypedValueParser as _;
-use clap::{Args, ValueEnum as _};
 use hyq_compare::policy::MAX_EPISODES;
 use hyq_compare::{
     ComparisonSpec, DEFAULT_ONE_STEP_STATES, Ledger, MARKDOWN_FILE, Plan, PolicyPlan, PolicyReport,
@@ -26,7 +26,7 @@ use hyq_compare::{
 use hyq_env::TerrainKind;
 
 use crate::Failure;
-use crate::backend::{BackendChoice, not_built, with_backend};
+use crate::backend::{BackendChoice, not_built, parse_backend_list, with_backend};
 use crate::options::{ConfigArgs, PolicyChoice, RobotArgs, TrainedPolicy, check_mlp, usage};
 use crate::output;
 
@@ -132,25 +132,13 @@ impl CompareArgs {
 pub struct Backends(Vec<BackendChoice>);
 
 fn parse_backends(s: &str) -> Result<Backends, String> {
-    let names: Vec<&str> = s.split(',').map(str::trim).collect();
-    if !(2..=3).contains(&names.len()) {
+    if !(2..=3).contains(&s.split(',').count()) {
         return Err(format!(
             "expected two or three backends separated by commas (e.g. rapier,dart or \
              rapier,dart,mujoco), got {s:?}"
         ));
     }
-    let pick = |name: &str| {
-        BackendChoice::from_str(name, false).map_err(|_| {
-            format!(
-                "unknown backend {name:?} (possible backends: {})",
-                hyq_engines::NAMES.join(", ")
-            )
-        })
-    };
-    let choices = names
-        .iter()
-        .map(|n| pick(n))
-        .collect::<Result<Vec<_>, String>>()?;
+    let choices = parse_backend_list(s)?;
     if choices.len() == 3
         && (choices[0] == choices[1] || choices[0] == choices[2] || choices[1] == choices[2])
     {

@@ -8,7 +8,9 @@
 //! `hyq.backends()`, hyq-env's engine tables, spec-tests' per-engine modules, and xtask's test
 //! stages. [`with_engine!`] dispatches a name to its backend type and [`for_each_engine!`]
 //! instantiates items once per built engine; both compile an engine's code only when its
-//! feature is on.
+//! feature is on. `AnyBackend` (with any engine built) is one backend type whose values run on
+//! different engines, for a vector env whose envs do: its options, `AnyOptions`, name the
+//! engine of each value.
 //!
 //! A front builds an engine in by turning on this crate's feature of the engine's name (the
 //! fronts' own `dart` and `mujoco` features do). Without any feature, the crate is the table
@@ -17,6 +19,24 @@
 //! Adding an engine: its crate, its row here, its two arms in [`with_engine!`]'s and
 //! [`for_each_engine!`]'s helper macros, and its cargo features (ARCHITECTURE.md, "Adding an
 //! engine").
+
+#[cfg(feature = "mixed")]
+mod mixed;
+#[cfg(feature = "mixed")]
+pub use mixed::{AnyBackend, AnyOptions};
+
+/// Where an engine's options come from (for [`AnyOptions::read`](mixed::AnyOptions::read)):
+/// hyq-env's `[physics]` configuration implements it by reading the table `[physics.<engine>]`
+/// (absent: the engine's defaults). Here, without any engine, so that hyq-env can implement it.
+pub trait OptionsSource {
+    /// Why options could not be read.
+    type Error;
+    /// The options of engine `engine`.
+    fn engine_options<O: serde::de::DeserializeOwned + Default>(
+        &self,
+        engine: &str,
+    ) -> Result<O, Self::Error>;
+}
 
 /// One physics engine.
 #[derive(Debug, PartialEq, Eq)]

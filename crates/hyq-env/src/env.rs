@@ -413,6 +413,27 @@ impl<B: Backend> Env<B> {
     pub fn new(model: Arc<RobotModel>, config: EnvConfig) -> Result<Self, EnvError> {
         config.validate()?;
         let options: B::Options = config.physics.engine_options(B::NAME)?;
+        Self::build(model, config, options)
+    }
+
+    /// As [`Env::new`], with the backend's options given instead of read from
+    /// `[physics.<B::NAME>]`: a backend that wraps several engines (hyq-engines' `AnyBackend`)
+    /// takes the engine of this env from them.
+    pub fn with_options(
+        model: Arc<RobotModel>,
+        config: EnvConfig,
+        options: B::Options,
+    ) -> Result<Self, EnvError> {
+        config.validate()?;
+        Self::build(model, config, options)
+    }
+
+    /// [`Env::new`] after the configuration was validated and the options read.
+    fn build(
+        model: Arc<RobotModel>,
+        config: EnvConfig,
+        options: B::Options,
+    ) -> Result<Self, EnvError> {
         let n = model.num_joints();
         let actuator = actuator(&model, &config)?;
         let space = ActionSpace::new(&model, &config.action);
@@ -1087,6 +1108,12 @@ impl<B: Backend> Env<B> {
     /// The validated configuration.
     pub fn config(&self) -> &EnvConfig {
         &self.config
+    }
+
+    /// The name of the engine this env runs on (the backend's `NAME`; for a backend that wraps
+    /// several engines, the engine of this env).
+    pub fn engine_name(&self) -> &'static str {
+        self.backend.engine_name()
     }
 
     /// The backend's options, as read from `[physics.<B::NAME>]`.

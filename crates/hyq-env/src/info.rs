@@ -298,6 +298,9 @@ pub enum InfoValue {
     ReasonFlags,
     /// A flag the front sets itself, since it does the work (Python's observation clipping).
     FrontFlag,
+    /// The name of the engine the env runs on (`Env::engine_name`), which the front reads from
+    /// the env: in a vector env whose envs run on different engines, each env's own.
+    Engine,
 }
 
 /// The length of a vector info value.
@@ -340,7 +343,7 @@ impl InfoKey {
             InfoValue::Int(_) => "int".into(),
             InfoValue::Float(_) | InfoValue::Terms => "float".into(),
             InfoValue::Bool(_) | InfoValue::ReasonFlags | InfoValue::FrontFlag => "bool".into(),
-            InfoValue::Text(_) => "str".into(),
+            InfoValue::Text(_) | InfoValue::Engine => "str".into(),
             InfoValue::Vector(_, VectorLen::Three) => "float64 array (3,)".into(),
             InfoValue::Vector(_, VectorLen::Joints) => format!("float64 array ({joints},)"),
             InfoValue::Vector(_, VectorLen::Links) => format!("float64 array ({links},)"),
@@ -351,7 +354,7 @@ impl InfoKey {
 /// The info's keys, in the order a front writes them: its one schema. The Python info dicts
 /// (single and vector), `hyq.INFO_SCHEMA` and the README's info table are made from it, so a
 /// key is added here alone.
-pub const INFO_KEYS: [InfoKey; 19] = [
+pub const INFO_KEYS: [InfoKey; 20] = [
     InfoKey {
         name: "t",
         value: InfoValue::Int(|i| i.t),
@@ -452,6 +455,11 @@ pub const INFO_KEYS: [InfoKey; 19] = [
                 .unwrap_or_default()
         }),
         meaning: "what diverged when `diverged` holds, else `\"\"`",
+    },
+    InfoKey {
+        name: "backend",
+        value: InfoValue::Engine,
+        meaning: "the engine this env runs on (`backend=`; in a vector env given a list of engines, this env's)",
     },
 ];
 

@@ -6,6 +6,11 @@
 //! seeds and actions, bit for bit, whatever the number of threads. Env i of a reset with seed s
 //! is seeded s + i (wrapping), as Gymnasium's vector envs do.
 //!
+//! Threads: every env is its own rayon task (`with_max_len(1)`), so an idle thread steals the
+//! next env rather than wait for a fixed half of the batch. Envs of one engine cost about the
+//! same per step, but envs on different engines (a `VecEnv<hyq_engines::AnyBackend>`) differ
+//! several-fold, and a coarse split would leave the thread with the cheap envs idle.
+//!
 //! Autoreset ([`AutoReset`]), for an env whose episode ended on step k:
 //! - `NextStep` (Gymnasium 1.x's default): step k reports the final observation, reward and
 //!   flags; on step k + 1 its action is ignored and it is reset (unseeded: its streams continue),
@@ -120,6 +125,32 @@ impl<B: Backend> VecEnv<B> {
         num_envs: usize,
         autoreset: AutoReset,
     ) -> Result<Self, VecEnvError> {
+        Self::from_fn(num_envs, autoreset, |_| {
+            Env::new(model.clone(), config.clone())
+        })
+    }
+
+    /// As [`VecEnv::new`], env i built with the backend options `options(i)` ([`Env::with_options`]):
+    /// a backend that wraps several engines (hyq-engines' `AnyBackend`) runs env i on the
+    /// engine its options name. An error of `options(i)` is env i's.
+    pub fn with_options(
+        model: Arc<RobotModel>,
+        config: EnvConfig,
+        num_envs: usize,
+        autoreset: AutoReset,
+        mut options: impl FnMut(usize) -> Result<B::Options, EnvError>,
+    ) -> Result<Self, VecEnvError> {
+        Self::from_fn(num_envs, autoreset, |i| {
+            Env::with_options(model.clone(), config.clone(), options(i)?)
+        })
+    }
+
+    /// `num_envs` envs, env i `make(i)`, after checking the count.
+    fn from_fn(
+        num_envs: usize,
+        autoreset: AutoReset,
+        mut make: impl FnMut(usize) -> Result<Env<B>, EnvError>,
+    ) -> Result<Self, VecEnvError> {
         if !(1..=MAX_ENVS).contains(&num_envs) {
             return Err(VecEnvError::Setup(format!(
                 "num_envs = {num_envs}: must be from 1 to {MAX_ENVS}"
@@ -127,8 +158,7 @@ impl<B: Backend> VecEnv<B> {
         }
         let slots = (0..num_envs)
             .map(|index| {
-                let env = Env::new(model.clone(), config.clone())
-                    .map_err(|source| VecEnvError::Env { index, source })?;
+                let env = make(index).map_err(|source| VecEnvError::Env { index, source })?;
                 Ok(Slot {
                     final_observation: vec![0.0; env.observation().len()],
                     final_info: env.info().clone(),
@@ -256,6 +286,7 @@ impl<B: Backend> VecEnv<B> {
                 .par_iter_mut()
                 .zip(observations.par_chunks_mut(obs_len))
                 .enumerate()
+                .with_max_len(1)
                 .try_for_each(|(index, (slot, out))| {
                     let seed = seed.map(|s| s.wrapping_add(index as u64));
                     let r = slot
@@ -350,6 +381,7 @@ impl<B: Backend> VecEnv<B> {
             )
                 .into_par_iter()
                 .enumerate()
+                .with_max_len(1)
                 .try_for_each(|(index, (slot, action, obs, reward, term, trunc))| {
                     step_slot(slot, mode, action, obs, reward, term, trunc)
                         .map_err(|source| VecEnvError::Env { index, source })

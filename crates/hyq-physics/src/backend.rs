@@ -50,6 +50,12 @@ pub trait Backend: Sized + Send + 'static {
         options: &Self::Options,
     ) -> Result<Self, PhysicsError>;
 
+    /// The name of the engine this world runs on: [`Backend::NAME`], except for a backend that
+    /// wraps several engines (hyq-engines' `AnyBackend`), where it is the engine of this value.
+    fn engine_name(&self) -> &'static str {
+        Self::NAME
+    }
+
     /// The robot being simulated.
     fn model(&self) -> &Arc<RobotModel>;
 

@@ -9,6 +9,7 @@
 
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 
+use hyq_engines::{AnyBackend, AnyOptions};
 use hyq_env::{
     ActionSpace, AutoReset, Env, EnvConfig, EnvError, ResetOptions, StepInfo, VecEnv, VecEnvError,
     VecStepOut,
@@ -87,6 +88,8 @@ impl<T: ?Sized> Held<T> {
 /// What the Python classes read from one environment, whatever its backend.
 pub trait EnvView: Send {
     fn model(&self) -> &Arc<RobotModel>;
+    /// The name of the engine this env runs on.
+    fn engine_name(&self) -> &'static str;
     fn observation_f32(&self) -> &[f32];
     fn observation_layout(&self) -> &ObservationLayout;
     fn action_space(&self) -> &ActionSpace;
@@ -104,6 +107,9 @@ pub trait EnvView: Send {
 impl<B: Backend> EnvView for Env<B> {
     fn model(&self) -> &Arc<RobotModel> {
         Env::model(self)
+    }
+    fn engine_name(&self) -> &'static str {
+        Env::engine_name(self)
     }
     fn observation_f32(&self) -> &[f32] {
         Env::observation_f32(self)
@@ -221,21 +227,55 @@ pub fn make_env(
     })
 }
 
-/// `num_envs` environments of `model` on the backend named `backend`, on a pool of `threads`
-/// threads if given.
+/// `num_envs` environments of `model` on the backends named `backends`, assigned round-robin
+/// (env i on the (i mod length)-th), on a pool of `threads` threads if given. One engine, even
+/// listed several times, is a vector env of its own backend type; several are one
+/// `VecEnv<AnyBackend>`. Each name must be built in, and there must be an env per name.
 pub fn make_vec(
-    backend: &str,
+    backends: &[String],
     model: Arc<RobotModel>,
     config: EnvConfig,
     num_envs: usize,
     mode: AutoReset,
     threads: Option<usize>,
 ) -> PyResult<Box<dyn VecView>> {
-    with_backend!(backend, B => {
-        let mut vec = VecEnv::<B>::new(model, config, num_envs, mode).map_err(vec_env_error)?;
-        if let Some(threads) = threads {
-            vec = vec.with_threads(threads).map_err(vec_env_error)?;
+    let Some(first) = backends.first() else {
+        return Err(PyValueError::new_err(
+            "backend = []: expected a backend's name or a non-empty list of them",
+        ));
+    };
+    for name in backends {
+        if !hyq_engines::find(name).is_some_and(|e| e.built) {
+            return Err(backend_error(name));
         }
-        Ok(Box::new(vec) as Box<dyn VecView>)
+    }
+    if backends.iter().all(|b| b == first) {
+        return with_backend!(first, B => {
+            let vec = VecEnv::<B>::new(model, config, num_envs, mode).map_err(vec_env_error)?;
+            with_pool(vec, threads)
+        });
+    }
+    if num_envs < backends.len() {
+        return Err(PyValueError::new_err(format!(
+            "backend = {backends:?} lists {} engines but num_envs = {num_envs}: give at least \
+             one env per listed engine",
+            backends.len()
+        )));
+    }
+    let physics = config.physics.clone();
+    let vec = VecEnv::<AnyBackend>::with_options(model, config, num_envs, mode, |i| {
+        // Every name was checked to be built above, so each reads to Some.
+        Ok(AnyOptions::read(&backends[i % backends.len()], &physics)?.unwrap_or_default())
     })
+    .map_err(vec_env_error)?;
+    with_pool(vec, threads)
+}
+
+/// `vec` on a pool of `threads` threads if given, boxed as a view.
+fn with_pool<B: Backend>(vec: VecEnv<B>, threads: Option<usize>) -> PyResult<Box<dyn VecView>> {
+    let vec = match threads {
+        Some(threads) => vec.with_threads(threads).map_err(vec_env_error)?,
+        None => vec,
+    };
+    Ok(Box::new(vec) as Box<dyn VecView>)
 }

@@ -67,12 +67,13 @@ fn keys_of(info: &StepInfo) -> impl Iterator<Item = &'static InfoKey> {
 }
 
 /// The single env's info dict (see the module docs): every key of [`INFO_KEYS`] in its order,
-/// `observation_clipped` the front's flag.
+/// `observation_clipped` the front's flag and `engine` the name of the env's engine.
 pub fn info_dict<'py>(
     py: Python<'py>,
     info: &StepInfo,
     model: &RobotModel,
     observation_clipped: bool,
+    engine: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     // The core's episode counter (episodes since the env was built) is not a key: an info must
@@ -98,19 +99,21 @@ pub fn info_dict<'py>(
                 }
             }
             InfoValue::FrontFlag => d.set_item(key.name, observation_clipped)?,
+            InfoValue::Engine => d.set_item(key.name, engine)?,
         }
     }
     Ok(d)
 }
 
 /// The vector info of `infos`, one per env, of envs of `model`, with each env's
-/// `observation_clipped` flag (see the module docs): every key of [`INFO_KEYS`] as an array over
-/// the envs, with its `_key` mask.
+/// `observation_clipped` flag and engine's name (see the module docs): every key of
+/// [`INFO_KEYS`] as an array over the envs, with its `_key` mask.
 pub fn vector_info_dict<'py>(
     py: Python<'py>,
     infos: &[&StepInfo],
     model: &RobotModel,
     observation_clipped: &[bool],
+    engines: &[&str],
 ) -> PyResult<Bound<'py, PyDict>> {
     let n = infos.len();
     let d = PyDict::new(py);
@@ -177,6 +180,14 @@ pub fn vector_info_dict<'py>(
                     key.name,
                     observation_clipped.to_vec().into_pyarray(py).into_any(),
                 )?;
+            }
+            // An object array of str, as `Text`.
+            InfoValue::Engine => {
+                let values: Vec<Py<PyAny>> = engines
+                    .iter()
+                    .map(|e| PyString::new(py, e).into_any().unbind())
+                    .collect();
+                set(key.name, PyArray1::from_vec(py, values).into_any())?;
             }
         }
     }

@@ -53,7 +53,7 @@ impl Core {
         let env = self.env.get();
         let mut obs = env.observation_f32().to_vec();
         let clipped = clip_in_place(&mut obs, self.clip.as_ref());
-        let info = info_dict(py, env.info(), env.model(), clipped)?;
+        let info = info_dict(py, env.info(), env.model(), clipped, env.engine_name())?;
         Ok((obs.into_pyarray(py), info))
     }
 }

@@ -94,7 +94,10 @@ impl VecCore {
         let array = Array2::from_shape_vec((vec.num_envs(), vec.observation_len()), flat)
             .map_err(|e| PyValueError::new_err(format!("observations: {e}")))?;
         let infos: Vec<_> = (0..vec.num_envs()).map(|i| vec.info(i)).collect();
-        let info = vector_info_dict(py, &infos, vec.env(0).model(), &clipped)?;
+        let engines: Vec<&str> = (0..vec.num_envs())
+            .map(|i| vec.env(i).engine_name())
+            .collect();
+        let info = vector_info_dict(py, &infos, vec.env(0).model(), &clipped, &engines)?;
         Ok((array.into_pyarray(py), info))
     }
 
@@ -110,9 +113,10 @@ impl VecCore {
 impl VecCore {
     /// `num_envs` environments of one configuration (as `Core`), with the autoreset mode
     /// `"next_step"`, `"same_step"` or `"disabled"`, on rayon's global pool or on a pool of
-    /// `threads` threads.
+    /// `threads` threads; on `backend`, or on the engines of `backends` assigned round-robin
+    /// (env i on the (i mod length)-th).
     #[new]
-    #[pyo3(signature = (pairs, num_envs, autoreset_mode="next_step", config_file=None, threads=None, clip_observations=crate::CLIP_OBSERVATIONS_DEFAULT, render_width=hyq_render::DEFAULT_WIDTH_PX, render_height=hyq_render::DEFAULT_HEIGHT_PX, robot=None, backend=hyq_engines::DEFAULT.name))]
+    #[pyo3(signature = (pairs, num_envs, autoreset_mode="next_step", config_file=None, threads=None, clip_observations=crate::CLIP_OBSERVATIONS_DEFAULT, render_width=hyq_render::DEFAULT_WIDTH_PX, render_height=hyq_render::DEFAULT_HEIGHT_PX, robot=None, backend=hyq_engines::DEFAULT.name, backends=None))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         pairs: Vec<(String, String)>,
@@ -125,11 +129,13 @@ impl VecCore {
         render_height: u32,
         robot: Option<String>,
         backend: &str,
+        backends: Option<Vec<String>>,
     ) -> PyResult<Self> {
         let mode = self::autoreset_mode(autoreset_mode)?;
+        let backends = backends.unwrap_or_else(|| vec![backend.to_owned()]);
         let model = engines::robot(robot.as_deref())?;
         let config = config::build(config_file.as_deref(), &pairs)?;
-        let vec = engines::make_vec(backend, model, config, num_envs, mode, threads)?;
+        let vec = engines::make_vec(&backends, model, config, num_envs, mode, threads)?;
         let clip = clip_observations.then(|| table_bounds(vec.env(0)));
         let frames = FrameSource::new(render_width, render_height)?;
         Ok(Self {
@@ -267,7 +273,13 @@ impl VecCore {
             this.check_index(i)?;
             let vec = this.vec.get();
             let clipped = would_clip(vec.env(i).observation_f32(), this.clip.as_ref());
-            info_dict(py, vec.info(i), vec.env(i).model(), clipped)
+            info_dict(
+                py,
+                vec.info(i),
+                vec.env(i).model(),
+                clipped,
+                vec.env(i).engine_name(),
+            )
         })
     }
 
@@ -302,7 +314,14 @@ impl VecCore {
                 return Ok(None);
             };
             let clipped = would_clip(obs, this.clip.as_ref());
-            info_dict(py, info, vec.env(i).model(), clipped).map(Some)
+            info_dict(
+                py,
+                info,
+                vec.env(i).model(),
+                clipped,
+                vec.env(i).engine_name(),
+            )
+            .map(Some)
         })
     }
 
@@ -409,6 +428,16 @@ impl VecCore {
             Ok(config::action_mode_name(
                 this.vec.get().env(0).config().action.mode,
             ))
+        })
+    }
+
+    /// Each env's engine, in env order.
+    fn backends<'py>(slf: &Bound<'py, Self>) -> PyResult<Vec<&'static str>> {
+        call(slf, "backends", |this| {
+            let vec = this.vec.get();
+            Ok((0..vec.num_envs())
+                .map(|i| vec.env(i).engine_name())
+                .collect())
         })
     }
 

@@ -131,3 +131,22 @@ def test_numpy_actions_are_taken_as_tensors_and_junk_is_refused_by_name() -> Non
         env.step([["a"] * 12] * 2)
     env.close()
     env2.close()
+
+
+def test_a_list_of_engines_is_the_mixed_vector_env() -> None:
+    import hyq
+
+    engines = list(hyq.BACKENDS)
+    env = HyQRslRlVecEnv(num_envs=N, seed=4, backend=engines, **CONFIG)
+    expected = tuple(engines[i % len(engines)] for i in range(N))
+    assert env.backends == expected
+    reference = HyQVectorEnv(num_envs=N, autoreset_mode=AutoresetMode.SAME_STEP,
+                             backend=engines, **CONFIG)
+    obs, infos = reference.reset(seed=4)
+    assert tuple(infos["backend"]) == expected
+    np.testing.assert_array_equal(env.get_observations()["policy"].numpy(), obs)
+    a = actions(1)[0]
+    got, rewards, _, _ = env.step(torch.as_tensor(a))
+    want, want_rewards, *_ = reference.step(a)
+    np.testing.assert_array_equal(got["policy"].numpy(), want)
+    np.testing.assert_array_equal(rewards.numpy(), want_rewards.astype(np.float32))

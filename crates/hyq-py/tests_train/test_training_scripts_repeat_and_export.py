@@ -228,3 +228,25 @@ def test_a_walk_checkpoint_widened_for_the_height_scan_acts_as_it_did(rsl_runs, 
     with torch.inference_mode():
         assert torch.equal(widened(wide), flat(group))
     env.close()
+
+
+def test_backends_trains_on_a_mix_and_evaluates_on_every_engine(tmp_path: Path) -> None:
+    import hyq
+
+    engines = list(hyq.BACKENDS)
+    args = ["--backends", ",".join(engines), *RSL[2:]]
+    out = train("train_rsl_rl.py", args, tmp_path / "mix")
+    config = json.loads((out / "config.json").read_text())
+    assert config["backends"] == engines and config["backend"] == ",".join(engines)
+    result = json.loads((out / "eval.json").read_text())
+    header = (out / "evals.csv").read_text().splitlines()[0].split(",")
+    if len(engines) > 1:
+        assert list(result["per_engine"]) == engines
+        assert result["worst_reach_rate"] == min(r["reach_rate"] for r in result["per_engine"].values())
+        assert len(result["episodes"]) == sum(len(r["episodes"]) for r in result["per_engine"].values())
+        assert [f"{e}_reach_rate" for e in engines] == [h for h in header if h.endswith("_reach_rate")]
+    for name in ("train_rsl_rl.py", "train_sb3_ppo.py"):
+        done = script(name, "--backends", "rapier,bullet", "--out", tmp_path / "never")
+        assert done.returncode != 0 and "--backends rapier,bullet" in done.stderr
+        assert len(done.stderr.strip().splitlines()) == 1, done.stderr
+    assert not (tmp_path / "never").exists()

@@ -107,3 +107,15 @@ impl Table for PhysicsConfig {
         })
     }
 }
+
+/// hyq-engines reads an engine's options from the engine's table, by name (its `AnyOptions`
+/// for a mixed-engine env).
+impl hyq_engines::OptionsSource for PhysicsConfig {
+    type Error = ConfigError;
+    fn engine_options<O: DeserializeOwned + Default>(
+        &self,
+        engine: &str,
+    ) -> Result<O, ConfigError> {
+        PhysicsConfig::engine_options(self, engine)
+    }
+}

@@ -18,8 +18,9 @@ episode's first observation, as rsl_rl expects) and fills those keys::
 The observation group is ``"policy"`` (map it with ``obs_groups = {"actor": ["policy"],
 "critic": ["policy"]}``). ``extras["log"]`` holds, over the episodes that ended in the step,
 ``hyq/distance_m`` (K − D^T), ``hyq/reach_rate``, ``hyq/fall_rate``,
-``hyq/joint_limit_rate`` and ``hyq/episode_return``; rsl_rl's logger averages each over the
-iteration. Episode lengths belong to the core: ``episode_length_buf`` reports them, and
+``hyq/joint_limit_rate`` and ``hyq/episode_return`` (on several engines, also each engine's
+``hyq/<engine>_distance_m`` and ``hyq/<engine>_reach_rate``); rsl_rl's logger averages each
+over the iteration. Episode lengths belong to the core: ``episode_length_buf`` reports them, and
 assigning it (rsl_rl's ``init_at_random_ep_len``) is refused.
 
 Importing this module needs rsl_rl (and so PyTorch and tensordict).
@@ -55,7 +56,9 @@ class HyQRslRlVecEnv(VecEnv):
     Arguments: ``num_envs``; ``seed`` (env i is seeded ``seed + i`` at the first reset, made
     when the adapter is built); ``device`` (where the tensors go; the envs step on the CPU);
     ``threads`` (a dedicated rayon pool; results do not depend on it); and every argument of
-    ``hyq.HyQEnv`` (``robot``, ``backend``, configuration keys, ``env_config``).
+    ``hyq.HyQEnv`` (``robot``, ``backend``, configuration keys, ``env_config``), ``backend``
+    also a list of engines assigned round-robin to the envs (``backend=["rapier", "mujoco"]``,
+    as ``hyq.HyQVectorEnv`` takes it; ``backends`` names each env's).
     """
 
     def __init__(
@@ -73,6 +76,8 @@ class HyQRslRlVecEnv(VecEnv):
             **kwargs,
         )
         self.num_envs = self.venv.num_envs
+        #: Each env's engine, in env order.
+        self.backends = self.venv.backends
         self.num_actions = int(self.venv.single_action_space.shape[0])
         self.max_episode_length = int(self.venv.max_time_steps)
         self.device = torch.device(device)
@@ -163,7 +168,7 @@ class HyQRslRlVecEnv(VecEnv):
         """The facts of the episodes that ended in this step, one value per episode."""
         infos = [info for _, info, _, _ in self.ended]
         column = lambda values: torch.tensor(values, dtype=torch.float32, device=self.device)  # noqa: E731
-        return {
+        log = {
             "hyq/distance_m": column([_distance_walked(info) for info in infos]),
             "hyq/reach_rate": column([float(info["reached"]) for info in infos]),
             "hyq/fall_rate": column([float(info["fell"]) for info in infos]),
@@ -171,6 +176,13 @@ class HyQRslRlVecEnv(VecEnv):
             "hyq/episode_return": column(self._returns[ended].tolist()),
             "hyq/episode_length": column(self._lengths[ended].astype(np.float64).tolist()),
         }
+        if len(set(self.backends)) > 1:
+            # On several engines, each engine's distance and reach rate too.
+            for engine in dict.fromkeys(info["backend"] for info in infos):
+                mine = [info for info in infos if info["backend"] == engine]
+                log[f"hyq/{engine}_distance_m"] = column([_distance_walked(i) for i in mine])
+                log[f"hyq/{engine}_reach_rate"] = column([float(i["reached"]) for i in mine])
+        return log
 
     def final_info(self, i: int) -> dict[str, Any] | None:
         """Env ``i``'s final info if its episode ended in the last step, else None."""

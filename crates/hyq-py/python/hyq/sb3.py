@@ -41,7 +41,9 @@ class HyQVecEnv(VecEnv):
 
     Arguments: ``num_envs``, ``seed`` (env i is seeded ``seed + i`` at the first reset; as
     ``VecEnv.seed``), and every argument of ``hyq.HyQEnv`` (configuration keys, ``env_config``,
-    ``render_mode``). ``infos[i]`` is ``HyQEnv``'s info of env i's step, plus
+    ``render_mode``), ``backend`` also a list of engines assigned round-robin to the envs
+    (``backend=["rapier", "mujoco"]``, as ``hyq.HyQVectorEnv`` takes it; ``infos[i]["backend"]``
+    names env i's). ``infos[i]`` is ``HyQEnv``'s info of env i's step, plus
     ``TimeLimit.truncated`` and, on the step that ended an episode, ``terminal_observation``
     (the info is the final step's; the returned observation is the next episode's first).
     """

@@ -28,7 +28,7 @@ from hyq._checks import (
     check_options,
     check_path,
 )
-from hyq.env import check_render_mode, check_seed, core_options, reset_goal
+from hyq.env import check_choice, check_render_mode, check_seed, core_options, reset_goal
 from hyq.observation import ObservationRow
 
 _MODES = {
@@ -38,15 +38,34 @@ _MODES = {
 }
 
 
+def split_backends(env_options: Mapping[str, Any]) -> tuple[dict[str, Any], list[str] | None]:
+    """``backend`` as a list (or tuple) of engine names, taken out of ``env_options``: the
+    engines assigned round-robin to the envs (env i on the ``i % len``-th). A single name stays
+    in the options, and the list is None."""
+    options = dict(env_options)
+    backend = options.get("backend")
+    if not isinstance(backend, (list, tuple)):
+        return options, None
+    del options["backend"]
+    names = [check_choice("backend", name, "") for name in backend]
+    if not names:
+        raise ValueError("backend = []: expected a backend's name or a non-empty list of them")
+    return options, names
+
+
 class HyQVectorEnv(VectorEnv):
-    """``num_envs`` environments of one robot, backend and configuration, stepped in one call.
+    """``num_envs`` environments of one robot and configuration, on one backend or a mix of
+    them, stepped in one call.
 
     Arguments: ``num_envs``; ``autoreset_mode`` (``AutoresetMode.NEXT_STEP`` by default, the
     Gymnasium default: the step after an episode ends resets that env, ignoring its action and
     returning its first observation with reward 0; also ``SAME_STEP`` and ``DISABLED``);
     ``max_episode_steps`` (what ``gym.make_vec`` passes from the registration: the core's t_max
     unless ``max_time_steps`` is given); ``threads`` (a dedicated rayon pool; results do not
-    depend on it); and every argument of ``HyQEnv``.
+    depend on it); and every argument of ``HyQEnv``. ``backend`` may also be a list of engines,
+    assigned round-robin to the envs (``backend=["rapier", "mujoco"]``: env i on the
+    ``i % 2``-th), each built in and each given at least one env; env i then gives exactly what
+    a single ``HyQEnv`` on its engine gives, and ``infos["backend"]`` names each env's engine.
 
     ``infos`` holds every key of ``HyQEnv``'s info (``hyq.INFO_SCHEMA``) as an array over the
     envs, each with Gymnasium's ``_key`` mask, as ``SyncVectorEnv`` would give them.
@@ -91,12 +110,14 @@ class HyQVectorEnv(VectorEnv):
         num_envs = check_count("num_envs", num_envs, 1, MAX_ENVS)
         if threads is not None:
             threads = check_count("threads", threads, 1, MAX_THREADS)
+        env_options, backends = split_backends(env_options)
         self._core = _core.VecCore(
             config_pairs(config),
             num_envs,
             autoreset_mode=_MODES[mode],
             config_file=check_path("config_file", env_options.get("config_file")),
             threads=threads,
+            backends=backends,
             **core_options(env_options),
         )
         self.num_envs = self._core.num_envs
@@ -122,6 +143,11 @@ class HyQVectorEnv(VectorEnv):
     def max_time_steps(self) -> int:
         """t_max: the env step at which the core truncates an episode."""
         return self._core.max_time_steps
+
+    @property
+    def backends(self) -> tuple[str, ...]:
+        """Each env's engine, in env order."""
+        return tuple(self._core.backends())
 
     @property
     def robot(self) -> str:
