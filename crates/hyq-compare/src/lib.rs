@@ -23,7 +23,9 @@
 //! A trained policy is compared closed loop instead ([`policy`]): each engine's own
 //! observations drive it, so the runs part by nature; that report states the sim-to-sim gap
 //! (per-engine episode outcomes, per-pair divergence, and the first engine's actions replayed
-//! open loop on every engine) and is not judged against the ledger.
+//! open loop on every engine), with each engine's gait diagnostics ([`gait`]: foot slip,
+//! actions at their bounds, action changes, stance duration, and per pair the agreement of the
+//! foot-contact patterns), and is not judged against the ledger.
 //!
 //! The library is generic over `hyq_physics::Backend` and names no engine. Its tests compare
 //! rapier with itself (exact agreement) and with a perturbed rapier (gravity 10 % stronger:
@@ -33,6 +35,7 @@
 mod compare;
 mod error;
 mod estimates;
+pub mod gait;
 pub mod ledger;
 pub mod metrics;
 mod multi;
