@@ -48,7 +48,9 @@ mod scenario;
 
 pub use compare::{ComparisonSpec, DEFAULT_ONE_STEP_STATES, Plan, Side, compare, parse_override};
 pub use error::CompareError;
-pub use estimates::{PairRatios, Rates, Stats};
+pub use estimates::{PairRatios, Rates, Stats, rate_text, ratio_text};
+/// The estimate shapes the reports' rates and ratios are given in (from hyq-stats).
+pub use hyq_stats::{Rate, Ratio};
 pub use ledger::{Known, Ledger, Metric, ScenarioScope, ToleranceSource};
 pub use multi::{MultiReport, PairSummary, compare_all, plot_many};
 pub use plot::PLOT_SIZE;
