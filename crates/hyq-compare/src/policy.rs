@@ -955,10 +955,25 @@ fn reasons(r: &[Reason]) -> String {
     }
 }
 
+/// "; stance 0.155 s, slip 3.86 mm": an engine's mean stance duration and foot slip per stance
+/// step for the plot's legend, each left out when no episode had it.
+fn gait_legend(g: &GaitStats) -> String {
+    let mut text = String::new();
+    // Writing into a String cannot fail.
+    if let Some(f) = g.stance_s {
+        let _ = write!(text, "; stance {:.3} s", f.stats.mean);
+    }
+    if let Some(f) = g.foot_slip_mm {
+        let sep = if text.is_empty() { "; " } else { ", " };
+        let _ = write!(text, "{sep}slip {:.2} mm", f.stats.mean);
+    }
+    text
+}
+
 /// Draws a policy comparison's plot into `path` (PNG, [`crate::PLOT_SIZE`]): every engine's
 /// first-episode trunk x closed loop (its legend with the mean travel over all episodes and its
-/// 95 % interval), the same under the replayed actions, and every pair's
-/// trunk position divergence over the first episodes.
+/// 95 % interval, and the mean stance duration and foot slip per stance step), the same under
+/// the replayed actions, and every pair's trunk position divergence over the first episodes.
 pub fn plot_policy(report: &PolicyReport, path: &Path) -> Result<(), CompareError> {
     let labels: Vec<&str> = report.sides.iter().map(|s| s.label.as_str()).collect();
     let title = format!(
@@ -972,17 +987,18 @@ pub fn plot_policy(report: &PolicyReport, path: &Path) -> Result<(), CompareErro
         .map(|t| t.position_m.iter().map(|p| p[0]).collect())
         .collect();
     // The closed-loop lines' legends carry each engine's mean travel over all its episodes
-    // (not only the first, which the line shows) with its 95 % interval.
+    // (not only the first, which the line shows) with its 95 % interval, and its gait.
     let legends: Vec<String> = report
         .traces
         .iter()
         .enumerate()
         .map(|(k, t)| match report.sides.get(k) {
             Some(s) => format!(
-                "{}; travel, mean of {} episodes: {} m",
+                "{}; travel, mean of {} episodes: {} m{}",
                 t.label,
                 s.episodes.len(),
-                s.travel_m.text(2)
+                s.travel_m.text(2),
+                gait_legend(&s.gait)
             ),
             None => t.label.clone(),
         })
@@ -1043,7 +1059,34 @@ pub fn plot_policy(report: &PolicyReport, path: &Path) -> Result<(), CompareErro
 
 #[cfg(test)]
 mod tests {
-    use super::travel;
+    use super::{gait_legend, travel};
+    use crate::estimates::Stats;
+    use crate::gait::{Figure, GaitStats};
+
+    #[test]
+    fn the_legend_gives_the_gait_an_engine_has() {
+        let f = |mean: f64| {
+            Some(Figure {
+                stats: Stats {
+                    mean,
+                    ..Stats::default()
+                },
+                episodes: 1,
+            })
+        };
+        let both = GaitStats {
+            stance_s: f(0.155),
+            foot_slip_mm: f(3.856),
+            ..GaitStats::default()
+        };
+        assert_eq!(gait_legend(&both), "; stance 0.155 s, slip 3.86 mm");
+        let slip = GaitStats {
+            foot_slip_mm: f(1.0),
+            ..GaitStats::default()
+        };
+        assert_eq!(gait_legend(&slip), "; slip 1.00 mm");
+        assert_eq!(gait_legend(&GaitStats::default()), "");
+    }
 
     #[test]
     fn travel_is_the_displacement_along_the_start_to_goal_direction() {
