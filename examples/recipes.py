@@ -23,6 +23,7 @@ from typing import Any, Callable
 import numpy as np
 
 import hyq
+import hyq.stats
 from hyq.vector import HyQVectorEnv
 
 #: The walk: the spec's task (the goal 5 m ahead, the default 1 mm reach cube) with shaping
@@ -188,14 +189,53 @@ def evaluate(
                         "reasons": info["reasons"].split("+"),
                     }
     venv.close()
-    done = [e for e in episodes if e is not None]
-    return {
+    return summarize([e for e in episodes if e is not None])
+
+
+def summarize(done: list[dict[str, Any]]) -> dict[str, Any]:
+    """An evaluation's result from its episodes: the means and rates, their 95 % intervals
+    (`estimates`) and evals.csv's interval columns."""
+    estimates = eval_estimates(done)
+    result: dict[str, Any] = {
         "episodes": done,
-        "mean_return": float(np.mean([e["return"] for e in done])),
-        "mean_distance_m": float(np.mean([e["distance_m"] for e in done])),
-        "fall_rate": float(np.mean(["fell" in e["reasons"] for e in done])),
-        "joint_limit_rate": float(np.mean(["joint_limit" in e["reasons"] for e in done])),
-        "reach_rate": float(np.mean(["reached" in e["reasons"] for e in done])),
+        "mean_return": estimates["return"]["mean"],
+        "mean_distance_m": estimates["distance_m"]["mean"],
+        "fall_rate": estimates["fell"]["mean"],
+        "joint_limit_rate": estimates["joint_limit"]["mean"],
+        "reach_rate": estimates["reached"]["mean"],
+        # Each figure as report.json gives it: {"mean", "ci95": [lo, hi]} (a rate adds k, n).
+        "estimates": estimates,
+    }
+    for column, key in EVAL_INTERVALS.items():
+        lo, hi = estimates[key]["ci95"]
+        result[f"{column}_lo"], result[f"{column}_hi"] = lo, hi
+    return result
+
+
+#: The evaluation's figures whose 95 % interval ends evals.csv records (as `<column>_lo` and
+#: `<column>_hi`), with their key in `estimates`.
+EVAL_INTERVALS = {
+    "mean_return": "return",
+    "mean_distance_m": "distance_m",
+    "fall_rate": "fell",
+    "joint_limit_rate": "joint_limit",
+    "reach_rate": "reached",
+}
+
+
+def eval_estimates(done: list[dict[str, Any]]) -> dict[str, dict[str, Any]]:
+    """The evaluation episodes' mean return and distance walked with their 95 % bootstrap
+    intervals (seeded with EVAL_SEED, so a repeated run records the same), and the rates of
+    falling, a joint limit and reaching the goal with their Wilson 95 % intervals, all from the
+    Rust hyq-stats through `hyq.stats` (the code `hyq compare --policy` reports with)."""
+    n = len(done)
+    rate = lambda reason: hyq.stats.wilson(sum(reason in e["reasons"] for e in done), n)  # noqa: E731
+    return {
+        "return": hyq.stats.mean_ci([e["return"] for e in done], seed=EVAL_SEED),
+        "distance_m": hyq.stats.mean_ci([e["distance_m"] for e in done], seed=EVAL_SEED),
+        "fell": rate("fell"),
+        "joint_limit": rate("joint_limit"),
+        "reached": rate("reached"),
     }
 
 
@@ -216,12 +256,7 @@ def evaluate_engines(
         return per_engine[engines[0]]
     done = [e for result in per_engine.values() for e in result["episodes"]]
     return {
-        "episodes": done,
-        "mean_return": float(np.mean([e["return"] for e in done])),
-        "mean_distance_m": float(np.mean([e["distance_m"] for e in done])),
-        "fall_rate": float(np.mean(["fell" in e["reasons"] for e in done])),
-        "joint_limit_rate": float(np.mean(["joint_limit" in e["reasons"] for e in done])),
-        "reach_rate": float(np.mean(["reached" in e["reasons"] for e in done])),
+        **summarize(done),
         "worst_reach_rate": min(r["reach_rate"] for r in per_engine.values()),
         "per_engine": per_engine,
     }
@@ -252,14 +287,18 @@ def eval_row(env_steps: int, result: dict[str, Any], fields: list[str]) -> dict[
 
 
 def eval_summary(result: dict[str, Any]) -> str:
-    """One line of an evaluation's means (on several engines, then each engine's)."""
+    """One line of an evaluation's means with their 95 % intervals and its rates as k/n with
+    their Wilson 95 % intervals (on several engines, then each engine's distance and reach)."""
+    e = result["estimates"]
+    text = hyq.stats.text
     line = (
-        f"return {result['mean_return']:.2f}, distance {result['mean_distance_m']:.2f} m, "
-        f"fell {result['fall_rate']:.0%}, joint limit {result['joint_limit_rate']:.0%}, "
-        f"reached {result['reach_rate']:.0%}"
+        f"return {text(e['return'], 2)}, distance {text(e['distance_m'], 2)} m, "
+        f"fell {text(e['fell'])}, joint limit {text(e['joint_limit'])}, "
+        f"reached {text(e['reached'])} (mean [95 % CI])"
     )
     for engine, r in result.get("per_engine", {}).items():
-        line += f"; {engine}: distance {r['mean_distance_m']:.2f} m, reached {r['reach_rate']:.0%}"
+        line += (f"; {engine}: distance {text(r['estimates']['distance_m'], 2)} m, "
+                 f"reached {text(r['estimates']['reached'])}")
     return line
 
 
@@ -342,7 +381,10 @@ PROGRESS_FIELDS = [
     "env_steps", "episodes", "mean_return", "mean_distance_m", "fall_rate",
     "joint_limit_rate", "reach_rate", "mean_length", "env_steps_per_s",
 ]
-EVAL_FIELDS = ["env_steps", "mean_return", "mean_distance_m", "fall_rate", "joint_limit_rate", "reach_rate"]
+EVAL_FIELDS = [
+    "env_steps", "mean_return", "mean_distance_m", "fall_rate", "joint_limit_rate", "reach_rate",
+    *(f"{column}_{end}" for column in EVAL_INTERVALS for end in ("lo", "hi")),
+]
 
 
 class EpisodeLog:
@@ -406,8 +448,16 @@ def plot_curve(rows: list[dict[str, float]], evals: list[dict[str, float]], path
         axes[1, 0].plot(x, col("reach_rate"), label="reached", color="C2")
         axes[1, 1].plot(x, col("mean_length") / 100.0)
     if evals:
-        axes[0, 0].plot(ex, ecol("mean_return"), "o", color="C3", label="deterministic, 20 eval episodes")
-        axes[0, 1].plot(ex, ecol("mean_distance_m"), "o", color="C3")
+        # The evaluations' means with their 95 % intervals as error bars (rows of an evals.csv
+        # written before the intervals were recorded have none).
+        def bars(key: str) -> np.ndarray | None:
+            if not all(f"{key}_lo" in r for r in evals):
+                return None
+            return np.abs(np.array([ecol(f"{key}_lo"), ecol(f"{key}_hi")]) - ecol(key))
+
+        axes[0, 0].errorbar(ex, ecol("mean_return"), yerr=bars("mean_return"), fmt="o", color="C3",
+                            label="deterministic, 20 eval episodes, 95 % CI")
+        axes[0, 1].errorbar(ex, ecol("mean_distance_m"), yerr=bars("mean_distance_m"), fmt="o", color="C3")
         axes[1, 0].plot(ex, ecol("fall_rate"), "o", color="C0")
         axes[1, 0].plot(ex, ecol("joint_limit_rate"), "o", color="C1")
         axes[1, 0].plot(ex, ecol("reach_rate"), "s", color="C2")

@@ -18,6 +18,7 @@ mod model;
 mod options;
 mod output;
 mod plot;
+mod policy_summary;
 mod render;
 mod run;
 mod soak;

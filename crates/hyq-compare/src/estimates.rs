@@ -59,7 +59,7 @@ impl Stats {
     }
 
     /// "7.440 [7.204, 7.676]" (`decimals` places), a dash for a missing interval.
-    pub(crate) fn text(&self, decimals: usize) -> String {
+    pub fn text(&self, decimals: usize) -> String {
         match self.ci95 {
             Some([lo, hi]) => format!(
                 "{:.decimals$} [{lo:.decimals$}, {hi:.decimals$}]",
@@ -116,7 +116,7 @@ impl Rates {
 }
 
 /// "18 of 20 (90 %) [70 %, 97 %]": the count, the rate and its Wilson interval.
-pub(crate) fn rate_text(r: &Rate) -> String {
+pub fn rate_text(r: &Rate) -> String {
     format!(
         "{} of {} ({:.0} %) [{:.0} %, {:.0} %]",
         r.k,
@@ -169,7 +169,7 @@ impl PairRatios {
 }
 
 /// "0.720 [0.690, 0.751] ≠ 1" (the interval excludes 1), "1.012 [0.95, 1.08]", or a dash.
-pub(crate) fn ratio_text(r: Option<&Ratio>) -> String {
+pub fn ratio_text(r: Option<&Ratio>) -> String {
     match r {
         Some(r) => format!(
             "{:.3} [{:.3}, {:.3}]{}",

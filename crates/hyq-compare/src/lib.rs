@@ -23,7 +23,9 @@
 //! A trained policy is compared closed loop instead ([`policy`]): each engine's own
 //! observations drive it, so the runs part by nature; that report states the sim-to-sim gap
 //! (per-engine episode outcomes, per-pair divergence, and the first engine's actions replayed
-//! open loop on every engine) and is not judged against the ledger.
+//! open loop on every engine), with each engine's gait diagnostics ([`gait`]: foot slip,
+//! actions at their bounds, action changes, stance duration, and per pair the agreement of the
+//! foot-contact patterns), and is not judged against the ledger.
 //!
 //! The library is generic over `hyq_physics::Backend` and names no engine. Its tests compare
 //! rapier with itself (exact agreement) and with a perturbed rapier (gravity 10 % stronger:
@@ -33,6 +35,7 @@
 mod compare;
 mod error;
 mod estimates;
+pub mod gait;
 pub mod ledger;
 pub mod metrics;
 mod multi;
@@ -45,7 +48,9 @@ mod scenario;
 
 pub use compare::{ComparisonSpec, DEFAULT_ONE_STEP_STATES, Plan, Side, compare, parse_override};
 pub use error::CompareError;
-pub use estimates::{PairRatios, Rates, Stats};
+pub use estimates::{PairRatios, Rates, Stats, rate_text, ratio_text};
+/// The estimate shapes the reports' rates and ratios are given in (from hyq-stats).
+pub use hyq_stats::{Rate, Ratio};
 pub use ledger::{Known, Ledger, Metric, ScenarioScope, ToleranceSource};
 pub use multi::{MultiReport, PairSummary, compare_all, plot_many};
 pub use plot::PLOT_SIZE;

@@ -29,6 +29,7 @@ use serde::Serialize;
 
 use crate::error::CompareError;
 use crate::estimates::{Columns, PairRatios, Rates, Stats, rate_text, ratio_text};
+use crate::gait::{self, Figure, GaitEpisode, GaitStats};
 use crate::metrics::{Divergence, compare_trajectories};
 use crate::plot::{COLOURS, PAIR_COLOURS, Panel, plot_panels};
 use crate::randomized::{RandomizedSide, drew_alike};
@@ -68,6 +69,9 @@ pub struct PolicySide {
     label: String,
     first: Trajectory,
     episodes: Vec<EpisodeOutcome>,
+    /// Each episode's foot contact flags (`first.num_feet` per sample), for the pairs' contact
+    /// agreement.
+    foot_contacts: Vec<Vec<bool>>,
 }
 
 impl PolicySide {
@@ -108,6 +112,8 @@ pub struct EpisodeOutcome {
     /// `[randomize]`'s draws for the episode and its pushes, when it is on (else not written).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub randomize: Option<EpisodeRandomization>,
+    /// The episode's gait diagnostics.
+    pub gait: GaitEpisode,
 }
 
 impl EpisodeOutcome {
@@ -125,6 +131,13 @@ impl EpisodeOutcome {
             travel_m: travel(start, end, t.goal),
             final_position: end,
             randomize: t.randomize.clone(),
+            gait: gait::episode(
+                &t.feet(&t.foot_contacts()),
+                t.env_dt,
+                &t.actions,
+                &t.action_low,
+                &t.action_high,
+            ),
         }
     }
 }
@@ -175,6 +188,7 @@ impl<P: Policy + Clone> PolicyPlan<P> {
         let mut policy = self.policy.clone();
         let mut first = None;
         let mut episodes = Vec::with_capacity(self.spec.episodes as usize);
+        let mut foot_contacts = Vec::with_capacity(self.spec.episodes as usize);
         for k in 0..self.spec.episodes {
             let seed = (k == 0).then_some(self.spec.seed);
             let traj = run_episode(label, &mut env, seed, None, |env, action| {
@@ -182,6 +196,7 @@ impl<P: Policy + Clone> PolicyPlan<P> {
                 true
             })?;
             episodes.push(EpisodeOutcome::of(k + 1, &traj));
+            foot_contacts.push(traj.foot_contacts());
             if first.is_none() {
                 first = Some(traj);
             }
@@ -191,6 +206,7 @@ impl<P: Policy + Clone> PolicyPlan<P> {
             label: label.to_owned(),
             first,
             episodes,
+            foot_contacts,
         })
     }
 
@@ -297,6 +313,7 @@ fn side_report(s: &PolicySide, seed: u64) -> PolicySideReport {
         ret: Stats::of(&column(e, |o| o.ret), seed),
         steps: Stats::of(&column(e, |o| o.steps as f64), seed),
         rates: Rates::of(e.iter().map(|o| o.end_reasons.as_slice())),
+        gait: GaitStats::of(&e.iter().map(|o| o.gait).collect::<Vec<_>>(), seed),
         ended_by: ends
             .into_iter()
             .map(|(reasons, episodes)| EndCount { reasons, episodes })
@@ -336,11 +353,25 @@ fn pairs_of(sides: &[PolicySide], seed: u64) -> Vec<PolicyPair> {
                 travel_gap_m: mean(&cb.travel_m) - mean(&ca.travel_m),
                 return_gap: mean(&cb.ret) - mean(&ca.ret),
                 ratios: PairRatios::of(&ca, &cb, seed),
+                contact_agreement: contact_agreement(a, b, seed),
                 divergence_m: d.series[0].clone(),
             });
         }
     }
     pairs
+}
+
+/// The foot-contact pattern agreement of `a`'s and `b`'s episodes, episode by episode.
+fn contact_agreement(a: &PolicySide, b: &PolicySide, seed: u64) -> Option<Figure> {
+    if a.first.num_feet != b.first.num_feet {
+        return None;
+    }
+    let shares = a
+        .foot_contacts
+        .iter()
+        .zip(&b.foot_contacts)
+        .map(|(x, y)| gait::contact_agreement(a.first.num_feet, x, y));
+    Figure::of(shares, seed)
 }
 
 /// One figure of every episode, in order.
@@ -389,6 +420,8 @@ pub struct PolicySideReport {
     /// episodes).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub rates: Option<Rates>,
+    /// The gait diagnostics over the episodes (see [`crate::gait`]).
+    pub gait: GaitStats,
     /// How the episodes ended.
     pub ended_by: Vec<EndCount>,
     /// With `[randomize]` on, the falls and pushes (else not written).
@@ -425,6 +458,11 @@ pub struct PolicyPair {
     pub return_gap: f64,
     /// The second's means over the first's, with their intervals.
     pub ratios: PairRatios,
+    /// The share of steps on which all feet's contact flags agree, episode k of one engine
+    /// against episode k of the other (the same reset), over the episodes; absent if no
+    /// episode pair shares a step.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub contact_agreement: Option<Figure>,
     /// e_p(t) of the first episodes, per sample (m).
     #[serde(skip)]
     pub divergence_m: Vec<f64>,
@@ -559,6 +597,7 @@ impl PolicyReport {
         let mut m = String::new();
         self.markdown_header(&mut m, command);
         self.markdown_per_engine(&mut m);
+        self.markdown_gait(&mut m);
         self.markdown_randomized(&mut m);
         self.markdown_pairs(&mut m);
         self.markdown_replay(&mut m);
@@ -651,6 +690,59 @@ impl PolicyReport {
             w,
             "\nIntervals: a mean's is the percentile bootstrap of the episodes (10,000 resamples seeded with {}), a rate's (k of n episodes) is Wilson's; both 95 %. An episode can end for several reasons at once.",
             self.seed
+        );
+    }
+
+    /// Each engine's gait diagnostics, and each pair's foot-contact pattern agreement.
+    fn markdown_gait(&self, w: &mut String) {
+        let labels: Vec<&str> = self.sides.iter().map(|s| s.label.as_str()).collect();
+        // Writing into a String cannot fail.
+        let _ = writeln!(w, "\n## Gait\n");
+        let _ = writeln!(w, "| | {} |", labels.join(" | "));
+        let _ = writeln!(w, "|---|{}", "---|".repeat(labels.len()));
+        let mut row = |name: &str, f: fn(&GaitStats) -> Option<Figure>, scale: f64, dp: usize| {
+            let cells: Vec<String> = self
+                .sides
+                .iter()
+                .map(|s| figure_text(f(&s.gait), scale, dp, self.episodes))
+                .collect();
+            let _ = writeln!(w, "| {name} | {} |", cells.join(" | "));
+        };
+        row("foot slip per stance step (mm)", |g| g.foot_slip_mm, 1.0, 2);
+        row(
+            "actions at their bounds (%)",
+            |g| g.actions_at_bounds,
+            100.0,
+            1,
+        );
+        row(
+            "action change per step, mean abs(a_t − a_t−1)",
+            |g| g.action_change,
+            1.0,
+            4,
+        );
+        row("stance duration (s)", |g| g.stance_s, 1.0, 3);
+        let _ = writeln!(
+            w,
+            "\nEach: the mean over the episodes of each episode's figure, with its 95 % bootstrap interval (seeded with {}); (k of n): only k episodes had the figure. Foot slip: the horizontal travel of a foot sphere's centre over an env step on which the foot touched the ground on that step and the one before. Actions at their bounds: the share of action components (every joint, every step) at or beyond the action space's ends. Stance duration: complete stance phases only (a swing before and after inside the episode).\n",
+            self.seed
+        );
+        let _ = writeln!(
+            w,
+            "| pair | foot-contact pattern agreement (% of steps) |\n|---|---|"
+        );
+        for p in &self.pairs {
+            let _ = writeln!(
+                w,
+                "| {} vs {} | {} |",
+                p.labels[0],
+                p.labels[1],
+                figure_text(p.contact_agreement, 100.0, 1, self.episodes)
+            );
+        }
+        let _ = writeln!(
+            w,
+            "\nAgreement: the share of the steps both engines' episode k lived through (the same reset) on which every foot's contact flag is the same on both, over the episodes."
         );
     }
 
@@ -836,6 +928,25 @@ impl PolicyReport {
     }
 }
 
+/// "2.31 [2.10, 2.52]" (the figure times `scale`, `dp` places), with "(k of n)" when only k of
+/// the `episodes` had it; a dash when none did.
+fn figure_text(f: Option<Figure>, scale: f64, dp: usize, episodes: u32) -> String {
+    let Some(f) = f else {
+        return "—".to_owned();
+    };
+    let scaled = Stats {
+        mean: f.stats.mean * scale,
+        ci95: f.stats.ci95.map(|c| c.map(|v| v * scale)),
+        ..f.stats
+    };
+    let text = scaled.text(dp);
+    if f.episodes == episodes as usize {
+        text
+    } else {
+        format!("{text} ({} of {episodes})", f.episodes)
+    }
+}
+
 fn reasons(r: &[Reason]) -> String {
     if r.is_empty() {
         "—".to_owned()
@@ -844,10 +955,25 @@ fn reasons(r: &[Reason]) -> String {
     }
 }
 
+/// "; stance 0.155 s, slip 3.86 mm": an engine's mean stance duration and foot slip per stance
+/// step for the plot's legend, each left out when no episode had it.
+fn gait_legend(g: &GaitStats) -> String {
+    let mut text = String::new();
+    // Writing into a String cannot fail.
+    if let Some(f) = g.stance_s {
+        let _ = write!(text, "; stance {:.3} s", f.stats.mean);
+    }
+    if let Some(f) = g.foot_slip_mm {
+        let sep = if text.is_empty() { "; " } else { ", " };
+        let _ = write!(text, "{sep}slip {:.2} mm", f.stats.mean);
+    }
+    text
+}
+
 /// Draws a policy comparison's plot into `path` (PNG, [`crate::PLOT_SIZE`]): every engine's
 /// first-episode trunk x closed loop (its legend with the mean travel over all episodes and its
-/// 95 % interval), the same under the replayed actions, and every pair's
-/// trunk position divergence over the first episodes.
+/// 95 % interval, and the mean stance duration and foot slip per stance step), the same under
+/// the replayed actions, and every pair's trunk position divergence over the first episodes.
 pub fn plot_policy(report: &PolicyReport, path: &Path) -> Result<(), CompareError> {
     let labels: Vec<&str> = report.sides.iter().map(|s| s.label.as_str()).collect();
     let title = format!(
@@ -861,17 +987,18 @@ pub fn plot_policy(report: &PolicyReport, path: &Path) -> Result<(), CompareErro
         .map(|t| t.position_m.iter().map(|p| p[0]).collect())
         .collect();
     // The closed-loop lines' legends carry each engine's mean travel over all its episodes
-    // (not only the first, which the line shows) with its 95 % interval.
+    // (not only the first, which the line shows) with its 95 % interval, and its gait.
     let legends: Vec<String> = report
         .traces
         .iter()
         .enumerate()
         .map(|(k, t)| match report.sides.get(k) {
             Some(s) => format!(
-                "{}; travel, mean of {} episodes: {} m",
+                "{}; travel, mean of {} episodes: {} m{}",
                 t.label,
                 s.episodes.len(),
-                s.travel_m.text(2)
+                s.travel_m.text(2),
+                gait_legend(&s.gait)
             ),
             None => t.label.clone(),
         })
@@ -932,7 +1059,34 @@ pub fn plot_policy(report: &PolicyReport, path: &Path) -> Result<(), CompareErro
 
 #[cfg(test)]
 mod tests {
-    use super::travel;
+    use super::{gait_legend, travel};
+    use crate::estimates::Stats;
+    use crate::gait::{Figure, GaitStats};
+
+    #[test]
+    fn the_legend_gives_the_gait_an_engine_has() {
+        let f = |mean: f64| {
+            Some(Figure {
+                stats: Stats {
+                    mean,
+                    ..Stats::default()
+                },
+                episodes: 1,
+            })
+        };
+        let both = GaitStats {
+            stance_s: f(0.155),
+            foot_slip_mm: f(3.856),
+            ..GaitStats::default()
+        };
+        assert_eq!(gait_legend(&both), "; stance 0.155 s, slip 3.86 mm");
+        let slip = GaitStats {
+            foot_slip_mm: f(1.0),
+            ..GaitStats::default()
+        };
+        assert_eq!(gait_legend(&slip), "; slip 1.00 mm");
+        assert_eq!(gait_legend(&GaitStats::default()), "");
+    }
 
     #[test]
     fn travel_is_the_displacement_along_the_start_to_goal_direction() {

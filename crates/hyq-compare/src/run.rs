@@ -5,7 +5,7 @@
 use std::sync::Arc;
 
 use hyq_env::{Env, EnvConfig, EpisodeRandomization, Reasons, ResetOptions};
-use hyq_physics::na::UnitQuaternion;
+use hyq_physics::na::{Isometry3, UnitQuaternion};
 use hyq_physics::{Backend, RobotModel, RobotState, TrunkState};
 use serde::Serialize;
 
@@ -46,6 +46,11 @@ pub struct Trajectory {
     /// Latched contact flags (rows 24–28), one per tracked body per sample; all false after
     /// reset.
     pub contacts: Vec<bool>,
+    /// Feet per sample (the first tracked bodies).
+    pub num_feet: usize,
+    /// Each foot collision sphere's centre in the world (m), `num_feet` per sample, from the
+    /// engine's own body poses (`Backend::link_poses`).
+    pub foot_centres: Vec<[f64; 3]>,
     /// The full state after each sample (for the one-step comparison).
     pub states: Vec<RobotState>,
     /// The joint targets of the step that followed each sample (rad); the last sample's are
@@ -53,6 +58,10 @@ pub struct Trajectory {
     pub targets: Vec<f64>,
     /// The actions of every step, as fed (step-major), `num_joints` per step.
     pub actions: Vec<f64>,
+    /// The action space's low end, per joint.
+    pub action_low: Vec<f64>,
+    /// The action space's high end, per joint.
+    pub action_high: Vec<f64>,
     /// Why the episode ended (empty if the script ran out first, which cannot happen: the
     /// episode's t_max is the script's length).
     pub reasons: Reasons,
@@ -91,6 +100,25 @@ impl Trajectory {
     pub fn contacts_at(&self, t: usize) -> &[bool] {
         let k = self.tracked.len();
         &self.contacts[t * k..(t + 1) * k]
+    }
+
+    /// The feet's contact flags, `num_feet` per sample (the trunk's left out).
+    pub fn foot_contacts(&self) -> Vec<bool> {
+        let k = self.tracked.len().max(1);
+        self.contacts
+            .chunks_exact(k)
+            .flat_map(|c| &c[..self.num_feet.min(k)])
+            .copied()
+            .collect()
+    }
+
+    /// The feet over time, for the gait diagnostics; `contacts` is [`Self::foot_contacts`].
+    pub fn feet<'a>(&'a self, contacts: &'a [bool]) -> crate::gait::Feet<'a> {
+        crate::gait::Feet {
+            num_feet: self.num_feet,
+            contacts,
+            centres: &self.foot_centres,
+        }
     }
 
     /// The joint targets of the step after sample `t`.
@@ -164,9 +192,13 @@ pub fn run_episode<B: Backend>(
         orientations: Vec::with_capacity(steps + 1),
         joint_angles: Vec::with_capacity((steps + 1) * n),
         contacts: Vec::new(),
+        num_feet: model.num_feet(),
+        foot_centres: Vec::with_capacity((steps + 1) * model.num_feet()),
         states: Vec::with_capacity(steps + 1),
         targets: Vec::with_capacity((steps + 1) * n),
         actions: Vec::with_capacity(steps * n),
+        action_low: env.action_space().low().to_vec(),
+        action_high: env.action_space().high().to_vec(),
         reasons: Reasons::NONE,
         end_step: 0,
         sums: TermSums::default(),
@@ -175,7 +207,8 @@ pub fn run_episode<B: Backend>(
         final_distance_m: initial_distance_m,
         randomize: env.episode_draw().map(EpisodeRandomization::starting),
     };
-    let record = |traj: &mut Trajectory, env: &Env<B>| {
+    let mut poses = vec![Isometry3::identity(); model.links().len()];
+    let mut record = |traj: &mut Trajectory, env: &Env<B>| {
         let trunk: &TrunkState = env.trunk();
         let p = trunk.pose.translation.vector;
         traj.positions.push([p.x, p.y, p.z]);
@@ -184,6 +217,9 @@ pub fn run_episode<B: Backend>(
         // The simulated contacts (feet, then the trunk), not the observed flags, which
         // observation noise may flip.
         traj.contacts.extend_from_slice(env.contacts());
+        env.backend().link_poses(&mut poses);
+        traj.foot_centres
+            .extend(foot_centres(&model, &poses).take(traj.num_feet));
         traj.states.push(env.backend().state());
     };
     record(&mut traj, env);
@@ -214,6 +250,24 @@ pub fn run_episode<B: Backend>(
     let last = traj.targets[traj.targets.len().saturating_sub(n)..].to_vec();
     traj.targets.extend_from_slice(&last);
     Ok(traj)
+}
+
+/// Each tracked body's first collision shape's centre in the world (its body's origin if it has
+/// none), in tracked order, from the bodies' world `poses`.
+fn foot_centres<'a>(
+    model: &'a RobotModel,
+    poses: &'a [Isometry3<f64>],
+) -> impl Iterator<Item = [f64; 3]> + 'a {
+    model.tracked().iter().map(|t| {
+        let pose = poses[t.link];
+        let centre = t
+            .shapes
+            .first()
+            .and_then(|&s| model.links()[t.link].collisions.get(s))
+            .map_or(pose, |shape| pose * shape.origin);
+        let p = centre.translation.vector;
+        [p.x, p.y, p.z]
+    })
 }
 
 /// How long the standing-height run holds the pose (s): HyQ settles within about 1 s.

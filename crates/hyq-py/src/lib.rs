@@ -28,6 +28,7 @@ mod guard;
 mod info;
 mod single;
 mod spaces;
+mod stats;
 mod vector;
 
 use pyo3::prelude::*;
@@ -72,6 +73,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(spaces::observation_table, m)?)?;
     m.add_function(wrap_pyfunction!(backends, m)?)?;
     m.add_function(wrap_pyfunction!(randomize_info_schema, m)?)?;
+    stats::register(m)?;
     m.add("ROBOTS", hyq_formats::robots::NAMES.to_vec())?;
     m.add("DEFAULT_ROBOT", hyq_physics::bundled::DEFAULT)?;
     m.add("DEFAULT_BACKEND", hyq_engines::DEFAULT.name)?;
