@@ -12,7 +12,7 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use super::in_world;
 use super::validate::{finite_positive, in_range, invalid};
-use super::{ConfigError, EnvConfig, Table};
+use super::{ConfigError, EnvConfig, GoalConfig, GoalMode, Table, TaskKind};
 
 /// The steepest slope (degrees) the robot is put down on: steeper, a standing quadruped's
 /// feet slide or it tips over before the episode starts.
@@ -63,7 +63,8 @@ pub struct TerrainConfig {
     /// PNG; finite and > 0. (default: 1.0)
     pub vertical_scale: f64,
     /// The grid's side lengths along x and y (m), each in (0, 200], the whole rectangle inside
-    /// the world. (default: [16.0, 16.0], every goal up to 8 m from the spawn point)
+    /// the world, and under every goal `[goal]` can give in the goal task (outside it there is
+    /// no ground). (default: [16.0, 16.0], every goal up to 8 m from the spawn point)
     pub size_m: [f64; 2],
     /// The grid's centre [x, y] (m). (default: unset, the spawn point)
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -302,6 +303,95 @@ impl TerrainConfig {
     }
 }
 
+impl TerrainConfig {
+    /// Every goal the `[goal]` table can give lies on the field (the goal task only): outside
+    /// the field's rectangle there is no ground, so a robot walking to such a goal walks off
+    /// the edge and every episode ends `diverged` before it can reach it. The key blamed is
+    /// the field's (`terrain.center_m` when given, else `terrain.size_m`); the message names
+    /// the goal's key and, for a height file, the file laid over the field.
+    fn check_goal_on_field(&self, config: &EnvConfig) -> Result<(), ConfigError> {
+        if config.task.kind != TaskKind::Goal {
+            return Ok(());
+        }
+        let [cx, cy] = self.center_m.unwrap_or(config.reset.spawn_xy_m);
+        let [hx, hy] = self.size_m.map(|s| 0.5 * s);
+        // A goal on the edge is on the field; the slack absorbs cos 90° != 0.
+        let on = |[x, y]: [f64; 2]| (x - cx).abs() <= hx + 1e-9 && (y - cy).abs() <= hy + 1e-9;
+        let Some(goal) = goal_extremes(&config.goal, config.reset.spawn_xy_m)
+            .into_iter()
+            .find(|g| !on(*g))
+        else {
+            return Ok(());
+        };
+        let (key, value) = match self.center_m {
+            Some(c) => ("terrain.center_m", c),
+            None => ("terrain.size_m", self.size_m),
+        };
+        let g = &config.goal;
+        let goal_key = match g.mode {
+            GoalMode::Ahead => format!("goal.distance_m = {}", short(g.distance_m)),
+            GoalMode::Fixed => "goal.position".to_owned(),
+            GoalMode::Random => "goal.distance_range_m, goal.heading_range_deg".to_owned(),
+        };
+        let file = match &self.file {
+            Some(f) if self.kind == TerrainKind::Heightfield => {
+                format!(
+                    " (terrain.file {:?} is laid over it)",
+                    f.display().to_string()
+                )
+            }
+            _ => String::new(),
+        };
+        Err(invalid(
+            key,
+            value,
+            &format!(
+                "the field x {:.2} .. {:.2} m, y {:.2} .. {:.2} m{file} does not lie under the \
+                 goal at [{:.2}, {:.2}] ({goal_key}): outside the field there is no ground and \
+                 the robot would walk off its edge; widen or move the field (terrain.size_m, \
+                 terrain.center_m) or bring the goal onto it",
+                cx - hx,
+                cx + hx,
+                cy - hy,
+                cy + hy,
+                goal[0],
+                goal[1]
+            ),
+        ))
+    }
+}
+
+/// The goals of `g` from the spawn point `spawn` that reach furthest along ±x and ±y: the one
+/// goal of the `"ahead"` and `"fixed"` modes; for `"random"`, each end of the distance range
+/// at each end of the heading range and at every axis direction (0°, ±90°, ±180°) inside it,
+/// where x = d cos ψ and y = d sin ψ take their extremes. Every goal the mode can draw lies
+/// inside an axis-aligned rectangle that holds these.
+fn goal_extremes(g: &GoalConfig, spawn: [f64; 2]) -> Vec<[f64; 2]> {
+    let [sx, sy] = spawn;
+    match g.mode {
+        GoalMode::Ahead => vec![[sx + g.distance_m, sy]],
+        // Invariant: `[goal]` is validated first and requires a position in this mode.
+        GoalMode::Fixed => g.position.map(|[x, y, _]| vec![[x, y]]).unwrap_or_default(),
+        GoalMode::Random => {
+            let [lo, hi] = g.heading_range_deg;
+            let mut headings = vec![lo, hi];
+            headings.extend(
+                [-180.0, -90.0, 0.0, 90.0, 180.0]
+                    .into_iter()
+                    .filter(|a| (lo..=hi).contains(a)),
+            );
+            let mut goals = Vec::new();
+            for d in g.distance_range_m {
+                for psi in &headings {
+                    let (sin, cos) = psi.to_radians().sin_cos();
+                    goals.push([sx + d * cos, sy + d * sin]);
+                }
+            }
+            goals
+        }
+    }
+}
+
 /// `[terrain]`: the generator's ranges for the kind chosen (named `terrain.<key>`), the slope
 /// within ±[`MAX_SLOPE_DEG`], a file for `"heightfield"`, the curriculum's levels and kinds.
 impl Table for TerrainConfig {
@@ -311,6 +401,7 @@ impl Table for TerrainConfig {
             return Ok(());
         }
         self.check_placement(config)?;
+        self.check_goal_on_field(config)?;
         let max_side = hyq_physics::terrain::MAX_SIDE_M;
         if self.kind.is_generated() && (self.resolution_m.is_nan() || self.resolution_m > max_side)
         {
