@@ -517,7 +517,7 @@ fn terrain_range_refusals_blame_the_key_set_in_short_numbers() {
         ("terrain.resolution_m", "1e308"),
     ]);
     assert!(
-        msg.contains("terrain.resolution_m = 1e308") && msg.contains("largest field's side"),
+        msg.contains("terrain.resolution_m = 1e308") && msg.contains("the field's smaller side"),
         "{msg}"
     );
     let msg = refused(&[
@@ -651,4 +651,49 @@ fn a_field_under_every_goal_is_built() {
         ("terrain.size_m", "[4.0, 4.0]"),
     ]);
     build(&[("goal.distance_m", "50")]);
+}
+
+/// A resolution between the field's side and 50 m (the feature's upper bound) was blamed on
+/// `terrain.feature_m` ("must be within [16, 50] m", the grid's side as its lower end), as was
+/// one coarser than the default bump; each now names `terrain.resolution_m`, and the key the
+/// user did change is still the one named.
+#[test]
+fn a_coarse_resolution_is_blamed_on_the_resolution() {
+    for (kind, resolution, words) in [
+        (
+            "rough",
+            "20",
+            &["terrain.resolution_m = 20:", "at most 16 m", "smaller side"][..],
+        ),
+        (
+            "stairs",
+            "40",
+            &["terrain.resolution_m = 40:", "at most 16 m"][..],
+        ),
+        (
+            "rough",
+            "1.0",
+            &["terrain.resolution_m = 1:", "terrain.feature_m = 0.4"][..],
+        ),
+        (
+            "stairs",
+            "0.2",
+            &["terrain.resolution_m = 0.2:", "terrain.step_depth_m = 0.3"][..],
+        ),
+    ] {
+        let msg = refused(&[
+            ("terrain.kind", &format!("{kind:?}")),
+            ("terrain.resolution_m", resolution),
+        ]);
+        for w in words {
+            assert!(
+                msg.contains(w),
+                "{kind} at {resolution}: {msg:?} lacks {w:?}"
+            );
+        }
+        assert!(!msg.contains("invalid terrain.feature_m"), "{msg}");
+    }
+    // A bump the user set smaller than the grid's spacing is blamed on the bump.
+    let msg = refused(&[("terrain.kind", "\"rough\""), ("terrain.feature_m", "0.01")]);
+    assert!(msg.starts_with("invalid terrain.feature_m = 0.01"), "{msg}");
 }

@@ -361,6 +361,72 @@ impl TerrainConfig {
     }
 }
 
+impl TerrainConfig {
+    /// A generated grid's spacing is never wider than its field: `resolution_m` at most the
+    /// field's smaller side (a wider one was silently the side, and then blamed on
+    /// `feature_m`).
+    fn check_resolution_fits_the_field(&self) -> Result<(), ConfigError> {
+        let side = self.size_m[0].min(self.size_m[1]);
+        if self.kind.is_generated() && (self.resolution_m.is_nan() || self.resolution_m > side) {
+            return Err(resolution_error(
+                self.resolution_m,
+                format!(
+                    "must be at most {} m, the field's smaller side (terrain.size_m = {:?}): \
+                     the grid's spacing is never wider than its field",
+                    short(side),
+                    self.size_m
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// A generator's refusal of a bump or a step too small for the grid's spacing blames
+    /// `resolution_m` when that is the key the user changed (the bump's or step's key holding
+    /// its default); every other refusal is [`keyed`] as it comes.
+    fn blame_resolution(&self, e: hyq_physics::TerrainError) -> ConfigError {
+        let d = Self::default();
+        let finer_than = match &e {
+            hyq_physics::TerrainError::Invalid { what, .. }
+                if self.resolution_m != d.resolution_m =>
+            {
+                match what.as_str() {
+                    "feature_m" if self.feature_m == d.feature_m => Some((
+                        format!("terrain.feature_m = {}", short(self.feature_m)),
+                        "the grid's spacing must be at most the size of a bump",
+                    )),
+                    "step_depth_m" if self.step_depth_m == d.step_depth_m => Some((
+                        format!("terrain.step_depth_m = {}", short(self.step_depth_m)),
+                        "twice the grid's spacing must be at most a step's depth",
+                    )),
+                    _ => None,
+                }
+            }
+            _ => None,
+        };
+        match finer_than {
+            Some((other, why)) => resolution_error(
+                self.resolution_m,
+                format!(
+                    "is too coarse for {other} ({why}): lower terrain.resolution_m, or set \
+                     {}",
+                    other.split(' ').next().unwrap_or_default()
+                ),
+            ),
+            None => keyed(e),
+        }
+    }
+}
+
+/// A refusal of `terrain.resolution_m = value`, the value printed short.
+fn resolution_error(value: f64, expected: String) -> ConfigError {
+    ConfigError::Invalid {
+        key: "terrain.resolution_m".to_owned(),
+        value: short(value),
+        expected,
+    }
+}
+
 /// The goals of `g` from the spawn point `spawn` that reach furthest along ±x and ±y: the one
 /// goal of the `"ahead"` and `"fixed"` modes; for `"random"`, each end of the distance range
 /// at each end of the heading range and at every axis direction (0°, ±90°, ±180°) inside it,
@@ -402,18 +468,7 @@ impl Table for TerrainConfig {
         }
         self.check_placement(config)?;
         self.check_goal_on_field(config)?;
-        let max_side = hyq_physics::terrain::MAX_SIDE_M;
-        if self.kind.is_generated() && (self.resolution_m.is_nan() || self.resolution_m > max_side)
-        {
-            return Err(invalid(
-                "terrain.resolution_m",
-                self.resolution_m,
-                &format!(
-                    "must be at most {max_side} m, the largest field's side: the grid's spacing \
-                     is never wider than its field"
-                ),
-            ));
-        }
+        self.check_resolution_fits_the_field()?;
         in_range(
             "terrain.slope_deg",
             self.slope_deg,
@@ -443,7 +498,9 @@ impl Table for TerrainConfig {
         }
         let extent = self.extent(config.reset.spawn_xy_m);
         match self.relief(1.0) {
-            Some(relief) => generate::check(&extent, &relief).map(|_| ()).map_err(keyed),
+            Some(relief) => generate::check(&extent, &relief)
+                .map(|_| ())
+                .map_err(|e| self.blame_resolution(e)),
             None => Ok(()),
         }
     }
