@@ -69,7 +69,8 @@ pub struct TerrainConfig {
     /// The grid's centre [x, y] (m). (default: unset, the spawn point)
     #[serde(skip_serializing_if = "Option::is_none")]
     pub center_m: Option<[f64; 2]>,
-    /// The spacing of generated heights (m); at most 1,048,576 heights in all. (default: 0.05)
+    /// The spacing of generated heights (m); at most 1,048,576 heights in all, and at most the
+    /// field's smaller side. (default: 0.05)
     pub resolution_m: f64,
     /// Rough ground's random stream: a non-negative integer (the same ground every episode),
     /// or `"episode"` (new ground each episode, drawn from the reset seed). (default: 0)
