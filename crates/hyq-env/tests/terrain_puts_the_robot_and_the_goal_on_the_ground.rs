@@ -463,11 +463,18 @@ fn a_field_not_under_the_feet_is_refused_naming_the_key() {
         ("terrain.center_m", "[9.0, 0.0]"),
         ("terrain.center_m", "[20.0, 0.0]"),
         ("terrain.center_m", "[8.0, 0.0]"),
-        ("terrain.size_m", "[0.01, 0.01]"),
+        ("terrain.size_m", "[0.1, 0.1]"),
     ] {
-        let msg = refused(&[("terrain.kind", "\"rough\""), (key, value)]);
+        // The velocity task walks to no goal: a field this small is also not under the goal,
+        // which the goal task refuses first (`a_field_not_under_the_goal_is_refused`).
+        let msg = refused(&[
+            ("task.kind", "\"velocity\""),
+            ("terrain.kind", "\"rough\""),
+            (key, value),
+        ]);
         assert!(
-            msg.contains(&format!("{key} = {value}")) && msg.contains("does not lie under"),
+            msg.contains(&format!("{key} = {value}"))
+                && msg.contains("does not lie under the robot's foot"),
             "{key} = {value}: {msg}"
         );
     }
@@ -573,7 +580,10 @@ fn a_field_not_under_the_goal_is_refused() {
                 ("terrain.kind", "\"slope\""),
                 ("terrain.center_m", "[-5.0, 0.0]"),
             ],
-            &["terrain.center_m = [-5.0, 0.0]", "x -13.00 .. 3.00 m"],
+            &[
+                "terrain.center_m = [-5.0, 0.0]",
+                "x -13.00 .. 3.00, y -8.00 .. 8.00 m",
+            ],
         ),
         (
             &[
@@ -610,7 +620,7 @@ fn a_field_not_under_the_goal_is_refused() {
     ];
     for (overrides, words) in cases {
         let msg = refused(overrides);
-        for w in words.iter().chain(&["does not lie under the goal"]) {
+        for w in words.iter().chain(&["is not under the goal"]) {
             assert!(
                 msg.contains(w),
                 "{overrides:?}: {msg:?} does not name {w:?}"
@@ -693,6 +703,16 @@ fn a_coarse_resolution_is_blamed_on_the_resolution() {
         }
         assert!(!msg.contains("invalid terrain.feature_m"), "{msg}");
     }
+    // A field shrunk below the default spacing is blamed on its size.
+    let msg = refused(&[
+        ("terrain.kind", "\"rough\""),
+        ("terrain.size_m", "[0.01, 0.01]"),
+    ]);
+    assert!(
+        msg.starts_with("invalid terrain.size_m = [0.01, 0.01]")
+            && msg.contains("terrain.resolution_m = 0.05"),
+        "{msg}"
+    );
     // A bump the user set smaller than the grid's spacing is blamed on the bump.
     let msg = refused(&[("terrain.kind", "\"rough\""), ("terrain.feature_m", "0.01")]);
     assert!(msg.starts_with("invalid terrain.feature_m = 0.01"), "{msg}");

@@ -318,6 +318,11 @@ impl TerrainConfig {
         let [hx, hy] = self.size_m.map(|s| 0.5 * s);
         // A goal on the edge is on the field; the slack absorbs cos 90° != 0.
         let on = |[x, y]: [f64; 2]| (x - cx).abs() <= hx + 1e-9 && (y - cy).abs() <= hy + 1e-9;
+        // A field not under the spawn point is refused when the environment is built, naming
+        // the robot's feet (`crate::terrain::Ground`): the robot's fault is the first to name.
+        if !on(config.reset.spawn_xy_m) {
+            return Ok(());
+        }
         let Some(goal) = goal_extremes(&config.goal, config.reset.spawn_xy_m)
             .into_iter()
             .find(|g| !on(*g))
@@ -337,7 +342,7 @@ impl TerrainConfig {
         let file = match &self.file {
             Some(f) if self.kind == TerrainKind::Heightfield => {
                 format!(
-                    " (terrain.file {:?} is laid over it)",
+                    "; terrain.file {:?} is laid over it",
                     f.display().to_string()
                 )
             }
@@ -347,10 +352,9 @@ impl TerrainConfig {
             key,
             value,
             &format!(
-                "the field x {:.2} .. {:.2} m, y {:.2} .. {:.2} m{file} does not lie under the \
-                 goal at [{:.2}, {:.2}] ({goal_key}): outside the field there is no ground and \
-                 the robot would walk off its edge; widen or move the field (terrain.size_m, \
-                 terrain.center_m) or bring the goal onto it",
+                "the field (x {:.2} .. {:.2}, y {:.2} .. {:.2} m) is not under the goal [{:.2}, \
+                 {:.2}] ({goal_key}): off the field there is no ground; widen or move the \
+                 field, or bring the goal onto it{file}",
                 cx - hx,
                 cx + hx,
                 cy - hy,
@@ -365,21 +369,35 @@ impl TerrainConfig {
 impl TerrainConfig {
     /// A generated grid's spacing is never wider than its field: `resolution_m` at most the
     /// field's smaller side (a wider one was silently the side, and then blamed on
-    /// `feature_m`).
+    /// `feature_m`). The key named is the one the user changed: the size when the resolution
+    /// holds its default.
     fn check_resolution_fits_the_field(&self) -> Result<(), ConfigError> {
         let side = self.size_m[0].min(self.size_m[1]);
-        if self.kind.is_generated() && (self.resolution_m.is_nan() || self.resolution_m > side) {
-            return Err(resolution_error(
-                self.resolution_m,
-                format!(
-                    "must be at most {} m, the field's smaller side (terrain.size_m = {:?}): \
-                     the grid's spacing is never wider than its field",
-                    short(side),
-                    self.size_m
+        if !(self.kind.is_generated() && (self.resolution_m.is_nan() || self.resolution_m > side)) {
+            return Ok(());
+        }
+        let d = Self::default();
+        // A field shrunk below the default spacing is the size's fault, not the resolution's.
+        if self.resolution_m == d.resolution_m && self.size_m != d.size_m {
+            return Err(invalid(
+                "terrain.size_m",
+                self.size_m,
+                &format!(
+                    "each side must be at least terrain.resolution_m = {}, the grid's spacing: \
+                     set a finer resolution for a field this small",
+                    short(self.resolution_m)
                 ),
             ));
         }
-        Ok(())
+        Err(resolution_error(
+            self.resolution_m,
+            format!(
+                "must be at most {} m, the field's smaller side (terrain.size_m = {:?}): the \
+                 grid's spacing is never wider than its field",
+                short(side),
+                self.size_m
+            ),
+        ))
     }
 
     /// A generator's refusal of a bump or a step too small for the grid's spacing blames
@@ -468,8 +486,8 @@ impl Table for TerrainConfig {
             return Ok(());
         }
         self.check_placement(config)?;
-        self.check_goal_on_field(config)?;
         self.check_resolution_fits_the_field()?;
+        self.check_goal_on_field(config)?;
         in_range(
             "terrain.slope_deg",
             self.slope_deg,
