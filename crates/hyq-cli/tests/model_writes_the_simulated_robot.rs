@@ -56,6 +56,9 @@ fn mjcf_writes_the_terrains_height_field() {
         "terrain.size_m=[2.0, 1.0]",
         "--set",
         "terrain.resolution_m=0.1",
+        // The goal on the field: a field not under the goal is refused.
+        "--set",
+        "goal.distance_m=0.9",
     ]);
     // 21 x 11 heights: MuJoCo's rows run along y, its columns along x.
     assert!(

@@ -65,8 +65,9 @@ impl Ground {
         }
         // The hardest ground the configuration can give is checked once: the full relief.
         let hardest = ground.build(first_seed(t.seed), 1.0)?;
-        ground.check_spawn(model, &hardest)?;
+        // Coverage first: off the field the extended edge cells make any put-down fault up.
         ground.check_coverage(model, &hardest)?;
+        ground.check_spawn(model, &hardest)?;
         ground.current = if t.curriculum {
             ground.build(first_seed(t.seed), ground.scale())?
         } else {

@@ -172,6 +172,8 @@ fn leaving_the_field_ends_the_episode_as_diverged() {
         ("terrain.slope_deg", "5"),
         ("terrain.size_m", "[2.0, 2.0]"),
         ("terrain.resolution_m", "0.1"),
+        // The goal on the field (a field not under the goal is refused).
+        ("goal.distance_m", "0.9"),
     ]);
     let mut state = env.model().spawn_state();
     state.trunk.pose.translation.vector.x = 1.5;
@@ -205,6 +207,7 @@ fn rough_ground_drawn_per_episode_follows_the_reset_seed() {
         ("terrain.kind", "\"rough\""),
         ("terrain.seed", "\"episode\""),
         ("terrain.size_m", "[4.0, 4.0]"),
+        ("goal.distance_m", "1.5"),
     ]);
     let mut seen = Vec::new();
     for seed in [1, 2, 1] {
@@ -225,6 +228,7 @@ fn rough_ground_drawn_per_episode_follows_the_reset_seed() {
         ("terrain.kind", "\"rough\""),
         ("terrain.seed", "7"),
         ("terrain.size_m", "[4.0, 4.0]"),
+        ("goal.distance_m", "1.5"),
     ]);
     common::reset(&mut fixed, 1);
     let first = fixed.terrain().clone();
@@ -246,6 +250,7 @@ fn the_curriculum_raises_the_level_on_progress_and_lowers_it_on_failure() {
         ("terrain.curriculum", "true"),
         ("terrain.levels", "4"),
         ("terrain.size_m", "[4.0, 4.0]"),
+        ("goal.distance_m", "1.5"),
     ]);
     let model = hyq_physics::bundled::hyq();
     let mut ground = Ground::new(&c, &model).unwrap_or_else(|e| panic!("{e}"));
@@ -458,11 +463,18 @@ fn a_field_not_under_the_feet_is_refused_naming_the_key() {
         ("terrain.center_m", "[9.0, 0.0]"),
         ("terrain.center_m", "[20.0, 0.0]"),
         ("terrain.center_m", "[8.0, 0.0]"),
-        ("terrain.size_m", "[0.01, 0.01]"),
+        ("terrain.size_m", "[0.1, 0.1]"),
     ] {
-        let msg = refused(&[("terrain.kind", "\"rough\""), (key, value)]);
+        // The velocity task walks to no goal: a field this small is also not under the goal,
+        // which the goal task refuses first (`a_field_not_under_the_goal_is_refused`).
+        let msg = refused(&[
+            ("task.kind", "\"velocity\""),
+            ("terrain.kind", "\"rough\""),
+            (key, value),
+        ]);
         assert!(
-            msg.contains(&format!("{key} = {value}")) && msg.contains("does not lie under"),
+            msg.contains(&format!("{key} = {value}"))
+                && msg.contains("does not lie under the robot's foot"),
             "{key} = {value}: {msg}"
         );
     }
@@ -512,7 +524,7 @@ fn terrain_range_refusals_blame_the_key_set_in_short_numbers() {
         ("terrain.resolution_m", "1e308"),
     ]);
     assert!(
-        msg.contains("terrain.resolution_m = 1e308") && msg.contains("largest field's side"),
+        msg.contains("terrain.resolution_m = 1e308") && msg.contains("the field's smaller side"),
         "{msg}"
     );
     let msg = refused(&[
@@ -521,4 +533,187 @@ fn terrain_range_refusals_blame_the_key_set_in_short_numbers() {
     ]);
     assert!(msg.contains("terrain.center_m = [1e308, 0.0]"), "{msg}");
     assert!(!msg.contains(&"0".repeat(30)), "{msg}");
+}
+
+/// A 2 × 2 float64 `.npy` file of zeros in `dir`, as a TOML string of its path.
+fn zeros_npy(dir: &std::path::Path) -> String {
+    std::fs::create_dir_all(dir).unwrap_or_else(|e| panic!("{e}"));
+    let file = dir.join("flat.npy");
+    let header = "{'descr': '<f8', 'fortran_order': False, 'shape': (2, 2), }";
+    let mut npy = b"\x93NUMPY\x01\x00".to_vec();
+    let pad = 64 - (10 + header.len() + 1) % 64;
+    let len = u16::try_from(header.len() + pad + 1).unwrap_or_else(|e| panic!("{e}"));
+    npy.extend(len.to_le_bytes());
+    npy.extend(header.bytes());
+    npy.extend(std::iter::repeat_n(b' ', pad));
+    npy.push(b'\n');
+    npy.extend([0u8; 32]);
+    std::fs::write(&file, npy).unwrap_or_else(|e| panic!("{e}"));
+    format!("{:?}", file.display().to_string())
+}
+
+/// Overrides and the words their refusal must hold.
+type GoalCase<'a> = (&'a [(&'a str, &'a str)], &'a [&'a str]);
+
+/// A field that does not lie under every goal the `[goal]` table can give is refused, naming
+/// the field's key and the goal's: outside the field there is no ground, so the robot walked
+/// off its edge on the way and every episode ended `diverged` (a 4 m field with the default
+/// goal 5 m ahead, a field moved behind the robot, a random goal that can be drawn off it).
+#[test]
+fn a_field_not_under_the_goal_is_refused() {
+    let dir = std::env::temp_dir().join(format!("hyq-terrain-goal-{}", std::process::id()));
+    let file = zeros_npy(&dir);
+    let cases: [GoalCase<'_>; 5] = [
+        (
+            &[
+                ("terrain.kind", "\"rough\""),
+                ("terrain.size_m", "[4.0, 4.0]"),
+            ],
+            &[
+                "terrain.size_m = [4.0, 4.0]",
+                "goal.distance_m = 5",
+                "[5.00, 0.00]",
+            ],
+        ),
+        (
+            &[
+                ("terrain.kind", "\"slope\""),
+                ("terrain.center_m", "[-5.0, 0.0]"),
+            ],
+            &[
+                "terrain.center_m = [-5.0, 0.0]",
+                "x -13.00 .. 3.00, y -8.00 .. 8.00 m",
+            ],
+        ),
+        (
+            &[
+                ("terrain.kind", "\"heightfield\""),
+                ("terrain.file", &file),
+                ("terrain.size_m", "[6.0, 6.0]"),
+            ],
+            &["terrain.size_m = [6.0, 6.0]", "terrain.file", "flat.npy"],
+        ),
+        (
+            &[
+                ("terrain.kind", "\"rough\""),
+                ("goal.mode", "\"random\""),
+                ("goal.distance_range_m", "[1.0, 3.0]"),
+                ("goal.heading_range_deg", "[-120.0, -60.0]"),
+                ("terrain.size_m", "[8.0, 5.6]"),
+            ],
+            // Both ends of the heading range are on the field (y = -2.60); straight to the
+            // right, between them, is not.
+            &["goal.heading_range_deg", "[0.00, -3.00]"],
+        ),
+        (
+            &[
+                ("terrain.kind", "\"stairs\""),
+                ("goal.mode", "\"fixed\""),
+                ("goal.position", "[2.0, 9.0, 0.6]"),
+            ],
+            &[
+                "terrain.size_m = [16.0, 16.0]",
+                "goal.position",
+                "[2.00, 9.00]",
+            ],
+        ),
+    ];
+    for (overrides, words) in cases {
+        let msg = refused(overrides);
+        for w in words.iter().chain(&["is not under the goal"]) {
+            assert!(
+                msg.contains(w),
+                "{overrides:?}: {msg:?} does not name {w:?}"
+            );
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The other side of `a_field_not_under_the_goal_is_refused`: a goal on the field, its edge
+/// included, is accepted; so is any field under the velocity task, which walks to no goal; flat
+/// ground has no edge.
+#[test]
+fn a_field_under_every_goal_is_built() {
+    let build = |overrides: &[(&str, &str)]| {
+        Env::<hyq_env::testing::ScriptedBackend>::new(
+            hyq_physics::bundled::hyq(),
+            config(overrides),
+        )
+        .unwrap_or_else(|e| panic!("{overrides:?}: {e}"));
+    };
+    // A goal on the edge: 5 m ahead on a 10 m field centred on the spawn point.
+    build(&[
+        ("terrain.kind", "\"rough\""),
+        ("terrain.size_m", "[10.0, 4.0]"),
+    ]);
+    // The random goal of the refused case, with a field that holds all of its draws.
+    build(&[
+        ("terrain.kind", "\"rough\""),
+        ("goal.mode", "\"random\""),
+        ("goal.distance_range_m", "[1.0, 3.0]"),
+        ("goal.heading_range_deg", "[-120.0, -60.0]"),
+        ("terrain.size_m", "[8.0, 6.0]"),
+    ]);
+    build(&[
+        ("task.kind", "\"velocity\""),
+        ("terrain.kind", "\"rough\""),
+        ("terrain.size_m", "[4.0, 4.0]"),
+    ]);
+    build(&[("goal.distance_m", "50")]);
+}
+
+/// A resolution between the field's side and 50 m (the feature's upper bound) was blamed on
+/// `terrain.feature_m` ("must be within [16, 50] m", the grid's side as its lower end), as was
+/// one coarser than the default bump; each now names `terrain.resolution_m`, and the key the
+/// user did change is still the one named.
+#[test]
+fn a_coarse_resolution_is_blamed_on_the_resolution() {
+    for (kind, resolution, words) in [
+        (
+            "rough",
+            "20",
+            &["terrain.resolution_m = 20:", "at most 16 m", "smaller side"][..],
+        ),
+        (
+            "stairs",
+            "40",
+            &["terrain.resolution_m = 40:", "at most 16 m"][..],
+        ),
+        (
+            "rough",
+            "1.0",
+            &["terrain.resolution_m = 1:", "terrain.feature_m = 0.4"][..],
+        ),
+        (
+            "stairs",
+            "0.2",
+            &["terrain.resolution_m = 0.2:", "terrain.step_depth_m = 0.3"][..],
+        ),
+    ] {
+        let msg = refused(&[
+            ("terrain.kind", &format!("{kind:?}")),
+            ("terrain.resolution_m", resolution),
+        ]);
+        for w in words {
+            assert!(
+                msg.contains(w),
+                "{kind} at {resolution}: {msg:?} lacks {w:?}"
+            );
+        }
+        assert!(!msg.contains("invalid terrain.feature_m"), "{msg}");
+    }
+    // A field shrunk below the default spacing is blamed on its size.
+    let msg = refused(&[
+        ("terrain.kind", "\"rough\""),
+        ("terrain.size_m", "[0.01, 0.01]"),
+    ]);
+    assert!(
+        msg.starts_with("invalid terrain.size_m = [0.01, 0.01]")
+            && msg.contains("terrain.resolution_m = 0.05"),
+        "{msg}"
+    );
+    // A bump the user set smaller than the grid's spacing is blamed on the bump.
+    let msg = refused(&[("terrain.kind", "\"rough\""), ("terrain.feature_m", "0.01")]);
+    assert!(msg.starts_with("invalid terrain.feature_m = 0.01"), "{msg}");
 }

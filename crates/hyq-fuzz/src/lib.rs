@@ -166,8 +166,8 @@ pub struct Plan {
     pub time: Option<Duration>,
 }
 
-/// Runs `plan` on `target`: the seed files first, then mutated ones. Returns the tally, or the
-/// first finding.
+/// Runs `plan` on `target`: the seed files first, then a FIFO in the file's place, then mutated
+/// ones. Returns the tally, or the first finding.
 pub fn run(target: Target, plan: &Plan, scratch: &Path) -> Result<Tally, Finding> {
     let seeds = target.seeds();
     let origin = Instant::now();
@@ -180,12 +180,16 @@ pub fn run(target: Target, plan: &Plan, scratch: &Path) -> Result<Tally, Finding
         if plan.time.is_some_and(|t| origin.elapsed() >= t) {
             break;
         }
-        let input = if (case as usize) < seeds.len() {
-            seeds[case as usize].clone()
-        } else {
-            let mut rng = mutate::case_rng(plan.seed, case);
-            let seed = &seeds[(case as usize) % seeds.len()];
-            target.mutate(seed, &mut rng)
+        let input = match (case as usize).cmp(&seeds.len()) {
+            std::cmp::Ordering::Less => seeds[case as usize].clone(),
+            // Once a run, after the seeds: a FIFO no one writes to where the loader looks for
+            // its file, which every loader must refuse at once (it used to block them forever).
+            std::cmp::Ordering::Equal => targets::FIFO_INPUT.to_vec(),
+            std::cmp::Ordering::Greater => {
+                let mut rng = mutate::case_rng(plan.seed, case);
+                let seed = &seeds[(case as usize) % seeds.len()];
+                target.mutate(seed, &mut rng)
+            }
         };
         watchdog.begin(&input);
         let accepted = run_case(target, &input, scratch)?;

@@ -358,6 +358,8 @@ fn heights(input: &[u8], scratch: &Path) -> Result<bool, String> {
         ("terrain.kind", "\"heightfield\""),
         ("terrain.file", file.as_str()),
         ("terrain.size_m", "[4.0, 3.0]"),
+        // The goal on the field: a field not under the goal is refused.
+        ("goal.distance_m", "1.5"),
         ("task.max_time_steps", "5"),
     ];
     if let Err(e) = config.set_all(&set) {

@@ -99,8 +99,9 @@ def test_observation_extra_and_terrain_reach_the_spaces_and_the_table() -> None:
     """``observation.extra`` appends rows after the 39 (height scan, goal vector, trunk
     velocity), which the space (unbounded there), the env's table (named, with units) and the
     observations follow; the default env keeps the spec's 39 rows."""
+    # The goal 2.5 m ahead, on the 6 m field (a field not under the goal is refused).
     env = hyq.HyQEnv(
-        terrain={"kind": "rough", "amplitude_m": 0.05, "size_m": [6.0, 6.0]},
+        terrain={"kind": "rough", "amplitude_m": 0.05, "size_m": [6.0, 6.0]}, goal={"distance_m": 2.5},
         observation={"extra": ["goal_vector", "height_scan", "trunk_velocity"]},
     )
     assert env.observation_space.shape == (235,)
@@ -120,6 +121,7 @@ def test_observation_extra_and_terrain_reach_the_spaces_and_the_table() -> None:
     assert "[terrain]" not in hyq.HyQEnv().config_toml()
     # The vector env's table is the single env's, extras included.
     venv = hyq.HyQVectorEnv(num_envs=2, terrain={"kind": "rough", "amplitude_m": 0.05, "size_m": [6.0, 6.0]},
+                            goal={"distance_m": 2.5},
                             observation={"extra": ["goal_vector", "height_scan", "trunk_velocity"]})
     assert venv.observation_table == table
     assert len(hyq.HyQVectorEnv(num_envs=1).observation_table) == 39

@@ -102,3 +102,41 @@ def test_a_file_that_is_not_a_policy_is_refused_naming_it(tmp_path: Path) -> Non
     bogus.write_bytes(b"\x02\x00\x00\x00\x00\x00\x00\x00{}")
     with pytest.raises(ValueError, match="bogus.safetensors: metadata `format` is None"):
         read_policy(bogus)
+
+
+ROUGH_TWIN = REPO / "assets" / "policies" / "hyq_walk_rough.onnx"
+
+
+@pytest.mark.parametrize("scan", [
+    {"height_scan_x_m": [-0.6, 1.0]},
+    # The same 17 x 11 rows, names and count, over twice the extent.
+    {"height_scan_x_m": [-1.6, 1.6], "height_scan_y_m": [-1.0, 1.0], "height_scan_spacing_m": 0.2},
+    {"height_scan_y_m": [-0.4, 0.6]},
+], ids=["x_m", "same_rows_twice_as_wide", "y_m"])
+def test_a_height_scan_of_another_geometry_in_the_callers_env_is_refused(scan: dict) -> None:
+    """Given the caller's ``env_config``, the check builds the caller's environment, so a height
+    scan with the rows and names the file was trained on but read at other points is refused
+    naming the key (the file's own ``env_config`` alone cannot see it: it was accepted)."""
+    model = onnx.load(str(ROUGH_TWIN))
+    caller = {"observation": {"extra": ["height_scan"], **scan}}
+    key = next(iter(scan))
+    with pytest.raises(ValueError, match=rf"hyq_walk_rough.onnx: trained with observation\.{key} = .*, "
+                                         r"the environment has .*: the same scan rows would read"):
+        check_onnx_layout(model, "hyq", "hyq_walk_rough.onnx", env_config=caller)
+    with pytest.raises(ValueError, match=rf"observation\.{key}"):
+        OnnxPolicy(ROUGH_TWIN, robot="hyq", env_config=caller)
+
+
+def test_the_callers_env_with_the_trained_scan_or_other_rows_is_checked_as_before() -> None:
+    """The trained geometry in the caller's env is accepted (also without any `env_config`, the
+    file's own); the caller's env without the scan is refused by its row count."""
+    model = onnx.load(str(ROUGH_TWIN))
+    props = check_onnx_layout(model, "hyq", "hyq_walk_rough.onnx",
+                              env_config={"observation": {"extra": ["height_scan"]},
+                                          "terrain": {"kind": "rough"}})
+    assert props["robot"] == "hyq"
+    assert check_onnx_layout(model, "hyq", "hyq_walk_rough.onnx")["robot"] == "hyq"
+    with pytest.raises(ValueError, match="trained on 226 observation values, the environment has 39"):
+        check_onnx_layout(model, "hyq", "hyq_walk_rough.onnx", env_config={})
+    # A policy that reads no scan is checked against the caller's rows as before.
+    assert check_onnx_layout(twin_of_walk(), "hyq", "x.onnx", env_config={})["robot"] == "hyq"

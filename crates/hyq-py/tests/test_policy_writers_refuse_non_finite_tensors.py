@@ -7,6 +7,7 @@ hands on a non-finite action."""
 from __future__ import annotations
 
 import json
+import re
 import struct
 import subprocess
 import sys
@@ -18,7 +19,7 @@ import pytest
 from onnx import numpy_helper
 
 from conftest import REPO
-from hyq.policy_file import OnnxPolicy, non_finite, read_policy, write_onnx
+from hyq.policy_file import OnnxPolicy, check_finite, non_finite, read_policy, write_onnx
 
 WALK = REPO / "assets" / "policies" / "hyq_walk.safetensors"
 
@@ -55,6 +56,41 @@ def test_the_reader_and_the_onnx_writer_refuse_a_non_finite_tensor(
                               "--onnx"], capture_output=True, text=True)
     assert example.returncode == 2, example.stderr
     assert words in example.stderr and not path.with_suffix(".onnx").exists()
+
+
+def test_every_tensor_with_a_non_finite_value_anywhere_is_refused_on_read_and_on_write(tmp_path: Path) -> None:
+    """A seeded sweep, as the policy fuzz target pokes values into tensors: in each of the
+    file's tensors, a NaN, +inf or -inf at a drawn place is named by the reader, and neither
+    writer (``check_finite`` before a safetensors file, ``write_onnx``) writes anything."""
+    rng = np.random.default_rng(38)
+    data = WALK.read_bytes()
+    (n,) = struct.unpack("<Q", data[:8])
+    header = json.loads(data[8 : 8 + n])
+    tensors = {name: spec for name, spec in header.items() if name != "__metadata__"}
+    assert len(tensors) >= 8, sorted(tensors)
+    kinds = {"F32": ("<f", 4, np.float32), "F64": ("<d", 8, np.float64)}
+    for name, spec in sorted(tensors.items()):
+        fmt, size, dtype = kinds[spec["dtype"]]
+        index = int(rng.integers(int(np.prod(spec["shape"]))))
+        value = float(rng.choice([np.nan, np.inf, -np.inf]))
+        poked = bytearray(data)
+        at = 8 + n + spec["data_offsets"][0] + size * index
+        poked[at : at + size] = struct.pack(fmt, value)
+        path = tmp_path / f"{name}.safetensors"
+        path.write_bytes(bytes(poked))
+        text = "NaN" if np.isnan(value) else ("inf" if value > 0 else "-inf")
+        words = f"tensor `{name}` holds a non-finite value ({text}) at flat index {index}"
+        with pytest.raises(ValueError) as err:
+            read_policy(path)
+        assert str(err.value) == f"{path}: {words}"
+        arrays = {k: np.zeros(t["shape"], kinds[t["dtype"]][2]) for k, t in tensors.items()}
+        arrays[name].reshape(-1)[index] = value
+        with pytest.raises(ValueError, match=re.escape(words)):
+            check_finite(arrays, "run")
+        out = tmp_path / f"{name}.onnx"
+        with pytest.raises(ValueError, match=re.escape(words)):
+            write_onnx(path, out)
+        assert not out.exists()
 
 
 def test_non_finite_names_the_first_bad_value_in_the_readers_words() -> None:

@@ -12,7 +12,7 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use super::in_world;
 use super::validate::{finite_positive, in_range, invalid};
-use super::{ConfigError, EnvConfig, Table};
+use super::{ConfigError, EnvConfig, GoalConfig, GoalMode, Table, TaskKind};
 
 /// The steepest slope (degrees) the robot is put down on: steeper, a standing quadruped's
 /// feet slide or it tips over before the episode starts.
@@ -63,12 +63,14 @@ pub struct TerrainConfig {
     /// PNG; finite and > 0. (default: 1.0)
     pub vertical_scale: f64,
     /// The grid's side lengths along x and y (m), each in (0, 200], the whole rectangle inside
-    /// the world. (default: [16.0, 16.0], every goal up to 8 m from the spawn point)
+    /// the world, and under every goal `[goal]` can give in the goal task (outside it there is
+    /// no ground). (default: [16.0, 16.0], every goal up to 8 m from the spawn point)
     pub size_m: [f64; 2],
     /// The grid's centre [x, y] (m). (default: unset, the spawn point)
     #[serde(skip_serializing_if = "Option::is_none")]
     pub center_m: Option<[f64; 2]>,
-    /// The spacing of generated heights (m); at most 1,048,576 heights in all. (default: 0.05)
+    /// The spacing of generated heights (m); at most 1,048,576 heights in all, and at most the
+    /// field's smaller side. (default: 0.05)
     pub resolution_m: f64,
     /// Rough ground's random stream: a non-negative integer (the same ground every episode),
     /// or `"episode"` (new ground each episode, drawn from the reset seed). (default: 0)
@@ -302,6 +304,179 @@ impl TerrainConfig {
     }
 }
 
+impl TerrainConfig {
+    /// Every goal the `[goal]` table can give lies on the field (the goal task only): outside
+    /// the field's rectangle there is no ground, so a robot walking to such a goal walks off
+    /// the edge and every episode ends `diverged` before it can reach it. The key blamed is
+    /// the field's (`terrain.center_m` when given, else `terrain.size_m`); the message names
+    /// the goal's key and, for a height file, the file laid over the field.
+    fn check_goal_on_field(&self, config: &EnvConfig) -> Result<(), ConfigError> {
+        if config.task.kind != TaskKind::Goal {
+            return Ok(());
+        }
+        let [cx, cy] = self.center_m.unwrap_or(config.reset.spawn_xy_m);
+        let [hx, hy] = self.size_m.map(|s| 0.5 * s);
+        // A goal on the edge is on the field; the slack absorbs cos 90° != 0.
+        let on = |[x, y]: [f64; 2]| (x - cx).abs() <= hx + 1e-9 && (y - cy).abs() <= hy + 1e-9;
+        // A field not under the spawn point is refused when the environment is built, naming
+        // the robot's feet (`crate::terrain::Ground`): the robot's fault is the first to name.
+        if !on(config.reset.spawn_xy_m) {
+            return Ok(());
+        }
+        let Some(goal) = goal_extremes(&config.goal, config.reset.spawn_xy_m)
+            .into_iter()
+            .find(|g| !on(*g))
+        else {
+            return Ok(());
+        };
+        let (key, value) = match self.center_m {
+            Some(c) => ("terrain.center_m", c),
+            None => ("terrain.size_m", self.size_m),
+        };
+        let g = &config.goal;
+        let goal_key = match g.mode {
+            GoalMode::Ahead => format!("goal.distance_m = {}", short(g.distance_m)),
+            GoalMode::Fixed => "goal.position".to_owned(),
+            GoalMode::Random => "goal.distance_range_m, goal.heading_range_deg".to_owned(),
+        };
+        let file = match &self.file {
+            Some(f) if self.kind == TerrainKind::Heightfield => {
+                format!(
+                    "; terrain.file {:?} is laid over it",
+                    f.display().to_string()
+                )
+            }
+            _ => String::new(),
+        };
+        Err(invalid(
+            key,
+            value,
+            &format!(
+                "the field (x {:.2} .. {:.2}, y {:.2} .. {:.2} m) is not under the goal [{:.2}, \
+                 {:.2}] ({goal_key}): off the field there is no ground; widen or move the \
+                 field, or bring the goal onto it{file}",
+                cx - hx,
+                cx + hx,
+                cy - hy,
+                cy + hy,
+                goal[0],
+                goal[1]
+            ),
+        ))
+    }
+}
+
+impl TerrainConfig {
+    /// A generated grid's spacing is never wider than its field: `resolution_m` at most the
+    /// field's smaller side (a wider one was silently the side, and then blamed on
+    /// `feature_m`). The key named is the one the user changed: the size when the resolution
+    /// holds its default.
+    fn check_resolution_fits_the_field(&self) -> Result<(), ConfigError> {
+        let side = self.size_m[0].min(self.size_m[1]);
+        if !(self.kind.is_generated() && (self.resolution_m.is_nan() || self.resolution_m > side)) {
+            return Ok(());
+        }
+        let d = Self::default();
+        // A field shrunk below the default spacing is the size's fault, not the resolution's.
+        if self.resolution_m == d.resolution_m && self.size_m != d.size_m {
+            return Err(invalid(
+                "terrain.size_m",
+                self.size_m,
+                &format!(
+                    "each side must be at least terrain.resolution_m = {}, the grid's spacing: \
+                     set a finer resolution for a field this small",
+                    short(self.resolution_m)
+                ),
+            ));
+        }
+        Err(resolution_error(
+            self.resolution_m,
+            format!(
+                "must be at most {} m, the field's smaller side (terrain.size_m = {:?}): the \
+                 grid's spacing is never wider than its field",
+                short(side),
+                self.size_m
+            ),
+        ))
+    }
+
+    /// A generator's refusal of a bump or a step too small for the grid's spacing blames
+    /// `resolution_m` when that is the key the user changed (the bump's or step's key holding
+    /// its default); every other refusal is [`keyed`] as it comes.
+    fn blame_resolution(&self, e: hyq_physics::TerrainError) -> ConfigError {
+        let d = Self::default();
+        let finer_than = match &e {
+            hyq_physics::TerrainError::Invalid { what, .. }
+                if self.resolution_m != d.resolution_m =>
+            {
+                match what.as_str() {
+                    "feature_m" if self.feature_m == d.feature_m => Some((
+                        format!("terrain.feature_m = {}", short(self.feature_m)),
+                        "the grid's spacing must be at most the size of a bump",
+                    )),
+                    "step_depth_m" if self.step_depth_m == d.step_depth_m => Some((
+                        format!("terrain.step_depth_m = {}", short(self.step_depth_m)),
+                        "twice the grid's spacing must be at most a step's depth",
+                    )),
+                    _ => None,
+                }
+            }
+            _ => None,
+        };
+        match finer_than {
+            Some((other, why)) => resolution_error(
+                self.resolution_m,
+                format!(
+                    "is too coarse for {other} ({why}): lower terrain.resolution_m, or set \
+                     {}",
+                    other.split(' ').next().unwrap_or_default()
+                ),
+            ),
+            None => keyed(e),
+        }
+    }
+}
+
+/// A refusal of `terrain.resolution_m = value`, the value printed short.
+fn resolution_error(value: f64, expected: String) -> ConfigError {
+    ConfigError::Invalid {
+        key: "terrain.resolution_m".to_owned(),
+        value: short(value),
+        expected,
+    }
+}
+
+/// The goals of `g` from the spawn point `spawn` that reach furthest along ±x and ±y: the one
+/// goal of the `"ahead"` and `"fixed"` modes; for `"random"`, each end of the distance range
+/// at each end of the heading range and at every axis direction (0°, ±90°, ±180°) inside it,
+/// where x = d cos ψ and y = d sin ψ take their extremes. Every goal the mode can draw lies
+/// inside an axis-aligned rectangle that holds these.
+fn goal_extremes(g: &GoalConfig, spawn: [f64; 2]) -> Vec<[f64; 2]> {
+    let [sx, sy] = spawn;
+    match g.mode {
+        GoalMode::Ahead => vec![[sx + g.distance_m, sy]],
+        // Invariant: `[goal]` is validated first and requires a position in this mode.
+        GoalMode::Fixed => g.position.map(|[x, y, _]| vec![[x, y]]).unwrap_or_default(),
+        GoalMode::Random => {
+            let [lo, hi] = g.heading_range_deg;
+            let mut headings = vec![lo, hi];
+            headings.extend(
+                [-180.0, -90.0, 0.0, 90.0, 180.0]
+                    .into_iter()
+                    .filter(|a| (lo..=hi).contains(a)),
+            );
+            let mut goals = Vec::new();
+            for d in g.distance_range_m {
+                for psi in &headings {
+                    let (sin, cos) = psi.to_radians().sin_cos();
+                    goals.push([sx + d * cos, sy + d * sin]);
+                }
+            }
+            goals
+        }
+    }
+}
+
 /// `[terrain]`: the generator's ranges for the kind chosen (named `terrain.<key>`), the slope
 /// within ±[`MAX_SLOPE_DEG`], a file for `"heightfield"`, the curriculum's levels and kinds.
 impl Table for TerrainConfig {
@@ -311,18 +486,8 @@ impl Table for TerrainConfig {
             return Ok(());
         }
         self.check_placement(config)?;
-        let max_side = hyq_physics::terrain::MAX_SIDE_M;
-        if self.kind.is_generated() && (self.resolution_m.is_nan() || self.resolution_m > max_side)
-        {
-            return Err(invalid(
-                "terrain.resolution_m",
-                self.resolution_m,
-                &format!(
-                    "must be at most {max_side} m, the largest field's side: the grid's spacing \
-                     is never wider than its field"
-                ),
-            ));
-        }
+        self.check_resolution_fits_the_field()?;
+        self.check_goal_on_field(config)?;
         in_range(
             "terrain.slope_deg",
             self.slope_deg,
@@ -352,7 +517,9 @@ impl Table for TerrainConfig {
         }
         let extent = self.extent(config.reset.spawn_xy_m);
         match self.relief(1.0) {
-            Some(relief) => generate::check(&extent, &relief).map(|_| ()).map_err(keyed),
+            Some(relief) => generate::check(&extent, &relief)
+                .map(|_| ())
+                .map_err(|e| self.blame_resolution(e)),
             None => Ok(()),
         }
     }

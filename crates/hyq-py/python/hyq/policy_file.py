@@ -18,7 +18,8 @@ tested on every committed policy). Opset 17, input ``obs`` (batch, n), output ``
 metadata (``metadata_props``) names the robot, the observation rows and the joints in order,
 the action mode and scale, the environment it was trained in and the SHA-256 of the file it was
 made from; :func:`check_onnx_layout` refuses an ONNX file whose layout is not the robot's,
-naming what differs.
+naming what differs (given the environment's ``env_config``, a height scan of another geometry
+too).
 
 Reading a policy file needs numpy only; building ONNX needs the ``onnx`` package and running it
 ``onnxruntime`` (both on PyPI), imported when used.
@@ -33,6 +34,7 @@ import stat
 import struct
 from dataclasses import dataclass, field
 from pathlib import Path
+from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
@@ -318,12 +320,47 @@ def _observation_options(props: dict[str, str], path: Any) -> dict[str, Any]:
     return {"observation": table} if table else {}
 
 
-def check_onnx_layout(model: Any, robot: str, path: Any = "ONNX policy") -> dict[str, str]:
+def _scan_geometry(env: Any) -> dict[str, Any]:
+    """The height scan's geometry an environment reads (its ``observation.height_scan_*``
+    keys as its written configuration holds them), or ``{}`` without a height scan."""
+    import tomllib
+
+    table = tomllib.loads(env.config_toml()).get("observation", {})
+    if "height_scan" not in table.get("extra", []):
+        return {}
+    return {key: table.get(f"height_scan_{key}") for key in ("x_m", "y_m", "spacing_m")}
+
+
+def _caller_mismatch(props: dict[str, str], caller: Any, path: Any) -> str | None:
+    """Why the caller's environment `caller` reads its height scan at other points than the
+    file was trained on (the same rows and names can lie elsewhere), if it does."""
+    from hyq.env import HyQEnv
+
+    ours = _scan_geometry(caller)
+    if not ours:
+        return None
+    trained_env = HyQEnv(robot=caller.robot, **_observation_options(props, path))
+    try:
+        trained = _scan_geometry(trained_env)
+    finally:
+        trained_env.close()
+    for key, value in ours.items():
+        if trained.get(key) != value:
+            return (f"trained with observation.height_scan_{key} = {trained.get(key)!r}, the "
+                    f"environment has {value!r}: the same scan rows would read the ground at "
+                    "other points")
+    return None
+
+
+def check_onnx_layout(model: Any, robot: str, path: Any = "ONNX policy",
+                      env_config: Mapping[str, Any] | None = None) -> dict[str, str]:
     """Checks that an ONNX policy (an ``onnx.ModelProto`` or an onnxruntime session) is one of
-    these files and fits `robot`'s environment (with the observation extras its `env_config`
-    names): the robot's name, the observation rows and the joints, in order, and the graph's
-    input and output widths. Returns its metadata; raises ``ValueError`` naming the file and
-    the first difference."""
+    these files and fits `robot`'s environment: the robot's name, the observation rows and the
+    joints, in order, and the graph's input and output widths. The environment is the caller's,
+    `env_config` (``HyQEnv``'s argument of that name) when given, and then its height scan must
+    read the ground at the points the file was trained on (the same rows and names can lie
+    elsewhere); without it, the environment the file's own `env_config` names. Returns its
+    metadata; raises ``ValueError`` naming the file and the first difference."""
     from hyq.env import HyQEnv
 
     if hasattr(model, "get_modelmeta"):
@@ -339,13 +376,20 @@ def check_onnx_layout(model: Any, robot: str, path: Any = "ONNX policy") -> dict
     for key in ("robot", "observation", "action"):
         if key not in props:
             raise _refuse(path, f"metadata has no `{key}` entry")
-    env = HyQEnv(robot=robot, **_observation_options(props, path))
+    if env_config is None:
+        env = HyQEnv(robot=robot, **_observation_options(props, path))
+    else:
+        env = HyQEnv(robot=robot, env_config=env_config)
     try:
         if props["robot"] != env.robot:
             raise _refuse(path, f"trained for robot {props['robot']!r}, the environment runs {env.robot!r}")
         for what, trained, names in (("observation", props["observation"], env.observation_names),
                                      ("action", props["action"], env.joint_names)):
             reason = _mismatch(what, json.loads(trained), list(names))
+            if reason is not None:
+                raise _refuse(path, reason)
+        if env_config is not None:
+            reason = _caller_mismatch(props, env, path)
             if reason is not None:
                 raise _refuse(path, reason)
         expected = (len(env.observation_names), len(env.joint_names))
@@ -359,10 +403,12 @@ def check_onnx_layout(model: Any, robot: str, path: Any = "ONNX policy") -> dict
 
 class OnnxPolicy:
     """An ONNX policy run by onnxruntime, checked against `robot`'s layout when loaded
-    (:func:`check_onnx_layout`). Calling it maps float32 observations (n,) or (batch, n) to
-    actions of the same batch shape."""
+    (:func:`check_onnx_layout`, against the caller's `env_config` when given: pass the one the
+    policy will run in, so that a height scan of another geometry is refused). Calling it maps
+    float32 observations (n,) or (batch, n) to actions of the same batch shape."""
 
-    def __init__(self, path: str | Path, robot: str = "hyq") -> None:
+    def __init__(self, path: str | Path, robot: str = "hyq",
+                 env_config: Mapping[str, Any] | None = None) -> None:
         import onnxruntime
 
         options = onnxruntime.SessionOptions()
@@ -371,7 +417,7 @@ class OnnxPolicy:
         options.inter_op_num_threads = 1
         self.path = str(path)
         self.session = onnxruntime.InferenceSession(str(path), options, providers=["CPUExecutionProvider"])
-        self.metadata = check_onnx_layout(self.session, robot, path)
+        self.metadata = check_onnx_layout(self.session, robot, path, env_config)
 
     def __call__(self, obs: np.ndarray) -> np.ndarray:
         x = np.asarray(obs, dtype=np.float32)
