@@ -215,11 +215,16 @@ proptest! {
         let r = wilson(k, n).map_err(|e| TestCaseError::fail(e.to_string()))?;
         prop_assert!(0.0 <= r.ci95[0] && r.ci95[0] <= r.mean && r.mean <= r.ci95[1] && r.ci95[1] <= 1.0, "{r:?}");
         prop_assert!(r.ci95[1] > r.ci95[0], "a Wilson interval is never a point: {r:?}");
-        // Four times the trials at the same rate: at most about half as wide (the z²/n terms
-        // make small n a little wider than 1/√n says, never narrower).
+        // Four times the trials at the same rate: narrower always, and half as wide once
+        // n·p(1 − p) ≥ 10, where the normal approximation holds (the z²/n terms shrink a small
+        // sample's interval by less: k = 1 of n = 2 only by 1.42×, k = 0 of 1 by 1.62×; over
+        // every n < 3000 with n·p(1 − p) ≥ 10 the least ratio is 1.933, at k = 20 of 40).
         let r4 = wilson(4 * k, 4 * n).map_err(|e| TestCaseError::fail(e.to_string()))?;
         let ratio = (r.ci95[1] - r.ci95[0]) / (r4.ci95[1] - r4.ci95[0]);
-        prop_assert!(ratio >= 1.95, "{r:?} vs {r4:?}");
+        prop_assert!(ratio >= 1.4, "{r:?} vs {r4:?}");
+        if (k as f64) * ((n - k) as f64) / (n as f64) >= 10.0 {
+            prop_assert!(ratio >= 1.93, "{r:?} vs {r4:?}");
+        }
         if n >= 1000 && (0.1..=0.9).contains(&share) {
             prop_assert!(ratio <= 2.05, "{r:?} vs {r4:?}");
         }
