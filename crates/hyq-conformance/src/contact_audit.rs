@@ -467,6 +467,59 @@ pub fn bounce_with_restitution<B: Backend>(
     Ok(drop_foot_under::<B>(robot, options, &contact, RESTITUTION_DROP_M)?.0)
 }
 
+/// Checks, for an engine that maps `randomize.contact_stiffness_scale`, that a stiffer contact
+/// sinks the loaded foot less as k = s · k₀ says: the depth at rest goes as 1/s, so a factor 4
+/// stiffer is a quarter as deep (within 10 %), at ×0.25, ×1 and ×4; panics with the figures.
+pub fn assert_stiffness_scales_penetration<B: Backend>(robot: &Robot, options: &B::Options) {
+    let depth = |s: f64| {
+        penetration_at_rest_with_stiffness::<B>(robot, options, s)
+            .unwrap_or_else(|e| panic!("{} refused a stiffness factor of {s}: {e}", B::NAME))
+    };
+    let (soft, nominal, stiff) = (depth(0.25), depth(1.0), depth(4.0));
+    println!(
+        "{} penetration at rest: ×0.25 {soft:.5} mm, ×1 {nominal:.5} mm, ×4 {stiff:.5} mm",
+        B::NAME
+    );
+    assert!(
+        nominal > 0.0,
+        "{}: a soft contact sinks: {nominal}",
+        B::NAME
+    );
+    for ratio in [nominal / stiff, soft / nominal] {
+        assert!(
+            (ratio - 4.0).abs() < 0.4,
+            "{}: ×0.25 {soft}, ×1 {nominal}, ×4 {stiff} mm",
+            B::NAME
+        );
+    }
+}
+
+/// Checks, for an engine that maps `randomize.restitution`, that none gives no bounce (under
+/// 0.5 mm) and 0.5 bounces the foot dropped [`RESTITUTION_DROP_M`] e² h (within 10 %); panics
+/// with the figures.
+pub fn assert_restitution_raises_the_bounce<B: Backend>(robot: &Robot, options: &B::Options) {
+    let bounce = |e: f64| {
+        bounce_with_restitution::<B>(robot, options, e)
+            .unwrap_or_else(|err| panic!("{} refused a restitution of {e}: {err}", B::NAME))
+    };
+    let (none, half) = (bounce(0.0), bounce(0.5));
+    let physics = 0.25 * 1e3 * RESTITUTION_DROP_M;
+    println!(
+        "{} bounce from 20 cm: e = 0 {none:.3} mm, e = 0.5 {half:.3} mm (e²h {physics} mm)",
+        B::NAME
+    );
+    assert!(
+        none < 0.5,
+        "{}: no restitution, no bounce: {none} mm",
+        B::NAME
+    );
+    assert!(
+        (half - physics).abs() < 0.1 * physics,
+        "{}: e = 0.5 bounced {half} mm, e²h = {physics} mm",
+        B::NAME
+    );
+}
+
 /// The foot dropped 5 cm: how high it bounces above where it comes to rest (mm).
 /// Physics: 0, contacts are inelastic.
 pub fn dropped_foot_does_not_bounce<B: Backend>(robot: &Robot, options: &B::Options) -> Figure {
