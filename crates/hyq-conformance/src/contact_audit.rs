@@ -609,6 +609,25 @@ pub fn audits<B: Backend>() -> [fn(&Robot, &B::Options) -> Figure; 9] {
     ]
 }
 
+/// Prints [`table`]'s rows for both bundled robots (HyQ and ANYmal C) under each labelled set of
+/// options, each row after its label (none when the label is empty), for the docs' table; panics
+/// unless every robot gives one row per audit (9).
+pub fn print_table<B: Backend>(variants: &[(&str, B::Options)]) {
+    for (label, options) in variants {
+        for name in ["hyq", "anymal_c"] {
+            let rows = table::<B>(&Robot::bundled(name), options);
+            for r in &rows {
+                if label.is_empty() {
+                    println!("{r}");
+                } else {
+                    println!("{label} {r}");
+                }
+            }
+            assert_eq!(rows.len(), 9, "one row per audit");
+        }
+    }
+}
+
 /// Every audit of `robot` on `B`, as Markdown table rows
 /// `| robot | figure | unit | physics | measured |`.
 pub fn table<B: Backend>(robot: &Robot, options: &B::Options) -> Vec<String> {

@@ -48,16 +48,10 @@ mod anymal_c {
 /// Prints the audit's rows (robot, figure, unit, physics, rapier) for the docs' table.
 #[test]
 fn prints_the_contact_audit_table() {
-    for name in ["hyq", "anymal_c"] {
-        let rows = hyq_conformance::contact_audit::table::<hyq_rapier::RapierBackend>(
-            &Robot::bundled(name),
-            &Default::default(),
-        );
-        for r in &rows {
-            println!("{r}");
-        }
-        assert_eq!(rows.len(), 9, "one row per audit");
-    }
+    hyq_conformance::contact_audit::print_table::<hyq_rapier::RapierBackend>(&[(
+        "",
+        Default::default(),
+    )]);
 }
 
 /// The audit notices a softer contact: at rapier's own 60 Hz ground contact (the project uses
