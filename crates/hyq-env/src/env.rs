@@ -550,11 +550,11 @@ impl<B: Backend> Env<B> {
         let (rules, k) = episode_rules(&self.config.task, initial, goal).unwrap_or(requested_rules);
         let initial = rules.initial();
         if let Some(task) = self.velocity.as_deref_mut() {
-            self.backend.link_poses(task.poses_mut());
+            self.backend.link_poses(task.gait.poses_mut());
             task.reset(seed);
         }
         if let Some(r) = self.regularizers.as_deref_mut() {
-            self.backend.link_poses(r.poses_mut());
+            self.backend.link_poses(r.gait.poses_mut());
             r.reset();
         }
         self.observe_reset(&goal)?;
@@ -598,10 +598,10 @@ impl<B: Backend> Env<B> {
                 .targets(action, &self.state.q, &mut self.info.joint_targets);
         self.info.t += 1;
         if let Some(task) = self.velocity.as_deref_mut() {
-            task.begin_step(action.iter().map(|a| a.to_f64()));
+            task.gait.begin_step(action.iter().map(|a| a.to_f64()));
         }
         if let Some(r) = self.regularizers.as_deref_mut() {
-            r.begin_step(action.iter().map(|a| a.to_f64()));
+            r.gait.begin_step(action.iter().map(|a| a.to_f64()));
         }
         let previous = self.state.trunk;
         let mut watch = Stopwatch::start(self.timing_on);
@@ -815,7 +815,7 @@ impl<B: Backend> Env<B> {
             trunk_contact: self.latching[self.trunk_tracked],
         })?;
         if let Some(task) = self.velocity.as_deref_mut() {
-            self.backend.link_poses(task.poses_mut());
+            self.backend.link_poses(task.gait.poses_mut());
             task.evaluate_step(
                 &self.state.trunk,
                 &self.state.q,
@@ -826,7 +826,7 @@ impl<B: Backend> Env<B> {
             );
         }
         if let Some(r) = self.regularizers.as_deref_mut() {
-            self.backend.link_poses(r.poses_mut());
+            self.backend.link_poses(r.gait.poses_mut());
             r.evaluate_step(
                 crate::regularizers::base_height(&self.state.trunk, self.ground.terrain()),
                 &self.state.qd,

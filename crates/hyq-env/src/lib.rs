@@ -53,6 +53,7 @@
 //! | [`vec_env`] | [`VecEnv`]: N envs on rayon into flat buffers, autoreset modes |
 //! | [`velocity`] | `task.kind = "velocity"`: the velocity-command task's state, observation group and info (rules in `hyq-tasks`) |
 //! | [`regularizers`] | `[regularizers]`: the gait regularisers' state and info added to the goal task's reward (rules in `hyq-tasks`) |
+//! | `gait` (private) | the state both of them keep between steps: the previous action and joint speeds, the feet's air times and velocities |
 //! | [`record`] | [`StepRecord`]: the per-step JSONL schema |
 //! | [`terrain`] | [`terrain::Ground`]: the ground of each episode, the robot put down on it, the goal over it, the curriculum |
 //! | [`testing`] | [`testing::ScriptedBackend`]: a scripted backend for contract tests |
@@ -67,6 +68,7 @@ pub mod config;
 pub mod divergence;
 pub mod env;
 pub mod error;
+mod gait;
 pub mod goal;
 pub mod info;
 pub mod mlp;

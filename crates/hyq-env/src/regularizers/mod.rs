@@ -7,16 +7,14 @@
 //! `Σ s·r·Δt_env` (docs/spec.md §7.12). Off (every scale 0), the environment holds none of
 //! this state and reports nothing of it.
 
-use hyq_physics::na::Isometry3;
 use hyq_physics::{RobotModel, TrunkState};
 use hyq_tasks::regularizers::{RegularizerSnapshot, reward, values};
-use hyq_tasks::step::{AirTime, FootVelocity};
 use hyq_tasks::{REGULARIZER_NAMES, RegularizerScales, ReportedRegularizers};
 use serde::Serialize;
 
 use crate::config::{EnvConfig, TaskKind};
 use crate::divergence::Divergence;
-use crate::velocity::body_xy;
+use crate::gait::GaitHistory;
 
 /// What the regularisers report on a step (the info's `regularizers`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
@@ -36,15 +34,8 @@ pub use keys::{REGULARIZER_INFO_KEYS, REGULARIZER_PREFIX, regularizer_info_keys}
 pub(crate) struct Regularizers {
     scales: RegularizerScales,
     on: [bool; REGULARIZER_NAMES.len()],
-    air: AirTime,
-    /// The action of the step being taken, then of the last step.
-    action: Vec<f64>,
-    previous_action: Vec<f64>,
-    previous_qd: Vec<f64>,
-    /// The feet's body indices.
-    feet: Vec<usize>,
-    poses: Vec<Isometry3<f64>>,
-    foot_velocity: FootVelocity,
+    /// The previous action and joint speeds, the feet's air times and velocities.
+    pub(crate) gait: GaitHistory,
     env_dt: f64,
     /// What the last reset or step reported.
     pub(crate) info: RegularizerInfo,
@@ -59,21 +50,10 @@ impl Regularizers {
             return None;
         }
         let scales = table.resolve(model.standing_height());
-        let n = model.num_joints();
-        let feet: Vec<usize> = model.tracked()[..model.num_feet()]
-            .iter()
-            .map(|t| t.link)
-            .collect();
         Some(Box::new(Self {
             on: scales.on(),
             scales,
-            air: AirTime::new(feet.len()),
-            action: vec![0.0; n],
-            previous_action: vec![0.0; n],
-            previous_qd: vec![0.0; n],
-            poses: vec![Isometry3::identity(); model.links().len()],
-            foot_velocity: FootVelocity::new(feet.len()),
-            feet,
+            gait: GaitHistory::new(model, config.env_dt()),
             env_dt: config.env_dt(),
             info: RegularizerInfo::default(),
         }))
@@ -91,34 +71,15 @@ impl Regularizers {
     }
 
     /// Starts an episode from the robot at rest (the body poses after reset were just read into
-    /// [`Regularizers::poses_mut`]): no previous action, joint speeds 0, every foot standing.
+    /// the gait history).
     pub(crate) fn reset(&mut self) {
-        self.air.reset();
-        self.action.fill(0.0);
-        self.previous_action.fill(0.0);
-        self.previous_qd.fill(0.0);
-        let poses = &self.poses;
-        self.foot_velocity
-            .reset(self.feet.iter().map(|&link| body_xy(&poses[link])));
+        self.gait.reset();
         self.info = self.neutral();
-    }
-
-    /// Records the step's action, as given, before its sub-steps run.
-    pub(crate) fn begin_step(&mut self, action: impl Iterator<Item = f64>) {
-        std::mem::swap(&mut self.action, &mut self.previous_action);
-        for (a, v) in self.action.iter_mut().zip(action) {
-            *a = v;
-        }
-    }
-
-    /// The body poses buffer, for the backend to fill after the step.
-    pub(crate) fn poses_mut(&mut self) -> &mut [Isometry3<f64>] {
-        &mut self.poses
     }
 
     /// Judges the step that ended in `trunk` (its height above the ground `base_height`) and
     /// `qd`, with the last sub-step's `torques`, the latched `feet` flags and the `penalised`
-    /// bodies' latched flags (the body poses were just read into [`Regularizers::poses_mut`]).
+    /// bodies' latched flags (the body poses were just read into the gait history).
     /// A term that is on and not finite (a joint speed's change over a Δt_env of 10⁻²⁰⁰ s, say)
     /// is the step's divergence: nothing non-finite is reported.
     pub(crate) fn evaluate_step(
@@ -129,27 +90,24 @@ impl Regularizers {
         feet: &[bool],
         penalised: &[bool],
     ) -> Result<(), Divergence> {
-        let poses = &self.poses;
-        let positions = self.feet.iter().map(|&link| body_xy(&poses[link]));
-        self.foot_velocity.update(positions, self.env_dt);
-        let air = self.air.update(feet, self.env_dt);
+        let g = self.gait.advance(feet);
         let v = values(
             &self.scales,
             &RegularizerSnapshot {
-                action: &self.action,
-                previous_action: &self.previous_action,
+                action: g.action,
+                previous_action: g.previous_action,
                 torques,
                 joint_speeds: qd,
-                previous_joint_speeds: &self.previous_qd,
-                air_at_touchdown: air,
-                foot_velocity_xy: self.foot_velocity.velocity(),
+                previous_joint_speeds: g.previous_joint_speeds,
+                air_at_touchdown: g.air_at_touchdown,
+                foot_velocity_xy: g.foot_velocity_xy,
                 foot_contacts: feet,
                 base_height,
                 penalised_contacts: penalised,
-                env_dt: self.env_dt,
+                env_dt: g.env_dt,
             },
         );
-        self.previous_qd.copy_from_slice(qd);
+        self.gait.end_step(qd);
         let mut masked = v.to_array();
         for (x, on) in masked.iter_mut().zip(self.on) {
             if !on {

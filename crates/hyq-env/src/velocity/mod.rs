@@ -9,11 +9,10 @@
 //! the trunk is upside down (or, with `velocity.terminate_on_trunk_contact`, touched the
 //! ground) and as `timeout` at `task.max_time_steps`.
 
-use hyq_physics::na::Isometry3;
 use hyq_physics::{RobotModel, TrunkState};
 use hyq_spec::ObservationLayout;
 use hyq_tasks::observation::{GroupValues, JointRows, in_body_frame, projected_gravity};
-use hyq_tasks::step::{AirTime, FootVelocity, VelocitySnapshot, evaluate};
+use hyq_tasks::step::{VelocitySnapshot, evaluate};
 use hyq_tasks::{Command, CommandSampler, RewardScales, TermValues, terms};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -21,6 +20,7 @@ use serde::Serialize;
 
 use crate::action::ActionSpace;
 use crate::config::EnvConfig;
+use crate::gait::GaitHistory;
 
 mod keys;
 pub use hyq_tasks::TERM_NAMES;
@@ -81,18 +81,10 @@ pub(crate) struct VelocityTask {
     trunk_contact_ends: bool,
     sampler: CommandSampler,
     rng: ChaCha8Rng,
-    air: AirTime,
     standing: Vec<f64>,
     soft_limits: Vec<[f64; 2]>,
-    /// The action of the step being taken, then of the last step (f64).
-    action: Vec<f64>,
-    previous_action: Vec<f64>,
-    previous_qd: Vec<f64>,
-    /// The feet's body indices.
-    feet: Vec<usize>,
-    poses: Vec<Isometry3<f64>>,
-    foot_velocity: FootVelocity,
-    env_dt: f64,
+    /// The previous action and joint speeds, the feet's air times and velocities.
+    pub(crate) gait: GaitHistory,
     /// What the last reset or step reported.
     pub(crate) info: VelocityInfo,
     /// Whether the last step ends the episode by the task's rules.
@@ -107,11 +99,6 @@ impl VelocityTask {
             return None;
         }
         let scales = config.velocity.resolve();
-        let n = model.num_joints();
-        let feet: Vec<usize> = model.tracked()[..model.num_feet()]
-            .iter()
-            .map(|t| t.link)
-            .collect();
         let soft_limits = model
             .joints()
             .iter()
@@ -122,16 +109,9 @@ impl VelocityTask {
             trunk_contact_ends: config.velocity.terminate_on_trunk_contact,
             sampler: CommandSampler::new(config.command, config.env_dt()),
             rng: stream(seed),
-            air: AirTime::new(feet.len()),
             standing: model.standing_pose().to_vec(),
             soft_limits,
-            action: vec![0.0; n],
-            previous_action: vec![0.0; n],
-            previous_qd: vec![0.0; n],
-            poses: vec![Isometry3::identity(); model.links().len()],
-            foot_velocity: FootVelocity::new(feet.len()),
-            feet,
-            env_dt: config.env_dt(),
+            gait: GaitHistory::new(model, config.env_dt()),
             info: VelocityInfo::default(),
             ended: false,
         }))
@@ -139,17 +119,13 @@ impl VelocityTask {
 
     /// Starts an episode: reseeds the command stream when `seed` is given (else continues
     /// it), draws the first command, and restarts the per-episode state from the robot at rest
-    /// (the body poses after reset were just read into [`VelocityTask::poses_mut`]).
+    /// (the body poses after reset were just read into the gait history).
     pub(crate) fn reset(&mut self, seed: Option<u64>) {
         if let Some(s) = seed {
             self.rng = stream(s);
         }
         let command = self.sampler.start(&mut self.rng);
-        self.air.reset();
-        self.action.fill(0.0);
-        self.previous_action.fill(0.0);
-        self.previous_qd.fill(0.0);
-        self.store_feet();
+        self.gait.reset();
         self.ended = false;
         self.info = VelocityInfo {
             command: command.as_array(),
@@ -158,22 +134,9 @@ impl VelocityTask {
         };
     }
 
-    /// Records the step's action before its sub-steps run.
-    pub(crate) fn begin_step(&mut self, action: impl Iterator<Item = f64>) {
-        std::mem::swap(&mut self.action, &mut self.previous_action);
-        for (a, v) in self.action.iter_mut().zip(action) {
-            *a = v;
-        }
-    }
-
-    /// The body poses buffer, for the backend to fill after the step.
-    pub(crate) fn poses_mut(&mut self) -> &mut [Isometry3<f64>] {
-        &mut self.poses
-    }
-
     /// Judges the step that ended in `trunk`, `q`, `qd` with the last sub-step's `torques` and
     /// the latched `feet` and `trunk_contact` flags (the body poses were just read into
-    /// [`VelocityTask::poses_mut`]), then moves the command on for the next observation.
+    /// gait history), then moves the command on for the next observation.
     /// Whether the step ends the episode is then [`VelocityTask::ended`].
     pub(crate) fn evaluate_step(
         &mut self,
@@ -188,10 +151,7 @@ impl VelocityTask {
         let rotation = &trunk.pose.rotation;
         let lin_vel = in_body_frame(rotation, &trunk.linvel);
         let ang_vel = in_body_frame(rotation, &trunk.angvel);
-        let poses = &self.poses;
-        let positions = self.feet.iter().map(|&link| body_xy(&poses[link]));
-        self.foot_velocity.update(positions, self.env_dt);
-        let air = self.air.update(feet, self.env_dt);
+        let g = self.gait.advance(feet);
         let outcome = evaluate(
             &self.scales,
             &VelocitySnapshot {
@@ -201,21 +161,21 @@ impl VelocityTask {
                 gravity: projected_gravity(rotation),
                 joint_angles: q,
                 joint_speeds: qd,
-                previous_joint_speeds: &self.previous_qd,
+                previous_joint_speeds: g.previous_joint_speeds,
                 standing: &self.standing,
                 soft_limits: &self.soft_limits,
                 torques,
-                action: &self.action,
-                previous_action: &self.previous_action,
+                action: g.action,
+                previous_action: g.previous_action,
                 foot_contacts: feet,
-                foot_velocity_xy: self.foot_velocity.velocity(),
-                air_at_touchdown: air,
+                foot_velocity_xy: g.foot_velocity_xy,
+                air_at_touchdown: g.air_at_touchdown,
                 trunk_contact,
                 trunk_contact_ends: self.trunk_contact_ends,
-                env_dt: self.env_dt,
+                env_dt: g.env_dt,
             },
         );
-        self.previous_qd.copy_from_slice(qd);
+        self.gait.end_step(qd);
         let next = self.sampler.advance(&mut self.rng);
         self.info = VelocityInfo {
             command: command.as_array(),
@@ -247,7 +207,7 @@ impl VelocityTask {
                 command: self.sampler.command().as_array(),
                 joint_angles: q,
                 standing: &self.standing,
-                last_action: &self.action,
+                last_action: self.gait.action(),
             },
             out,
         );
@@ -257,19 +217,6 @@ impl VelocityTask {
     pub(crate) fn command(&self) -> Command {
         self.sampler.command()
     }
-
-    /// Keeps the feet's horizontal positions from the body poses; their speeds start at 0.
-    fn store_feet(&mut self) {
-        let poses = &self.poses;
-        self.foot_velocity
-            .reset(self.feet.iter().map(|&link| body_xy(&poses[link])));
-    }
-}
-
-/// A body's horizontal position (m, world) from its pose.
-pub(crate) fn body_xy(pose: &Isometry3<f64>) -> [f64; 2] {
-    let p = pose.translation.vector;
-    [p.x, p.y]
 }
 
 /// The command stream of `seed`.
