@@ -386,13 +386,25 @@ pub fn sled_breaks_away_along_the_diagonal<B: Backend>(
     breakaway::<B>(robot, options, 45.0)
 }
 
+/// What a dropped foot did: the heights (m) of its centre at the top of its first rebound, and
+/// where it lies a second after it was let go.
+struct Drop {
+    /// The highest the centre got after its first lowest point following the first contact,
+    /// before it fell again out of contact (a foot that never leaves the contact has no such
+    /// fall: its highest point over the rest of the second).
+    peak: f64,
+    /// The centre's height a second after the drop began.
+    rest: f64,
+}
+
 /// The foot dropped from rest with its bottom 5 cm above flat ground, followed for a second:
-/// (the highest its centre gets after the first lowest point following the first contact,
-/// above where it lies at the end (mm); how far its bottom is below the ground at the end
-/// (mm)).
+/// (the top of its first rebound above where it lies at the end (mm); how far its bottom is
+/// below the ground at the end (mm)).
 fn drop_foot<B: Backend>(robot: &Robot, options: &B::Options) -> (f64, f64) {
-    drop_foot_under::<B>(robot, options, &ContactDraw::NOMINAL, 0.05)
-        .unwrap_or_else(|e| panic!("{} refused the nominal contact: {e}", B::NAME))
+    let r = foot_radius(robot);
+    let d = drop_foot_under::<B>(robot, options, &ContactDraw::NOMINAL, 0.05)
+        .unwrap_or_else(|e| panic!("{} refused the nominal contact: {e}", B::NAME));
+    (1e3 * (d.peak - d.rest), 1e3 * (r - d.rest))
 }
 
 /// As [`drop_foot`], from `height` (m) above the ground, the engine's contact given
@@ -403,7 +415,7 @@ fn drop_foot_under<B: Backend>(
     options: &B::Options,
     contact: &ContactDraw,
     height: f64,
-) -> Result<(f64, f64), PhysicsError> {
+) -> Result<Drop, PhysicsError> {
     let r = foot_radius(robot);
     let probe = foot(robot);
     let p = params(0.0, 0.0);
@@ -418,18 +430,24 @@ fn drop_foot_under<B: Backend>(
     s.trunk.pose = Isometry3::translation(0.0, 0.0, r + height);
     set(&mut b, &s);
     let trunk = probe.model.trunk_tracked_index();
-    let (mut touched, mut rebounding, mut peak) = (false, false, f64::NEG_INFINITY);
+    let (mut touched, mut rebounding, mut falling_again) = (false, false, false);
+    let mut peak = f64::NEG_INFINITY;
     for _ in 0..steps_for(&p, 1.0) {
         step_zero(&mut b);
-        touched |= read_contacts(&b)[trunk];
-        rebounding |= touched && b.trunk().linvel.z >= 0.0;
-        if rebounding {
-            peak = peak.max(position(&b).z);
+        let touching = read_contacts(&b)[trunk];
+        touched |= touching;
+        let (z, vz) = (position(&b).z, b.trunk().linvel.z);
+        rebounding |= touched && vz >= 0.0;
+        falling_again |= rebounding && !touching && vz < 0.0 && z < peak;
+        if rebounding && !falling_again {
+            peak = peak.max(z);
         }
     }
-    let rest = position(&b).z;
     assert!(rebounding, "{}: the dropped foot never landed", B::NAME);
-    Ok((1e3 * (peak - rest), 1e3 * (r - rest)))
+    Ok(Drop {
+        peak,
+        rest: position(&b).z,
+    })
 }
 
 /// The drawn contact's stiffness factor in action: the foot dropped 5 cm, a second later, how
@@ -445,16 +463,32 @@ pub fn penetration_at_rest_with_stiffness<B: Backend>(
         contact_stiffness_scale: stiffness_scale,
         ..ContactDraw::NOMINAL
     };
-    Ok(drop_foot_under::<B>(robot, options, &contact, 0.05)?.1)
+    let d = drop_foot_under::<B>(robot, options, &contact, 0.05)?;
+    Ok(1e3 * (foot_radius(robot) - d.rest))
+}
+
+/// Under any drawn contact `contact`: the foot set down just touching the ground at rest, a
+/// second later, how deep its bottom is below the ground (mm); the engine's refusal as the
+/// error. Set down, not dropped, so that a drawn restitution has no impact to give back: a
+/// dropped foot with e > 0 keeps bouncing by micrometres where the spring lets go of it.
+pub fn penetration_at_rest_under<B: Backend>(
+    robot: &Robot,
+    options: &B::Options,
+    contact: &ContactDraw,
+) -> Result<f64, PhysicsError> {
+    let d = drop_foot_under::<B>(robot, options, contact, 0.0)?;
+    Ok(1e3 * (foot_radius(robot) - d.rest))
 }
 
 /// The drop height of [`bounce_with_restitution`] (m): an impact at 1.98 m/s, well above
 /// the engines' thresholds for applying restitution (DART's 0.1 m/s, rapier's none).
 pub const RESTITUTION_DROP_M: f64 = 0.2;
 
-/// The drawn restitution in action: the foot dropped [`RESTITUTION_DROP_M`], how high it
-/// bounces above where it comes to rest (mm) with the contact's restitution coefficient
-/// `restitution`; the engine's refusal as the error. Physics: e² times the drop height.
+/// The drawn restitution in action: the foot dropped [`RESTITUTION_DROP_M`], how high its
+/// bottom gets above the ground at the top of its first rebound (mm) with the contact's
+/// restitution coefficient `restitution`; the engine's refusal as the error. Physics: e² times
+/// the drop height. (Measured from the ground, not from where the foot lies a second later:
+/// with e near 1 it is still bouncing then.)
 pub fn bounce_with_restitution<B: Backend>(
     robot: &Robot,
     options: &B::Options,
@@ -464,7 +498,8 @@ pub fn bounce_with_restitution<B: Backend>(
         restitution,
         ..ContactDraw::NOMINAL
     };
-    Ok(drop_foot_under::<B>(robot, options, &contact, RESTITUTION_DROP_M)?.0)
+    let d = drop_foot_under::<B>(robot, options, &contact, RESTITUTION_DROP_M)?;
+    Ok(1e3 * (d.peak - foot_radius(robot)))
 }
 
 /// Checks, for an engine that maps `randomize.contact_stiffness_scale`, that a stiffer contact
@@ -498,26 +533,50 @@ pub fn assert_stiffness_scales_penetration<B: Backend>(robot: &Robot, options: &
 /// 0.5 mm) and 0.5 bounces the foot dropped [`RESTITUTION_DROP_M`] e² h (within 10 %); panics
 /// with the figures.
 pub fn assert_restitution_raises_the_bounce<B: Backend>(robot: &Robot, options: &B::Options) {
-    let bounce = |e: f64| {
-        bounce_with_restitution::<B>(robot, options, e)
-            .unwrap_or_else(|err| panic!("{} refused a restitution of {e}: {err}", B::NAME))
-    };
-    let (none, half) = (bounce(0.0), bounce(0.5));
-    let physics = 0.25 * 1e3 * RESTITUTION_DROP_M;
-    println!(
-        "{} bounce from 20 cm: e = 0 {none:.3} mm, e = 0.5 {half:.3} mm (e²h {physics} mm)",
-        B::NAME
-    );
+    let none = bounce_with_restitution::<B>(robot, options, 0.0)
+        .unwrap_or_else(|err| panic!("{} refused no restitution: {err}", B::NAME));
+    println!("{} bounce from 20 cm: e = 0 {none:.3} mm", B::NAME);
     assert!(
         none < 0.5,
         "{}: no restitution, no bounce: {none} mm",
         B::NAME
     );
-    assert!(
-        (half - physics).abs() < 0.1 * physics,
-        "{}: e = 0.5 bounced {half} mm, e²h = {physics} mm",
-        B::NAME
-    );
+    assert_bounce_follows_restitution::<B>(robot, options, &[0.5], 0.1);
+}
+
+/// Checks, for an engine that maps `randomize.restitution`, that each of `restitutions` (in
+/// (0, 1], rising) bounces the foot dropped [`RESTITUTION_DROP_M`] to e² h within
+/// `relative_tolerance` of it, each higher than the last; panics with the figures.
+pub fn assert_bounce_follows_restitution<B: Backend>(
+    robot: &Robot,
+    options: &B::Options,
+    restitutions: &[f64],
+    relative_tolerance: f64,
+) {
+    let mut last = f64::NEG_INFINITY;
+    for &e in restitutions {
+        let bounce = bounce_with_restitution::<B>(robot, options, e)
+            .unwrap_or_else(|err| panic!("{} refused a restitution of {e}: {err}", B::NAME));
+        let physics = e * e * 1e3 * RESTITUTION_DROP_M;
+        let error = bounce / physics - 1.0;
+        println!(
+            "{} bounce from 20 cm: e = {e} {bounce:.3} mm (e²h {physics:.3} mm, {:+.1} %)",
+            B::NAME,
+            100.0 * error
+        );
+        assert!(
+            error.abs() <= relative_tolerance,
+            "{}: e = {e} bounced {bounce} mm, e²h = {physics} mm ± {} %",
+            B::NAME,
+            100.0 * relative_tolerance
+        );
+        assert!(
+            bounce > last,
+            "{}: e = {e} bounced {bounce} mm, not higher than {last} mm",
+            B::NAME
+        );
+        last = bounce;
+    }
 }
 
 /// The foot dropped 5 cm: how high it bounces above where it comes to rest (mm).

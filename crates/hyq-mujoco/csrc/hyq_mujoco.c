@@ -606,33 +606,55 @@ static int write_body(hyq_mj* w, int b, const double v[10], char* err, int err_l
 }
 
 /* Every geom's contact solref for a stiffness factor `s` and a damping factor `c` on its
- * compiled one. MuJoCo's reference acceleration is -b v - k r; in the positive form (timeconst
- * tc, dampratio z) b = 2 / (dmax tc) and k = d / (dmax² tc² z²), so tc / c and z c / √s scale
- * b by c and k by s; in the negative form (-k, -b) the two are scaled directly. Factors of 1
- * write the compiled values back bit for bit. */
-static void scale_contact(hyq_mj* w, double s, double c) {
+ * compiled one, and, when `zeta` > 0 (a drawn restitution), the damping that gives the spring
+ * the damping ratio `zeta` at its new stiffness, times `c`. MuJoCo's reference acceleration is
+ * -b v - k r. In the positive form (timeconst tc, dampratio z) b = 2 / (dmax tc) and
+ * k = d / (dmax² tc² z²), a spring of frequency 1 / (tc z) and damping ratio z at d = dmax,
+ * where MuJoCo raises a tc below two steps to two steps (its refsafe) and so uses
+ * tc0' = max(tc0, 2 dt): tc0' / c and z0 c / √s scale b by c and k by s, and
+ * tc0' z0 / (√s c zeta), c zeta keep k at s k0 with the damping ratio c zeta. A tc the draw
+ * takes below two steps would be raised by MuJoCo with z kept, softening the spring by the
+ * square of the raise; it is raised here with tc z kept instead, so the stiffness is the drawn
+ * one and the damping the most MuJoCo allows. In the negative form (-k, -b) the two are scaled
+ * directly, and the damping for zeta is 2 zeta √(k / dmax) (b = damping / dmax,
+ * k = stiffness / dmax²). Factors of 1 and no zeta write the compiled values back bit for
+ * bit. */
+static void scale_contact(hyq_mj* w, double s, double c, double zeta) {
   mjModel* m = w->m;
+  int nominal = s == 1.0 && c == 1.0 && zeta <= 0.0;
+  double tmin = (m->opt.disableflags & mjDSBL_REFSAFE) ? 0.0 : 2.0 * m->opt.timestep;
   for (int g = 0; g < (int)m->ngeom; g++) {
     const double* r0 = w->geom_solref0 + mjNREF * g;
     double* r = m->geom_solref + mjNREF * g;
-    if (r0[0] < 0.0) {
+    double dmax = m->geom_solimp[mjNIMP * g + 1];
+    if (nominal) {
+      r[0] = r0[0];
+      r[1] = r0[1];
+    } else if (r0[0] < 0.0) {
       r[0] = r0[0] * s;
-      r[1] = r0[1] * c;
+      r[1] = zeta > 0.0 ? -2.0 * c * zeta * sqrt(-r[0] / dmax) : r0[1] * c;
     } else {
-      r[0] = r0[0] / c;
-      r[1] = r0[1] * c / sqrt(s);
+      double tc0 = fmax(r0[0], tmin);
+      double tc = zeta > 0.0 ? tc0 * r0[1] / (sqrt(s) * c * zeta) : tc0 / c;
+      double z = zeta > 0.0 ? c * zeta : r0[1] * c / sqrt(s);
+      if (tc < tmin) {
+        z *= tc / tmin;
+        tc = tmin;
+      }
+      r[0] = tc;
+      r[1] = z;
     }
   }
 }
 
 int hyq_mj_set_dynamics(hyq_mj* w, double friction, double stiffness_scale,
-                        double damping_scale, const uint8_t* nominal, const double* bodies,
-                        const double* damping, char* err, int err_len) {
+                        double damping_scale, double damping_ratio, const uint8_t* nominal,
+                        const double* bodies, const double* damping, char* err, int err_len) {
   mjModel* m = w->m;
   for (int g = 0; g < (int)m->ngeom; g++) {
     m->geom_friction[3 * g] = friction;
   }
-  scale_contact(w, stiffness_scale, damping_scale);
+  scale_contact(w, stiffness_scale, damping_scale, damping_ratio);
   for (int j = 0; j < w->num_joints; j++) {
     m->dof_damping[w->dof_of[j]] = damping[j];
   }

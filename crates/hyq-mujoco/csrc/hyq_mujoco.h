@@ -85,14 +85,15 @@ double hyq_mj_time(const hyq_mj* w);
 
 /* Per-episode dynamics: the sliding friction of every geom (the ground's, whatever its shape,
  * and the robot's: MuJoCo takes the larger of a contact's two), every geom's contact solref
- * for factors of its compiled stiffness and damping (see hyq_mujoco.c), the damping of each joint
+ * for factors of its compiled stiffness and damping and, when `damping_ratio` > 0, that damping
+ * ratio in place of the compiled one (a drawn restitution; see hyq_mujoco.c), the damping of each joint
  * (profile order), and each layout body's mass properties: `nominal[b]` nonzero restores the
  * compiled ones, else `bodies` holds 10 values per body: mass, centre of mass (3, body frame),
  * inertia tensor about it (ixx, iyy, izz, ixy, ixz, iyz). Derived constants follow
  * (mj_setConst); hyq_mj_set_state must follow before a step. */
 int hyq_mj_set_dynamics(hyq_mj* w, double friction, double stiffness_scale,
-                        double damping_scale, const uint8_t* nominal, const double* bodies,
-                        const double* damping, char* err, int err_len);
+                        double damping_scale, double damping_ratio, const uint8_t* nominal,
+                        const double* bodies, const double* damping, char* err, int err_len);
 
 /* Layout body `body`'s mass properties as the model holds them, in the 10 values above. */
 void hyq_mj_body_inertial(const hyq_mj* w, int body, double out[10]);

@@ -8,7 +8,9 @@
 //!
 //! Per-episode dynamics ([`Backend::apply_dynamics`]) are written into `mjModel` in place:
 //! every geom's sliding friction (MuJoCo takes the larger of a contact's two, so the ground's
-//! is set too, whatever its shape), each joint's damping, and each body's mass, centre of
+//! is set too, whatever its shape), every geom's contact `solref` for the drawn contact
+//! stiffness and damping factors and restitution (the damping ratio whose bounce is e,
+//! [`crate::restitution`]), each joint's damping, and each body's mass, centre of
 //! mass and principal inertia (diagonalised by MuJoCo's own `mju_eig3`, as its compiler does);
 //! then `mj_setConst` recomputes what MuJoCo derives from masses. A body given the model's own
 //! values gets MuJoCo's compiled ones back bit for bit. A push adds to the free joint's
@@ -26,6 +28,7 @@ use hyq_physics::{
 
 use crate::error::MujocoError;
 use crate::options::MujocoOptions;
+use crate::restitution::damping_ratio_for_restitution;
 use crate::world::{Layout, StepError, World};
 
 fn backend_error(message: String) -> PhysicsError {
@@ -132,17 +135,6 @@ impl MujocoBackend {
     /// step until dynamics it takes are given.
     fn give_dynamics(&mut self, dynamics: &Dynamics) -> Result<(), PhysicsError> {
         let contact = &dynamics.contact;
-        if contact.restitution != 0.0 {
-            return Err(PhysicsError::Backend {
-                backend: Self::NAME,
-                message: format!(
-                    "randomize.restitution drew {}, but MuJoCo's contact has no restitution \
-                     coefficient (a bounce comes from its solref damping ratio: draw \
-                     randomize.contact_damping_scale instead)",
-                    contact.restitution
-                ),
-            });
-        }
         // A body whose values are the model's own gets MuJoCo's compiled values back bit for
         // bit (MuJoCo diagonalised the tensor when it compiled the model).
         let nominal: Vec<bool> = dynamics
@@ -175,6 +167,12 @@ impl MujocoBackend {
             [
                 contact.contact_stiffness_scale,
                 contact.contact_damping_scale,
+                // No restitution drawn keeps MuJoCo's own damping ratio.
+                if contact.restitution > 0.0 {
+                    damping_ratio_for_restitution(contact.restitution)
+                } else {
+                    0.0
+                },
             ],
             &nominal,
             &bodies,

@@ -15,6 +15,7 @@
 mod backend;
 mod error;
 mod options;
+pub mod restitution;
 mod world;
 
 pub use backend::{MujocoBackend, world_mjcf, world_mjcf_on};

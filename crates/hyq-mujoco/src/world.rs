@@ -84,6 +84,7 @@ unsafe extern "C" {
         friction: f64,
         stiffness_scale: f64,
         damping_scale: f64,
+        damping_ratio: f64,
         nominal: *const u8,
         bodies: *const f64,
         damping: *const f64,
@@ -420,15 +421,17 @@ impl World {
     }
 
     /// Sets the friction of every geom, every geom's contact solref for `contact`'s factors
-    /// (stiffness, damping) of its compiled contact stiffness and damping (factors of 1 restore
-    /// the compiled solref bit for bit), each joint's damping and each layout body's mass
+    /// (stiffness, damping) of its compiled contact stiffness and damping and its damping ratio
+    /// (`contact[2]` > 0: the contact's damping ratio at its new stiffness, before the damping
+    /// factor; 0 keeps the compiled damping; factors of 1 and 0 restore the compiled solref bit
+    /// for bit), each joint's damping and each layout body's mass
     /// properties: `nominal[b]` true restores body `b`'s compiled ones, else `bodies[b]` holds
     /// its mass, centre of mass (body frame) and tensor about it (ixx, iyy, izz, ixy, ixz,
     /// iyz). [`World::set_state`] must follow before a step.
     pub fn set_dynamics(
         &mut self,
         friction: f64,
-        contact: [f64; 2],
+        contact: [f64; 3],
         nominal: &[bool],
         bodies: &[[f64; 10]],
         damping: &[f64],
@@ -447,6 +450,7 @@ impl World {
                 friction,
                 contact[0],
                 contact[1],
+                contact[2],
                 flags.as_ptr(),
                 flat.as_ptr(),
                 damping.as_ptr(),
