@@ -175,3 +175,44 @@ fn contact_stiffness_is_refused_by_name() {
     );
     assert!(depth(1.0).is_ok());
 }
+
+/// What DART's contact "stiffness" is: not a spring. The foot dropped 20 cm (1.98 m/s) ends its
+/// impact step 1.13 mm deep, and DART undoes that at a constant 1 mm/s, its contact's maximum
+/// error reduction velocity (`ContactConstraint::setMaxErrorReductionVelocity`, 1e-3 by default;
+/// the error reduction parameter, 0.01, would undo 1 % of the depth per step, capped by that
+/// speed). Both are static members of DART 6.12's `ContactConstraint`, read by every contact of
+/// every world during its step: why DART refuses the stiffness and damping factors
+/// (docs/robustness.md, "Why DART refuses the stiffness and damping factors").
+#[test]
+fn a_deep_penetration_is_undone_at_one_millimetre_per_second() {
+    use hyq_conformance::contact_audit::{foot, foot_radius};
+    use hyq_conformance::fixtures::{build, read_contacts, set, step_zero};
+    use hyq_physics::na::Isometry3;
+    use hyq_physics::{Backend, PhysicsParams};
+
+    let robot = Robot::bundled("hyq");
+    let (probe, r) = (foot(&robot), foot_radius(&robot));
+    let p = PhysicsParams::default();
+    let mut b: hyq_dart::DartBackend = build(&probe, &p, &hyq_dart::DartOptions::default());
+    let mut s = probe.model.spawn_state();
+    s.trunk.pose = Isometry3::translation(0.0, 0.0, r + 0.2);
+    set(&mut b, &s);
+    let trunk = probe.model.trunk_tracked_index();
+    let depth = |b: &hyq_dart::DartBackend| 1e3 * (r - b.trunk().pose.translation.z);
+    while !read_contacts(&b)[trunk] {
+        step_zero(&mut b);
+    }
+    // The impact step, then 10 ms to settle into the recovery.
+    for _ in 0..11 {
+        step_zero(&mut b);
+    }
+    let before = depth(&b);
+    for _ in 0..100 {
+        step_zero(&mut b);
+    }
+    let after = depth(&b);
+    let speed = (before - after) / 0.1;
+    println!("dart: {before:.4} mm deep, {after:.4} mm 0.1 s later: {speed:.4} mm/s");
+    assert!(before > 1.0, "the impact sinks the foot: {before} mm");
+    assert!((speed - 1.0).abs() < 0.02, "{speed} mm/s");
+}
