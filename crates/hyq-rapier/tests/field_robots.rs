@@ -93,3 +93,102 @@ mod laikago {
         },
     }
 }
+
+/// Go1 from Unitree's URDF (`assets/go1_urdf/`) against Go1 from Playground's MJCF
+/// (`assets/go1/`), both at the MJCF profile's pose, spawn and gains (its profile pointed at the
+/// URDF: `urdf`, `trunk` and the feet renamed): as given they stand 6.5 mm apart at 1 s and
+/// 12.8 mm at 10 s on this engine, because the files differ (foot spheres r 0.020 against
+/// 0.023 m; joint damping 0.01 against 0.5 N m s/rad and Coulomb friction 0.2 against 0.3 / 0.3 /
+/// 1.0 N m; the URDF's trunk carries the four hip rotors, 0.357 kg, that the MJCF leaves out:
+/// `crates/hyq-formats/tests/go1_mjcf_and_urdf.rs`). Given the MJCF's feet and joint dynamics,
+/// the URDF stands within 2 mm of the MJCF (-1.4 mm at 1 s, -1.1 mm at 10 s: the rotors'
+/// 2.8 % of the weight, at kp 35, sags it about 1 mm).
+mod go1_mjcf_and_urdf {
+    use hyq_conformance::fixtures::Robot;
+    use hyq_conformance::standing_heights;
+
+    type Engine = hyq_rapier::RapierBackend;
+
+    /// The URDF Go1 under the MJCF Go1's profile; with `mjcf_feet_and_dynamics`, its foot
+    /// spheres and joint damping and friction set to the MJCF's.
+    fn urdf_go1(mjcf_feet_and_dynamics: bool) -> Robot {
+        let assets = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets");
+        let mut urdf = std::fs::read_to_string(assets.join("go1_urdf/go1.urdf")).expect("reads");
+        let mut profile = hyq_formats::robots::GO1_PROFILE.to_owned();
+        let mut edits = vec![
+            (
+                "urdf = \"go1.xml\"".to_owned(),
+                "urdf = \"go1.urdf\"".to_owned(),
+            ),
+            (
+                "trunk = \"trunk\"".to_owned(),
+                "trunk = \"base\"".to_owned(),
+            ),
+        ];
+        for (short, leg) in [("lf", "FL"), ("lh", "RL"), ("rf", "FR"), ("rh", "RR")] {
+            edits.push((
+                format!("link = \"{leg}_calf\", collision = \"{leg}\""),
+                format!("link = \"{leg}_foot\", collision = \"{short}_foot\""),
+            ));
+        }
+        if mjcf_feet_and_dynamics {
+            urdf = urdf.replace("<sphere radius=\"0.02\"/>", "<sphere radius=\"0.023\"/>");
+            let mut out = String::new();
+            let mut calf = false;
+            for line in urdf.lines() {
+                calf = if line.contains("<joint name=") {
+                    line.contains("_calf_joint")
+                } else {
+                    calf
+                };
+                let friction = if calf { "1.0" } else { "0.3" };
+                out.push_str(&line.replace(
+                    "damping=\"0.01\" friction=\"0.2\"",
+                    &format!("damping=\"0.5\" friction=\"{friction}\""),
+                ));
+                out.push('\n');
+            }
+            urdf = out;
+        } else {
+            // 3 mm smaller feet: the same 1 mm clearance 3 mm lower.
+            edits.push(("height = 0.2955".to_owned(), "height = 0.2925".to_owned()));
+        }
+        for (from, to) in edits {
+            assert!(profile.contains(&from), "the Go1 profile has no {from}");
+            profile = profile.replace(&from, &to);
+        }
+        Robot::from_text(&urdf, &profile, "go1_urdf under the MJCF Go1's profile")
+    }
+
+    fn mjcf_go1() -> Robot {
+        Robot {
+            model: hyq_formats::robots::by_name("go1").expect("bundled"),
+            urdf: hyq_formats::robots::go1_urdf().expect("writes"),
+            profile: hyq_formats::robots::go1_profile().expect("parses"),
+        }
+    }
+
+    /// (1 s, 10 s) standing-height gaps URDF − MJCF (mm).
+    fn gaps(urdf: &Robot) -> (f64, f64) {
+        let (m1, m10) = standing_heights::<Engine>(&mjcf_go1(), &Default::default());
+        let (u1, u10) = standing_heights::<Engine>(urdf, &Default::default());
+        println!("MJCF {m1:.5} / {m10:.5} m, URDF {u1:.5} / {u10:.5} m at 1 s / 10 s");
+        (1e3 * (u1 - m1), 1e3 * (u10 - m10))
+    }
+
+    #[test]
+    fn as_given_they_stand_apart_by_the_stated_gaps() {
+        let (at_1s, at_10s) = gaps(&urdf_go1(false));
+        assert!((at_1s - (-6.5)).abs() < 0.5, "{at_1s} mm at 1 s");
+        assert!((at_10s - (-1.3e+01)).abs() < 0.5, "{at_10s} mm at 10 s");
+    }
+
+    #[test]
+    fn with_the_mjcf_feet_and_joint_dynamics_they_stand_within_2_mm() {
+        let (at_1s, at_10s) = gaps(&urdf_go1(true));
+        assert!(
+            at_1s.abs() < 2.0 && at_10s.abs() < 2.0,
+            "{at_1s} mm, {at_10s} mm"
+        );
+    }
+}
