@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Derive assets/anymal_b/ from example-robot-data 6.0.0 (ANYbotics ANYmal B).
 
-Writes `anymal_b.urdf`, `UPSTREAM.md` and `LICENSE-example-robot-data` next to this script from the
-wheel's `robots/anymal_b_simple_description/`, and checks that `profile.toml`'s standing pose is the package's SRDF `standing` group state. The derivation is
+Writes `anymal_b.urdf`, `UPSTREAM.md` and `LICENSE-example-robot-data` next to this script from
+the wheel's `robots/anymal_b_simple_description/`, and checks that `profile.toml`'s standing
+pose is the package's SRDF `standing` group state. The derivation is
 `assets/example_robot_data.py`'s (its documentation says what is kept and dropped); this file
 names the robot's files and feet.
 

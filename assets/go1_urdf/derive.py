@@ -2,9 +2,9 @@
 """Derive assets/go1_urdf/ from example-robot-data 6.0.0 (Unitree Go1 (URDF)).
 
 Writes `go1.urdf`, `UPSTREAM.md` and `LICENSE-example-robot-data` next to this script from the
-wheel's `robots/go1_description/`, and checks that `profile.toml`'s standing pose is the package's SRDF `standing` group state. The derivation is
-`assets/example_robot_data.py`'s (its documentation says what is kept and dropped); this file
-names the robot's files and feet.
+wheel's `robots/go1_description/`, and checks that `profile.toml`'s standing pose is the
+package's SRDF `standing` group state. The derivation is `assets/example_robot_data.py`'s (its
+documentation says what is kept and dropped); this file names the robot's files and feet.
 
     python3 -m pip download --no-deps -d erd example-robot-data==6.0.0
     python3 assets/go1_urdf/derive.py erd/example_robot_data-6.0.0-0-py3-none-any.whl

@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
 """Derive assets/laikago/ from example-robot-data 6.0.0 (Unitree Laikago).
 
-Writes `laikago.urdf`, `UPSTREAM.md` and `LICENSE-example-robot-data` next to this script from the
-wheel's `robots/laikago_description/`, and checks that `profile.toml`'s standing pose is STANDING below (the package has no
-SRDF: README.md here says how the pose was derived). The derivation is
-`assets/example_robot_data.py`'s (its documentation says what is kept and dropped); this file
-names the robot's files and feet.
+Writes `laikago.urdf`, `UPSTREAM.md` and `LICENSE-example-robot-data` next to this script from
+the wheel's `robots/laikago_description/`, and checks that `profile.toml`'s standing pose is
+STANDING below (the package has no SRDF: README.md here says how the pose was derived). The
+derivation is `assets/example_robot_data.py`'s (its documentation says what is kept and
+dropped); this file names the robot's files and feet.
 
     python3 -m pip download --no-deps -d erd example-robot-data==6.0.0
     python3 assets/laikago/derive.py erd/example_robot_data-6.0.0-0-py3-none-any.whl
