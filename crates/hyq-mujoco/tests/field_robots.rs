@@ -9,7 +9,7 @@ use std::path::PathBuf;
 
 use hyq_conformance::fixtures::Robot;
 
-/// The robot of `assets/<name>/profile.toml`.
+/// The robot of the profile `profile.toml` in `assets/NAME`.
 fn asset(name: &str) -> Robot {
     Robot::from_profile(
         PathBuf::from(env!("CARGO_MANIFEST_DIR"))
