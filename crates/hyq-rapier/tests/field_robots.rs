@@ -69,7 +69,7 @@ mod anymal_b {
         robot: anymal_b(),
         standing_m: (0.48470, 0.48470),
         left_out: {
-            trunk_velocity_is_the_frame_origin_velocity => "tumbling freely with no torque, the trunk velocity jumps within one 1 ms step late in the 0.3 s run (step 265: 0.126 to 0.182 m/s, finite difference 0.206 m/s), which a smooth flight does not do: a leg reaching its stop; DART and MuJoCo pass",
+            trunk_velocity_is_the_frame_origin_velocity => "tumbling freely with no torque, the trunk velocity jumps within one 1 ms step late in the 0.3 s run (step 265: 0.126 to 0.182 m/s, finite difference 0.206 m/s), which a smooth flight does not do: a leg reaching its stop (with every range widened to +-3 rad the check passes); DART and MuJoCo pass",
         },
     }
 }
