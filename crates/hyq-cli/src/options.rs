@@ -78,8 +78,9 @@ pub struct EnvArgs {
 /// The robot option (shared by every command that builds an environment, and `hyq model`).
 #[derive(Debug, Clone, Args)]
 pub struct RobotArgs {
-    /// The robot: a bundled robot's name (hyq, anymal_c, go1) or the path to a robot profile
-    /// (a .toml file next to its URDF or MJCF file; see docs/adding-a-robot.md).
+    /// The robot: a bundled robot's name (hyq, anymal_c, go1, a1, go1_urdf, anymal_b, laikago)
+    /// or the path to a robot profile (a .toml file next to its URDF or MJCF file; see
+    /// docs/adding-a-robot.md).
     #[arg(long = "robot", value_name = "NAME|PROFILE.toml", default_value = hyq_physics::bundled::DEFAULT)]
     pub choice: String,
 }

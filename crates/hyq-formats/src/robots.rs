@@ -9,6 +9,10 @@
 //! | `hyq` (the default) | IIT's HyQ, 86.8 kg, 12 joints | `assets/hyq/` (URDF) |
 //! | `anymal_c` | ANYbotics' ANYmal C, 52.1 kg, 12 joints | `assets/anymal_c/` (URDF) |
 //! | `go1` | Unitree Go1, 12.7 kg, 12 joints | `assets/go1/` (MJCF, MuJoCo Playground) |
+//! | `a1` | Unitree A1, 13.7 kg, 12 joints | `assets/a1/` (URDF, example-robot-data) |
+//! | `go1_urdf` | Unitree Go1, 13.1 kg, 12 joints | `assets/go1_urdf/` (URDF, example-robot-data) |
+//! | `anymal_b` | ANYbotics' ANYmal B, 30.5 kg, 12 joints | `assets/anymal_b/` (URDF, example-robot-data) |
+//! | `laikago` | Unitree Laikago, 25.4 kg, 12 joints | `assets/laikago/` (URDF, example-robot-data) |
 
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, OnceLock};
@@ -23,9 +27,36 @@ pub const GO1_MJCF: &str = include_str!("../../../assets/go1/go1.xml");
 /// The text of `assets/go1/profile.toml`.
 pub const GO1_PROFILE: &str = include_str!("../../../assets/go1/profile.toml");
 
+/// The field's URDF robots from example-robot-data 6.0.0, compiled in as (name, URDF text,
+/// profile text): small files of primitives (15 to 29 kB of URDF each).
+pub const FIELD: [(&str, &str, &str); 4] = [
+    (
+        "a1",
+        include_str!("../../../assets/a1/a1.urdf"),
+        include_str!("../../../assets/a1/profile.toml"),
+    ),
+    (
+        "go1_urdf",
+        include_str!("../../../assets/go1_urdf/go1.urdf"),
+        include_str!("../../../assets/go1_urdf/profile.toml"),
+    ),
+    (
+        "anymal_b",
+        include_str!("../../../assets/anymal_b/anymal_b.urdf"),
+        include_str!("../../../assets/anymal_b/profile.toml"),
+    ),
+    (
+        "laikago",
+        include_str!("../../../assets/laikago/laikago.urdf"),
+        include_str!("../../../assets/laikago/profile.toml"),
+    ),
+];
+
 /// Every bundled robot's name: [`hyq_physics::bundled::NAMES`] (the URDF robots, the default
-/// first), then the MJCF ones.
-pub const NAMES: [&str; 3] = ["hyq", "anymal_c", "go1"];
+/// first), then the MJCF one, then the field's URDF robots ([`FIELD`]).
+pub const NAMES: [&str; 7] = [
+    "hyq", "anymal_c", "go1", "a1", "go1_urdf", "anymal_b", "laikago",
+];
 
 /// Why a robot could not be had.
 #[derive(Debug, thiserror::Error)]
@@ -96,11 +127,39 @@ pub fn load_go1() -> Result<RobotModel, RobotError> {
     Ok(go1_mjcf()?.model(&go1_profile()?)?)
 }
 
+/// Builds field robot `name` (one of [`FIELD`]) afresh; `None` if there is no such robot.
+pub fn load_field(name: &str) -> Option<Result<RobotModel, ModelError>> {
+    let (_, urdf, profile) = FIELD.iter().find(|(n, _, _)| *n == name)?;
+    let dir = format!("bundled assets/{name}");
+    Some(
+        Profile::from_toml_str(profile, &format!("{dir}/profile.toml"))
+            .and_then(|p| RobotModel::from_urdf_str(urdf, &format!("{dir}/{}", p.urdf), &p)),
+    )
+}
+
 /// Bundled robot `name` (any of [`NAMES`]), parsed once per process and shared; `None` if
 /// there is no such robot.
 pub fn by_name(name: &str) -> Option<Arc<RobotModel>> {
     if let Some(model) = bundled::by_name(name) {
         return Some(model);
+    }
+    static FIELD_MODELS: [OnceLock<Arc<RobotModel>>; FIELD.len()] =
+        [const { OnceLock::new() }; FIELD.len()];
+    if let Some(i) = FIELD.iter().position(|(n, _, _)| *n == name) {
+        return Some(
+            FIELD_MODELS[i]
+                .get_or_init(|| {
+                    // Compiled in and loaded by this crate's tests (`tests/field_robots.rs`), so
+                    // a failure here is a broken build, not bad input.
+                    #[allow(clippy::expect_used)]
+                    Arc::new(
+                        load_field(name)
+                            .expect("a field robot")
+                            .expect("valid assets"),
+                    )
+                })
+                .clone(),
+        );
     }
     static GO1: OnceLock<Arc<RobotModel>> = OnceLock::new();
     (name == "go1").then(|| {

@@ -10,7 +10,7 @@ Importing this package registers ``HyQ-v0``::
     env = gym.make("HyQ-v0", robot="anymal_c", backend="mujoco")  # another robot, engine
 
 and one id per bundled robot (``ANYmalC-v0`` is ``HyQ-v0`` with ``robot="anymal_c"``, ``Go1-v0``
-with ``robot="go1"``). The velocity-command task (docs/velocity.md) has its own ids,
+with ``robot="go1"``; ``A1-v0``, ``Go1URDF-v0``, ``ANYmalB-v0``, ``Laikago-v0`` likewise). The velocity-command task (docs/velocity.md) has its own ids,
 ``HyQ-Velocity-v0`` and ``ANYmalC-Velocity-v0`` (the same env with ``task.kind = "velocity"``)::
 
     env = gym.make("HyQ-Velocity-v0", env_config={"command.lin_vel_x": [0.5, 0.5]})
@@ -49,7 +49,14 @@ REGULARIZER_TERMS: tuple[str, ...] = tuple(_core.REGULARIZER_TERMS)
 
 #: The registered id of each bundled robot other than the default: the same env with its
 #: ``robot``.
-ROBOT_IDS = {"anymal_c": "ANYmalC-v0", "go1": "Go1-v0"}
+ROBOT_IDS = {
+    "anymal_c": "ANYmalC-v0",
+    "go1": "Go1-v0",
+    "a1": "A1-v0",
+    "go1_urdf": "Go1URDF-v0",
+    "anymal_b": "ANYmalB-v0",
+    "laikago": "Laikago-v0",
+}
 
 #: The registered ``max_episode_steps``: the core's default t_max (``max_time_steps``), so that
 #: ``env.spec.max_episode_steps`` is the episode length the core enforces.
