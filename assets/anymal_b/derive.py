@@ -23,7 +23,7 @@ HEADER = """<!--
   robots/anymal.urdf of anymal_b_simple_description in the PyPI wheel
   example_robot_data-6.0.0-0-py3-none-any.whl (sha256 {sha}); upstream
   https://github.com/ANYbotics/anymal_b_simple_description.
-  Copyright ANYbotics AG; BSD 3-Clause License (upstream's licence, as example-robot-data's
+  Copyright 2019 ANYbotics; BSD 3-Clause License (upstream's licence, as example-robot-data's
   package README states), see LICENSE and README.md here.
 
   Every link, joint, inertial figure, joint origin, axis, limit and dynamics element is
