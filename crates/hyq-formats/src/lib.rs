@@ -20,6 +20,7 @@
 //! element they become, rather than in the MuJoCo backend's crate: `hyq model --format mjcf`
 //! writes them on a build without MuJoCo's library, which that crate needs to compile.
 
+pub mod draft;
 pub mod mjcf;
 pub mod mjcf_read;
 pub mod robots;
