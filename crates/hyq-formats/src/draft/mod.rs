@@ -99,6 +99,11 @@ impl Draft {
         self.notes.standing_height = how.to_owned();
     }
 
+    /// Says why the standing height was not measured (the comment above its absent key).
+    pub fn set_standing_note(&mut self, note: &str) {
+        note.clone_into(&mut self.notes.standing_height);
+    }
+
     /// The profile as commented TOML.
     pub fn to_toml(&self) -> String {
         text::write(&self.profile, &self.notes)
