@@ -222,3 +222,67 @@ fn bad_srdfs_are_one_line_errors() {
     let outside = r#"<robot name="hyq"><group_state name="standing" group="all"><joint name="lf_kfe_joint" value="1"/></group_state></robot>"#;
     refused("hyq.urdf", &urdf, Some(outside), "outside");
 }
+
+#[test]
+fn an_mjcf_file_alone_resolves_to_its_draft_unless_it_lacks_a_pose_or_gains() {
+    use hyq_formats::robots::{resolve, resolve_with};
+    let path = asset("go1/go1.xml");
+    let choice = path.to_str().expect("a UTF-8 path");
+    let model = resolve(choice).unwrap_or_else(|e| panic!("{e}"));
+    let bundled = hyq_formats::robots::load_go1().unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(model.name(), "go1");
+    assert_eq!(model.standing_pose(), bundled.standing_pose());
+    assert_eq!(model.kp(), bundled.kp());
+    assert_eq!(model.spawn_height(), bundled.spawn_height());
+    // No settle run: the spawn height stands for the standing height; with one, its figure.
+    assert_eq!(model.standing_height(), model.spawn_height());
+    let settle = |_| Ok(0.26);
+    let settled = resolve_with(choice, Some(&settle)).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(settled.standing_height(), 0.26);
+    let falls = |_| Err("it fell".to_owned());
+    let e = resolve_with(choice, Some(&falls))
+        .expect_err("a robot that falls")
+        .to_string();
+    assert!(e.contains("it fell") && e.contains("hyq robot init"), "{e}");
+
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{e}"));
+    let dir = std::env::temp_dir().join(format!("hyq-alone-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+    let cut = |from: &str, to: &str| {
+        let start = text.find(from).expect("the element");
+        let end = text[start..].find(to).expect("its end") + start + to.len();
+        format!("{}{}", &text[..start], &text[end..])
+    };
+    for (name, edited, why) in [
+        (
+            "no-key.xml",
+            cut("<keyframe>", "</keyframe>"),
+            "no keyframe",
+        ),
+        (
+            "no-servo.xml",
+            // The keyframe's controls go with the actuators.
+            without_ctrl(&cut("<actuator>", "</actuator>")),
+            "no <position> actuator",
+        ),
+    ] {
+        let file = dir.join(name);
+        std::fs::write(&file, edited).unwrap_or_else(|e| panic!("{e}"));
+        let e = resolve(file.to_str().expect("UTF-8"))
+            .expect_err(name)
+            .to_string();
+        assert!(
+            e.contains(why) && e.contains("hyq robot init"),
+            "{name}: {e}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `text` without its first ` ctrl="…"` attribute.
+fn without_ctrl(text: &str) -> String {
+    let start = text.find(" ctrl=\"").expect("a ctrl attribute");
+    let value = start + " ctrl=\"".len();
+    let end = text[value..].find('"').expect("its closing quote") + value + 1;
+    format!("{}{}", &text[..start], &text[end..])
+}
