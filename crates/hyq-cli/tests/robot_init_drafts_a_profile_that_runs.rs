@@ -110,3 +110,55 @@ fn stdout_without_out_and_an_existing_file_only_with_force() {
     hyq_ok(&["robot", "init", &file, "--out", out, "--force"]);
     assert!(std::fs::read_to_string(out).unwrap().contains("urdf = "));
 }
+
+/// The trunk's height after 1 s of `hyq run --policy stand` on `backend` with the profile at
+/// `path`.
+#[cfg(any(feature = "dart", feature = "mujoco"))]
+fn stands_on(backend: &str, path: &str) -> f64 {
+    let out = hyq_ok(&[
+        "run",
+        "--robot",
+        path,
+        "--backend",
+        backend,
+        "--policy",
+        "stand",
+        "--json",
+        "--set",
+        "task.max_time_steps=100",
+    ]);
+    let summary = common::one_json_line(&out);
+    assert_eq!(summary["terminated"], false, "{summary}");
+    summary["final_position"][2].as_f64().unwrap_or(f64::NAN)
+}
+
+/// Each bundled robot's draft stands on `backend` within 5 mm of the height rapier's settle
+/// run measured (the hand-made profiles' engines differ by up to 4.2 mm: Go1 on DART).
+#[cfg(any(feature = "dart", feature = "mujoco"))]
+fn every_draft_stands_on(backend: &str) {
+    for (name, file, srdf) in [
+        ("go1", "go1/go1.xml", None),
+        ("hyq", "hyq/hyq.urdf", Some("hyq.srdf")),
+        ("anymal_c", "anymal_c/anymal_c.urdf", Some("anymal_c.srdf")),
+    ] {
+        let (path, p) = init(&format!("{name}-{backend}-draft.toml"), file, srdf);
+        let z = stands_on(backend, &path);
+        let rapier = standing_height(&p);
+        assert!(
+            (z - rapier).abs() < 5e-3,
+            "{name} on {backend}: {z}, rapier {rapier}"
+        );
+    }
+}
+
+#[cfg(feature = "dart")]
+#[test]
+fn every_draft_stands_on_dart() {
+    every_draft_stands_on("dart");
+}
+
+#[cfg(feature = "mujoco")]
+#[test]
+fn every_draft_stands_on_mujoco() {
+    every_draft_stands_on("mujoco");
+}

@@ -18,12 +18,13 @@
 //! - Standing height: measured by a settle run on an engine, which this crate has none of: the
 //!   caller runs it and records it with [`Draft::set_standing_height`] (`hyq robot init` runs
 //!   rapier for 1 s); left out, the environment uses the spawn height.
-//! - Gains: an MJCF's `<position>` actuators' `kp` and `kv`, else the rule in
-//!   [`gains::rule`](self) (each foot carrying an equal share of the weight, the most loaded
-//!   joint sagging at most 0.05 rad; a leg in the air damped at a ratio of 0.6).
+//! - Gains: an MJCF's `<position>` actuators' `kp` and `kv`, else a rule (each foot carrying
+//!   an equal share of the weight, the most loaded joint sagging at most 0.05 rad; a leg in
+//!   the air damped at a ratio of 0.6).
 //! - Limits: the URDF's ranges and velocity limits, written out; an MJCF gives ranges but no
 //!   velocity limit: [`DEFAULT_VELOCITY`], said so.
-//! - Trot: when the legs are named, a diagonal trot at ANYmal C's tuned figures, a start to tune from.
+//! - Trot: when the legs are named, a diagonal trot at ANYmal C's tuned figures, a start to
+//!   tune from.
 
 mod gains;
 mod legs;
@@ -40,19 +41,8 @@ use hyq_physics::{
 use urdf_rs::JointType;
 
 use crate::mjcf_read::{self, MjcfRobot};
-pub use types::DraftError;
+pub use types::{CLEARANCE, DEFAULT_VELOCITY, DraftError, TROT};
 use types::{Notes, Source};
-
-/// The joint velocity limit (rad/s) drafted where the file gives none (MJCF has no such
-/// attribute): of the order of the field's quadrupeds' (Go1's knee 20 rad/s, its hip 30).
-pub const DEFAULT_VELOCITY: f64 = 20.0;
-
-/// The gap (m) between the ground and the robot's lowest point at spawn.
-pub const CLEARANCE: f64 = 0.001;
-
-/// The scripted trot drafted for a named quadruped: frequency (Hz), hip amplitude (rad), knee
-/// lift (rad), ramp (s): ANYmal C's tuned figures.
-pub const TROT: [f64; 4] = [2.0, 0.15, 0.3, 1.0];
 
 /// A drafted profile, its robot and where each value came from.
 #[derive(Debug, Clone)]
@@ -67,7 +57,11 @@ pub struct Draft {
 /// `urdf` key says (the robot file's path relative to where the profile will be).
 pub fn draft_file(robot: &Path, srdf: Option<&Path>, urdf_key: &str) -> Result<Draft, DraftError> {
     let origin = robot.display().to_string();
-    let source = if crate::robots::is_mjcf(robot) {
+    // An `.xml` robot file is MJCF, as for `--robot` and a profile's `urdf` key.
+    let is_mjcf = robot
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("xml"));
+    let source = if is_mjcf {
         Source::Mjcf(Box::new(mjcf_read::read_file(robot)?))
     } else {
         Source::Urdf(read_urdf(robot)?)

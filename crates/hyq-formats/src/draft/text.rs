@@ -6,8 +6,10 @@ use std::fmt::Write as _;
 use hyq_physics::Profile;
 
 use super::legs::Legs;
-use super::types::{Notes, Source};
-use super::{DEFAULT_VELOCITY, TROT};
+use super::types::{DEFAULT_VELOCITY, Notes, Source, TROT};
+
+/// The most MJCF reader's notes listed in the comment on the robot file.
+const MAX_NOTES: usize = 12;
 
 /// The width comments are folded to.
 const WIDTH: usize = 96;
@@ -53,11 +55,16 @@ pub(crate) fn describe(
              radians."
     )];
     let skipped = match source {
-        Source::Mjcf(m) if !m.notes.is_empty() => format!(
-            " The MJCF reader left out {} thing(s) with no robot mechanics in them or set by the \
-             project (`hyq model` on this profile does not list them; see the reader's notes).",
-            m.notes.len()
-        ),
+        Source::Mjcf(m) if !m.notes.is_empty() => {
+            let shown: Vec<&str> = m.notes.iter().take(MAX_NOTES).map(String::as_str).collect();
+            let more = m.notes.len().saturating_sub(MAX_NOTES);
+            let more = if more > 0 {
+                format!("; and {more} more")
+            } else {
+                String::new()
+            };
+            format!(" The MJCF reader left out: {}{more}.", shown.join("; "))
+        }
         _ => String::new(),
     };
     notes.robot_file = format!(

@@ -5,6 +5,17 @@ use hyq_physics::{ModelError, Profile, RobotModel};
 
 use crate::mjcf_read::{MjcfReadError, MjcfRobot};
 
+/// The joint velocity limit (rad/s) drafted where the file gives none (MJCF has no such
+/// attribute): of the order of the field's quadrupeds' (Go1's knee 20 rad/s, its hip 30).
+pub const DEFAULT_VELOCITY: f64 = 20.0;
+
+/// The gap (m) between the ground and the robot's lowest point at spawn.
+pub const CLEARANCE: f64 = 0.001;
+
+/// The scripted trot drafted for a named quadruped: frequency (Hz), hip amplitude (rad), knee
+/// lift (rad), ramp (s): ANYmal C's tuned figures.
+pub const TROT: [f64; 4] = [2.0, 0.15, 0.3, 1.0];
+
 /// Why a profile could not be drafted: one line, naming the file and what was wrong.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[error("{0}")]
