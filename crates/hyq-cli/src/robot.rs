@@ -11,7 +11,7 @@ use clap::{Args, Subcommand};
 use hyq_env::policy::{Policy as _, Stand};
 use hyq_env::{EnvConfig, ResetOptions};
 use hyq_formats::draft::{self, Draft};
-use hyq_physics::RobotModel;
+use hyq_physics::{Backend, RobotModel};
 
 use crate::Failure;
 use crate::options::{make_env, usage};
@@ -128,12 +128,18 @@ fn settle(draft: &mut Draft) {
     }
 }
 
-/// The trunk frame's height (m) after [`SETTLE_S`] of holding the standing pose on rapier; an
-/// error if the robot falls, touches the ground with its trunk, or the run ends early.
+/// The trunk frame's height (m) after [`SETTLE_S`] of holding the standing pose on the default
+/// engine (rapier), default configuration, seed 0; an error if the episode ends (a fall, the
+/// trunk on the ground) or the height is not a positive number.
 pub fn settle_height(model: Arc<RobotModel>) -> Result<f64, String> {
-    type Rapier = hyq_engines::backends::Rapier;
+    let engine = hyq_engines::DEFAULT.name;
+    hyq_engines::with_engine!(engine, B => settle_on::<B>(model))
+        .unwrap_or_else(|| Err(format!("this hyq was built without the {engine} engine")))
+}
+
+fn settle_on<B: Backend>(model: Arc<RobotModel>) -> Result<f64, String> {
     let n = model.num_joints();
-    let mut env = make_env::<Rapier>(model, EnvConfig::default()).map_err(|f| f.message)?;
+    let mut env = make_env::<B>(model, EnvConfig::default()).map_err(|f| f.message)?;
     env.reset(Some(0), &ResetOptions::default())
         .map_err(|e| e.to_string())?;
     let steps = (SETTLE_S / env.env_dt()).round() as usize;

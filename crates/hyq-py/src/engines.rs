@@ -286,16 +286,23 @@ fn with_pool<B: Backend>(vec: VecEnv<B>, threads: Option<usize>) -> PyResult<Box
 /// the command line's `hyq robot init` figure, so both fronts build the same model.
 const SETTLE_S: f64 = 1.0;
 
-/// The trunk frame's height (m) after [`SETTLE_S`] of holding the standing pose on rapier
-/// (default configuration, seed 0), as the command line's `hyq robot init` measures it; an
-/// error if the episode ends or the height is not a positive number.
+/// The trunk frame's height (m) after [`SETTLE_S`] of holding the standing pose on the default
+/// engine (rapier), default configuration, seed 0, as the command line's `hyq robot init`
+/// measures it; an error if the episode ends or the height is not a positive number.
 fn settle_height(model: Arc<RobotModel>) -> Result<f64, String> {
+    let engine = hyq_engines::DEFAULT.name;
+    hyq_engines::with_engine!(engine, B => settle_on::<B>(model)).unwrap_or_else(|| {
+        Err(format!(
+            "this package was built without the {engine} engine"
+        ))
+    })
+}
+
+fn settle_on<B: Backend>(model: Arc<RobotModel>) -> Result<f64, String> {
     use hyq_env::policy::{Policy as _, Stand};
     let n = model.num_joints();
-    let mut env =
-        hyq_env::Env::<hyq_engines::backends::Rapier>::new(model, hyq_env::EnvConfig::default())
-            .map_err(|e| e.to_string())?;
-    env.reset(Some(0), &hyq_env::ResetOptions::default())
+    let mut env = Env::<B>::new(model, EnvConfig::default()).map_err(|e| e.to_string())?;
+    env.reset(Some(0), &ResetOptions::default())
         .map_err(|e| e.to_string())?;
     let steps = (SETTLE_S / env.env_dt()).round() as usize;
     let mut a = vec![0.0; n];
