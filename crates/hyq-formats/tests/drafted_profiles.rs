@@ -286,3 +286,48 @@ fn without_ctrl(text: &str) -> String {
     let end = text[value..].find('"').expect("its closing quote") + value + 1;
     format!("{}{}", &text[..start], &text[end..])
 }
+
+#[test]
+fn legs_that_are_not_four_of_three_joints_keep_the_file_s_order_and_names() {
+    // ANYmal C with its hip abduction joints fixed: four legs of two joints.
+    let mut urdf =
+        std::fs::read_to_string(asset("anymal_c/anymal_c.urdf")).unwrap_or_else(|e| panic!("{e}"));
+    for leg in ["LF", "LH", "RF", "RH"] {
+        let revolute = format!("<joint name=\"{leg}_HAA\" type=\"revolute\">");
+        assert!(urdf.contains(&revolute));
+        urdf = urdf.replace(
+            &revolute,
+            &format!("<joint name=\"{leg}_HAA\" type=\"fixed\">"),
+        );
+    }
+    let dir = std::env::temp_dir().join(format!("hyq-eight-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap_or_else(|e| panic!("{e}"));
+    let path = dir.join("anymal_8.urdf");
+    std::fs::write(&path, &urdf).unwrap_or_else(|e| panic!("{e}"));
+    let draft = draft::draft_file(&path, None, "anymal_8.urdf").unwrap_or_else(|e| panic!("{e}"));
+    let _ = std::fs::remove_dir_all(&dir);
+    let p = draft.profile();
+    let names: Vec<&str> = p.joints.iter().map(|j| j.name.as_str()).collect();
+    assert_eq!(names.len(), 8);
+    assert_eq!(names, file_order(&urdf), "the file's order");
+    assert!(
+        p.joints.iter().all(|j| j.name == j.urdf),
+        "the file's names"
+    );
+    assert_eq!(p.feet.len(), 4);
+    assert!(p.gait.is_none(), "no trot without the project's leg names");
+    let text = draft.to_toml();
+    assert!(text.contains("not four of three joints"), "{text}");
+    draft.model().unwrap_or_else(|e| panic!("{e}"));
+}
+
+/// The revolute joints' names in the order the URDF text lists them.
+fn file_order(urdf: &str) -> Vec<&str> {
+    urdf.split("<joint name=\"")
+        .skip(1)
+        .filter(|rest| {
+            rest.contains("type=\"revolute\"") && rest.find("type=\"revolute\"") < rest.find('>')
+        })
+        .filter_map(|rest| rest.split('"').next())
+        .collect()
+}
