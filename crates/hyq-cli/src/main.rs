@@ -1,6 +1,6 @@
 //! `hyq`: the command-line front of the HyQ walk-to-goal environment.
 //!
-//! One module per subcommand (`run`, `bench`, `soak`, `render`, `plot`, `compare`, `model`), each with its
+//! One module per subcommand (`run`, `bench`, `soak`, `render`, `plot`, `compare`, `model`, `robot`), each with its
 //! clap arguments and an `execute` function; the environment options every subcommand shares
 //! (backend, configuration file, `--set` overrides, policy and seed) live in [`options`], the
 //! choice of physics backend in [`backend`], and the JSON line and progress bar several of them
@@ -20,6 +20,7 @@ mod output;
 mod plot;
 mod policy_summary;
 mod render;
+mod robot;
 mod run;
 mod soak;
 mod table;
@@ -67,6 +68,9 @@ enum Command {
     /// Write the simulated robot for other tools: MuJoCo's MJCF, URDF, or the facts a simulator
     /// loop needs (JSON).
     Model(model::ModelArgs),
+    /// Bring a robot: `hyq robot init FILE` drafts a robot profile from a URDF or MJCF file,
+    /// every value commented with where it came from.
+    Robot(robot::RobotArgs),
 }
 
 /// A failure of the command, already worded for the user, with its exit status.
@@ -137,6 +141,7 @@ fn main() -> ExitCode {
         Command::Render(args) => render::execute(args),
         Command::Plot(args) => plot::execute(args),
         Command::Model(args) => model::execute(args),
+        Command::Robot(args) => robot::execute(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

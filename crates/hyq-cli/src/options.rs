@@ -78,10 +78,11 @@ pub struct EnvArgs {
 /// The robot option (shared by every command that builds an environment, and `hyq model`).
 #[derive(Debug, Clone, Args)]
 pub struct RobotArgs {
-    /// The robot: a bundled robot's name (hyq, anymal_c, go1, a1, go1_urdf, anymal_b, laikago)
-    /// or the path to a robot profile (a .toml file next to its URDF or MJCF file; see
-    /// docs/adding-a-robot.md).
-    #[arg(long = "robot", value_name = "NAME|PROFILE.toml", default_value = hyq_physics::bundled::DEFAULT)]
+    /// The robot: a bundled robot's name (hyq, anymal_c, go1, a1, go1_urdf, anymal_b, laikago),
+    /// the path to a robot profile (a .toml file next to its URDF or MJCF file; see
+    /// docs/adding-a-robot.md), or an MJCF file with a keyframe and a <position> actuator on
+    /// every joint (its profile drafted in memory, as `hyq robot init` drafts it).
+    #[arg(long = "robot", value_name = "NAME|PROFILE.toml|ROBOT.xml", default_value = hyq_physics::bundled::DEFAULT)]
     pub choice: String,
 }
 
@@ -89,7 +90,8 @@ impl RobotArgs {
     /// The chosen robot's model: a bundled one is shared, a profile is loaded. A choice that is
     /// neither, or a profile that cannot be used, is a usage error naming it.
     pub fn model(&self) -> Result<Arc<RobotModel>, Failure> {
-        hyq_formats::robots::resolve(&self.choice).map_err(|e| {
+        let settle = |model| crate::robot::settle_height(model);
+        hyq_formats::robots::resolve_with(&self.choice, Some(&settle)).map_err(|e| {
             usage(format!(
                 "--robot {}: {}",
                 self.choice,

@@ -937,3 +937,56 @@ fn an_error_echoing_a_long_value_stays_a_short_line() {
         "{err}"
     );
 }
+
+#[test]
+fn robot_init_bad_inputs() {
+    let assets = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets");
+    let hyq_urdf = format!("{assets}/hyq/hyq.urdf");
+    fails(
+        2,
+        &["robot", "init", "/nonexistent/robot.urdf"],
+        &["/nonexistent/robot.urdf"],
+    );
+    let not_xml = write("init-not-xml.urdf", b"\x00\x01 not xml");
+    fails(2, &["robot", "init", &not_xml], &["init-not-xml.urdf"]);
+    let not_xml_mjcf = write("init-not-xml.xml", b"{ \"a\": 1 }");
+    fails(2, &["robot", "init", &not_xml_mjcf], &["init-not-xml.xml"]);
+    let inertial = r#"<inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/></inertial>"#;
+    let one_link = format!(
+        r#"<robot name="r"><link name="base"><collision><geometry><box size="1 1 1"/></geometry></collision>{inertial}</link></robot>"#
+    );
+    let no_legs = write("init-no-legs.urdf", one_link.as_bytes());
+    fails(2, &["robot", "init", &no_legs], &["no legs"]);
+    let world = one_link.replace(
+        "</robot>",
+        r#"<link name="world"/><joint name="fix" type="fixed"><parent link="world"/><child link="base"/></joint></robot>"#,
+    );
+    let world = write("init-world.urdf", world.as_bytes());
+    fails(2, &["robot", "init", &world], &["no free root", "world"]);
+    let no_free = write(
+        "init-no-free.xml",
+        br#"<mujoco><worldbody><body name="b"><geom size="0.1"/></body></worldbody></mujoco>"#,
+    );
+    fails(2, &["robot", "init", &no_free], &["free joint"]);
+    let srdf = write(
+        "init-unknown.srdf",
+        br#"<robot name="hyq"><group_state name="standing" group="all"><joint name="lf_elbow" value="1"/></group_state></robot>"#,
+    );
+    fails(
+        2,
+        &["robot", "init", &hyq_urdf, "--srdf", &srdf],
+        &["init-unknown.srdf", "lf_elbow"],
+    );
+    let nest = format!(
+        "<robot>{}{}</robot>",
+        "<a>".repeat(20_000),
+        "</a>".repeat(20_000)
+    );
+    let deep = write("init-deep.urdf", nest.as_bytes());
+    fails(2, &["robot", "init", &deep], &["init-deep.urdf", "deep"]);
+    let deep_mjcf = write("init-deep.xml", nest.replace("robot", "mujoco").as_bytes());
+    fails(2, &["robot", "init", &deep_mjcf], &["init-deep.xml"]);
+    let huge = write("init-huge.urdf", &vec![b' '; 9 << 20]);
+    fails(2, &["robot", "init", &huge], &["init-huge.urdf"]);
+    fails(2, &["robot", "init", "/dev/zero"], &["/dev/zero"]);
+}

@@ -242,7 +242,7 @@ fn compare_runs_every_scenario_on_anymal_c_and_names_it() {
 }
 
 #[test]
-fn go1_from_mjcf_runs_by_name_and_an_mjcf_file_alone_is_one_error_line() {
+fn go1_from_mjcf_runs_by_name_by_profile_and_as_an_mjcf_file_alone() {
     let summary = one_json_line(&hyq_ok(&[
         "run",
         "--robot",
@@ -257,9 +257,32 @@ fn go1_from_mjcf_runs_by_name_and_an_mjcf_file_alone_is_one_error_line() {
     assert_eq!(summary["steps"], 50);
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
     let mjcf = root.join("assets/go1/go1.xml");
+    // The MJCF file alone (a `home` keyframe and a <position> actuator on every joint): its
+    // profile drafted in memory, standing where the bundled profile says (same pose, same
+    // gains), within 1 mm.
+    let summary = one_json_line(&hyq_ok(&[
+        "run",
+        "--robot",
+        mjcf.to_str().unwrap(),
+        "--policy",
+        "stand",
+        "--json",
+        "--set",
+        "task.max_time_steps=100",
+    ]));
+    assert_eq!(summary["robot"], "go1");
+    let z = summary["final_position"][2].as_f64().unwrap_or(f64::NAN);
+    assert!((z - 0.2634).abs() < 1e-3, "stood at {z}: {summary}");
+    // An MJCF file without a keyframe has no standing pose: one line, pointing at
+    // `hyq robot init`.
+    let text = std::fs::read_to_string(&mjcf).unwrap();
+    let start = text.find("<keyframe>").unwrap();
+    let end = text.find("</keyframe>").unwrap() + "</keyframe>".len();
+    let no_key = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("go1-no-keyframe.xml");
+    std::fs::write(&no_key, format!("{}{}", &text[..start], &text[end..])).unwrap();
     usage_error_naming(
-        &["run", "--robot", mjcf.to_str().unwrap()],
-        &["go1.xml", "through a robot profile"],
+        &["run", "--robot", no_key.to_str().unwrap()],
+        &["go1-no-keyframe.xml", "no keyframe", "hyq robot init"],
     );
     // The bundled profile, used by path, reads the MJCF beside it.
     let profile = root.join("assets/go1/profile.toml");

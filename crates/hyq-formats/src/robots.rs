@@ -1,8 +1,10 @@
 //! Every robot a front end can name, whatever its file format: the bundled URDF robots of
 //! [`hyq_physics::bundled`], the bundled MJCF robot Go1 (`assets/go1/`), and robot profiles
 //! whose robot file is a URDF or an MJCF file (`urdf = "robot.xml"`: a `.xml` robot file is
-//! read as MJCF). [`resolve`] is what the command line and the Python bindings call, so they
-//! accept the same choices and give the same errors.
+//! read as MJCF), and an MJCF file alone when it has a keyframe and a `<position>` actuator on
+//! every joint (its profile drafted in memory, [`crate::draft`]). [`resolve_with`] is what the
+//! command line and the Python bindings call, so they accept the same choices and give the
+//! same errors.
 //!
 //! | name | robot | source |
 //! |---|---|---|
@@ -19,7 +21,8 @@ use std::sync::{Arc, OnceLock};
 
 use hyq_physics::{ModelError, Profile, RobotModel, bundled, input};
 
-use crate::mjcf_read::{self, MjcfReadError, MjcfRobot};
+use crate::draft::{self, DraftError};
+use crate::mjcf_read::{self, ActuatorKind, MjcfReadError, MjcfRobot};
 
 /// The text of `assets/go1/go1.xml`.
 pub const GO1_MJCF: &str = include_str!("../../../assets/go1/go1.xml");
@@ -77,17 +80,24 @@ pub enum RobotError {
         #[source]
         source: Box<RobotError>,
     },
-    /// An MJCF file given where a profile is expected.
+    /// An MJCF file given alone that cannot run without a profile.
     #[error(
-        "{}: an MJCF robot is chosen through a robot profile that names it (`urdf = \"{}\"`), \
-         as a URDF robot is; see docs/adding-a-robot.md",
+        "{}: {why}, so it runs only through a robot profile that names it (`urdf = \"{}\"`): \
+         draft one with `hyq robot init {}`; see docs/adding-a-robot.md",
         path.display(),
-        path.file_name().map_or_else(String::new, |n| n.to_string_lossy().into_owned())
+        path.file_name().map_or_else(String::new, |n| n.to_string_lossy().into_owned()),
+        path.display()
     )]
     NeedsProfile {
         /// The MJCF file given.
         path: PathBuf,
+        /// What it lacks.
+        why: String,
     },
+    /// The profile drafted for an MJCF file given alone could not be made, or its robot did not
+    /// stand.
+    #[error(transparent)]
+    Draft(#[from] DraftError),
     /// A choice that is neither a bundled robot nor a path.
     #[error(
         "unknown robot {choice:?}: not a bundled robot ({}) nor a path to a robot profile (a \
@@ -177,6 +187,20 @@ pub fn by_name(name: &str) -> Option<Arc<RobotModel>> {
 /// profile whose robot file is a URDF or an MJCF (`.xml`) file. Bundled models are shared; a
 /// profile is loaded afresh.
 pub fn resolve(choice: &str) -> Result<Arc<RobotModel>, RobotError> {
+    resolve_with(choice, None)
+}
+
+/// How a front end measures a drafted robot's standing height: the trunk frame's height (m)
+/// after a settle run (the front ends hold the standing pose for 1 s on rapier), or why it
+/// could not stand.
+pub type Settle<'a> = &'a dyn Fn(Arc<RobotModel>) -> Result<f64, String>;
+
+/// [`resolve`], with an MJCF file given alone drafted in memory ([`mjcf_alone`]) and its
+/// standing height measured by `settle` (without one, the spawn height stands for it).
+pub fn resolve_with(
+    choice: &str,
+    settle: Option<Settle<'_>>,
+) -> Result<Arc<RobotModel>, RobotError> {
     if let Some(model) = by_name(choice) {
         return Ok(model);
     }
@@ -188,11 +212,53 @@ pub fn resolve(choice: &str) -> Result<Arc<RobotModel>, RobotError> {
         });
     }
     if is_mjcf(path) {
-        return Err(RobotError::NeedsProfile {
-            path: path.to_owned(),
-        });
+        return mjcf_alone(path, settle).map(Arc::new);
     }
     load_profile(path).map(Arc::new)
+}
+
+/// An MJCF file with no profile: it must give a standing pose (a keyframe) and gains (a
+/// `<position>` actuator on every joint); the rest is drafted as `hyq robot init` drafts it,
+/// and the standing height measured by `settle` when given.
+pub fn mjcf_alone(path: &Path, settle: Option<Settle<'_>>) -> Result<RobotModel, RobotError> {
+    let robot = mjcf_read::read_file(path)?;
+    let servo = |j: &String| {
+        robot
+            .actuators
+            .iter()
+            .any(|a| &a.joint == j && matches!(a.kind, ActuatorKind::Position { .. }))
+    };
+    let why = if !robot.keyframes.iter().any(|k| !k.qpos.is_empty()) {
+        Some("it has no keyframe with joint positions (its standing pose)".to_owned())
+    } else {
+        robot
+            .joints
+            .iter()
+            .find(|j| !servo(j))
+            .map(|j| format!("joint {j:?} has no <position> actuator (its gains)"))
+    };
+    if let Some(why) = why {
+        return Err(RobotError::NeedsProfile {
+            path: path.to_owned(),
+            why,
+        });
+    }
+    let origin = path.display().to_string();
+    let key = path
+        .file_name()
+        .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+    let mut draft = draft::draft_mjcf(robot, &origin, &key)?;
+    if let Some(settle) = settle {
+        let model = Arc::new(draft.model()?);
+        let z = settle(model).map_err(|why| {
+            DraftError(format!(
+                "{origin}: the robot drafted from it does not stand ({why}): write \
+                 a profile with `hyq robot init` and fix its standing pose or gains"
+            ))
+        })?;
+        draft.set_standing_height(z, "measured by the front end's settle run");
+    }
+    Ok(draft.model()?)
 }
 
 /// Whether a robot file is read as MJCF: its extension is `.xml` (any case).

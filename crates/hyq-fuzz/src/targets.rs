@@ -23,6 +23,9 @@ pub enum Target {
     Urdf,
     /// An MJCF file, beside the bundled Go1's profile (which names it).
     Mjcf,
+    /// A robot file (MJCF when it holds `<mujoco`, else URDF) drafted into a profile by
+    /// `hyq robot init`; an MJCF one also resolved alone (`--robot ROBOT.xml`).
+    Draft,
     /// A trained policy (`--policy mlp:FILE`, safetensors).
     Policy,
     /// Step records (JSON lines) that `hyq plot` reads and plots.
@@ -60,11 +63,12 @@ const SET_SEED: &str = "#set\ntask.max_time_steps=5\nreset.spawn_xy_m=[1.5, -2]\
 
 impl Target {
     /// Every target, in the order the runs take them.
-    pub const ALL: [Target; 8] = [
+    pub const ALL: [Target; 9] = [
         Target::Config,
         Target::Profile,
         Target::Urdf,
         Target::Mjcf,
+        Target::Draft,
         Target::Policy,
         Target::Records,
         Target::Ledger,
@@ -78,6 +82,7 @@ impl Target {
             Target::Profile => "profile",
             Target::Urdf => "urdf",
             Target::Mjcf => "mjcf",
+            Target::Draft => "draft",
             Target::Policy => "policy",
             Target::Records => "records",
             Target::Ledger => "ledger",
@@ -98,6 +103,7 @@ impl Target {
             Target::Profile => text(&[HYQ_PROFILE, ANYMAL_C_PROFILE]),
             Target::Urdf => text(&[HYQ_URDF, ANYMAL_C_URDF]),
             Target::Mjcf => text(&[GO1_MJCF]),
+            Target::Draft => text(&[GO1_MJCF, HYQ_URDF, ANYMAL_C_URDF]),
             Target::Policy => vec![POLICY_SEED.to_vec()],
             Target::Records => text(&[RECORD_SEED]),
             Target::Ledger => text(&[LEDGER_SEED]),
@@ -112,7 +118,9 @@ impl Target {
             Target::Config | Target::Profile | Target::Ledger => {
                 mutate::mutate_text(&text, Syntax::Toml, rng)
             }
-            Target::Urdf | Target::Mjcf => mutate::mutate_text(&text, Syntax::Xml, rng),
+            Target::Urdf | Target::Mjcf | Target::Draft => {
+                mutate::mutate_text(&text, Syntax::Xml, rng)
+            }
             Target::Records => mutate::mutate_text(&text, Syntax::Jsonl, rng),
             Target::Policy => mutate::mutate_safetensors(seed, rng),
             Target::Heights => mutate::mutate_height_file(seed, rng),
@@ -127,6 +135,7 @@ impl Target {
             Target::Profile => robot(input, None, scratch),
             Target::Urdf => robot(HYQ_PROFILE.as_bytes(), Some(input), scratch),
             Target::Mjcf => mjcf(input, scratch),
+            Target::Draft => draft(input, scratch),
             Target::Policy => policy(input, scratch),
             Target::Records => records(input, scratch),
             Target::Ledger => ledger(input, scratch),
@@ -249,6 +258,32 @@ fn mjcf(input: &[u8], scratch: &Path) -> Result<bool, String> {
         Err(e) => refused(&e.to_string()),
         Ok(model) => check::model(&model).map(|()| true),
     }
+}
+
+/// A robot file drafted into a profile as `hyq robot init` drafts it: accepted, the written
+/// TOML must read back as the drafted profile and its model pass the model checks; an MJCF
+/// file is also resolved alone, as `--robot ROBOT.xml` (without the settle run).
+fn draft(input: &[u8], scratch: &Path) -> Result<bool, String> {
+    let is_mjcf = input.windows(7).any(|w| w == b"<mujoco");
+    let path = scratch.join(if is_mjcf { "robot.xml" } else { "robot.urdf" });
+    write(&path, input)?;
+    if is_mjcf && let Err(e) = hyq_formats::robots::resolve(path.to_str().unwrap_or("robot.xml")) {
+        check::message(&e.to_string())?;
+    }
+    let drafted = match hyq_formats::draft::draft_file(&path, None, "robot") {
+        Err(e) => return refused(&e.to_string()),
+        Ok(d) => d,
+    };
+    let text = drafted.to_toml();
+    let back = hyq_physics::Profile::from_toml_str(&text, "draft")
+        .map_err(|e| format!("the drafted profile does not read back: {e}"))?;
+    if &back != drafted.profile() {
+        return Err("the drafted profile reads back as another profile".to_owned());
+    }
+    let model = drafted
+        .model()
+        .map_err(|e| format!("the drafted profile does not load: {e}"))?;
+    check::model(&std::sync::Arc::new(model)).map(|()| true)
 }
 
 fn policy(input: &[u8], scratch: &Path) -> Result<bool, String> {

@@ -52,6 +52,11 @@ fn mjcf_files() {
 }
 
 #[test]
+fn robot_files_drafted_into_profiles() {
+    survives(Target::Draft, 120);
+}
+
+#[test]
 fn policy_files() {
     survives(Target::Policy, 200);
 }

@@ -51,10 +51,12 @@ fn backend_error(name: &str) -> pyo3::PyErr {
 }
 
 /// The robot chosen by name or profile path, the profile's robot file a URDF or an MJCF
-/// file (`None`: the default, HyQ).
+/// file, or an MJCF file alone (its profile drafted in memory, its standing height measured
+/// as `hyq robot init` and the command line measure it: [`settle_height`]) (`None`: the
+/// default, HyQ).
 pub fn robot(choice: Option<&str>) -> PyResult<Arc<RobotModel>> {
     let choice = choice.unwrap_or(hyq_physics::bundled::DEFAULT);
-    hyq_formats::robots::resolve(choice).map_err(|e| {
+    hyq_formats::robots::resolve_with(choice, Some(&settle_height)).map_err(|e| {
         PyValueError::new_err(format!("robot: {}", hyq_physics::one_line(&e.to_string())))
     })
 }
@@ -278,4 +280,45 @@ fn with_pool<B: Backend>(vec: VecEnv<B>, threads: Option<usize>) -> PyResult<Box
         None => vec,
     };
     Ok(Box::new(vec) as Box<dyn VecView>)
+}
+
+/// How long (s) a drafted robot holds its standing pose before its standing height is read:
+/// the command line's `hyq robot init` figure, so both fronts build the same model.
+const SETTLE_S: f64 = 1.0;
+
+/// The trunk frame's height (m) after [`SETTLE_S`] of holding the standing pose on the default
+/// engine (rapier), default configuration, seed 0, as the command line's `hyq robot init`
+/// measures it; an error if the episode ends or the height is not a positive number.
+fn settle_height(model: Arc<RobotModel>) -> Result<f64, String> {
+    let engine = hyq_engines::DEFAULT.name;
+    hyq_engines::with_engine!(engine, B => settle_on::<B>(model)).unwrap_or_else(|| {
+        Err(format!(
+            "this package was built without the {engine} engine"
+        ))
+    })
+}
+
+fn settle_on<B: Backend>(model: Arc<RobotModel>) -> Result<f64, String> {
+    use hyq_env::policy::{Policy as _, Stand};
+    let n = model.num_joints();
+    let mut env = Env::<B>::new(model, EnvConfig::default()).map_err(|e| e.to_string())?;
+    env.reset(Some(0), &ResetOptions::default())
+        .map_err(|e| e.to_string())?;
+    let steps = (SETTLE_S / env.env_dt()).round() as usize;
+    let mut a = vec![0.0; n];
+    for _ in 0..steps {
+        Stand.act(&env.policy_input(), &mut a);
+        let s = env.step(&a).map_err(|e| e.to_string())?;
+        if s.terminated || s.truncated {
+            return Err(format!(
+                "the episode ended while standing: {:?}",
+                s.info.reasons
+            ));
+        }
+    }
+    let z = env.trunk().pose.translation.vector.z;
+    if !z.is_finite() || z <= 0.0 {
+        return Err(format!("the trunk ended at a height of {z} m"));
+    }
+    Ok(z)
 }

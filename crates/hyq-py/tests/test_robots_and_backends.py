@@ -116,6 +116,26 @@ def test_a_third_robot_runs_from_its_profile_path(tmp_path: Path) -> None:
             break
 
 
+def test_an_mjcf_file_alone_runs_with_its_profile_drafted(tmp_path: Path) -> None:
+    """Go1's MJCF file (a ``home`` keyframe, a ``<position>`` actuator on every joint) runs
+    without a profile, drafted in memory as ``hyq robot init`` drafts it; it stands where the
+    bundled profile says. Without a keyframe it is a ValueError pointing at ``hyq robot init``."""
+    mjcf = REPO / "assets/go1/go1.xml"
+    env = hyq.HyQEnv(robot=mjcf)
+    assert env.robot == "go1"
+    assert env.joint_names == hyq.HyQEnv(robot="go1").joint_names
+    _, info = env.reset(seed=0)
+    _, bundled = hyq.HyQEnv(robot="go1").reset(seed=0)
+    # The goal sits at the standing height: the settle run's, within 1 mm of the profile's.
+    assert abs(info["goal"][2] - bundled["goal"][2]) < 1e-3
+    text = mjcf.read_text()
+    start, end = text.index("<keyframe>"), text.index("</keyframe>") + len("</keyframe>")
+    no_key = tmp_path / "go1-no-keyframe.xml"
+    no_key.write_text(text[:start] + text[end:])
+    with pytest.raises(ValueError, match="no keyframe.*hyq robot init"):
+        hyq.HyQEnv(robot=no_key)
+
+
 def test_bad_robots_are_value_errors_naming_them(tmp_path: Path) -> None:
     with pytest.raises(ValueError, match='robot: unknown robot "anymal".*hyq, anymal_c'):
         hyq.HyQEnv(robot="anymal")
