@@ -221,8 +221,9 @@ def export_run(args: argparse.Namespace) -> Path:
         fail(f"{run}: no config.json (not a run directory of examples/train_sb3_ppo.py or train_rsl_rl.py)")
     config = json.loads((run / "config.json").read_text())
     robot = config.get("robot", "hyq")
-    # The rows the policy was trained on: the robot's, then the run's observation extras.
-    probe = hyq.HyQEnv(robot=robot, **{k: v for k, v in config["env"].items() if k == "observation"})
+    # The rows the policy was trained on: the robot's, then the run's observation extras, then
+    # the velocity task's group when the run trained that task ([task] kind).
+    probe = hyq.HyQEnv(robot=robot, **{k: v for k, v in config["env"].items() if k in ("observation", "task")})
     names = [row.name for row in probe.observation_table]
     joints = list(probe.joint_names)
     probe.close()

@@ -92,6 +92,33 @@ WALK_ROUGH_ENV: dict[str, Any] = {
     "observation": {"extra": ["height_scan"]},
 }
 
+#: The velocity-command task (docs/velocity.md): follow a commanded forward and sideways speed
+#: and yaw rate. MuJoCo Playground's reward preset (its orientation, stand-still and termination
+#: terms teach a level trunk and a still stand at a zero command; legged_gym's 0.5 s air-time
+#: threshold is a long swing for HyQ's size) and Playground's command rule (each component kept,
+#: redrawn or zeroed after an exponential time of mean 5 s), with narrower ranges than either
+#: anchor's (theirs are ±1 to 1.5 m/s for robots a tenth of HyQ's mass; a CPU run has a small
+#: budget, spent around the commands the checkpoints are judged at); the walk's action mode
+#: (Playground's action scale 0.5 rad) and reset noise.
+VELOCITY_ENV: dict[str, Any] = {
+    "task": {"kind": "velocity"},
+    "velocity": {"preset": "playground"},
+    "command": {
+        "lin_vel_x": [-0.3, 0.8],
+        "lin_vel_y": [-0.2, 0.2],
+        "ang_vel_yaw": [-0.8, 0.8],
+        "resampling": "keep_zero",
+        "timing": "exponential",
+        "resampling_time_s": 5.0,
+        # Playground's 0.9, 0.25, 0.5 for (v_x, v_y, ω_z), with a share of whole standing
+        # draws besides (mjlab's 0.1): the robot must learn to stand still, not to step in place.
+        "keep_nonzero_probability": [0.9, 0.25, 0.5],
+        "standing_probability": 0.1,
+    },
+    "action": {"mode": "offset", "max_offset_rad": 0.5},
+    "reset": {"joint_noise_rad": 0.05, "yaw_noise_deg": 5.0},
+}
+
 #: name -> (environment, robot, backend, and, where the checkpoints' evaluation differs from
 #: the training environment, "eval_env": changes merged over it). MuJoCo steps about 3x faster
 #: than rapier (the README's speed table), and the env is most of a training run's time on 2
@@ -104,6 +131,8 @@ RECIPES: dict[str, dict[str, Any]] = {
     # Its checkpoints are judged on the full relief: the curriculum's first level is a tenth of it.
     "walk_rough": {"env": WALK_ROUGH_ENV, "robot": "hyq", "backend": "mujoco",
                    "eval_env": {"terrain": {"curriculum": False}}},
+    # Its checkpoints are judged by tracking error at fixed commands (VELOCITY_EVAL_COMMANDS).
+    "velocity": {"env": VELOCITY_ENV, "robot": "hyq", "backend": "mujoco", "evaluation": "velocity"},
 }
 
 #: The checkpoints' evaluation: EVAL_EPISODES episodes, env i seeded EVAL_SEED + i, with the
@@ -481,3 +510,199 @@ def plot_curve(rows: list[dict[str, float]], evals: list[dict[str, float]], path
 
 def write_json(path: Path, data: Any) -> None:
     path.write_text(json.dumps(data, indent=2) + "\n")
+
+
+# The velocity recipe's evaluation: tracking error at fixed commands, not the goal's reach.
+
+#: The fixed commands (v_x in m/s, ω_z in rad/s; v_y = 0) the velocity recipe's checkpoints
+#: are judged at: standing, two forward speeds, and turning on the spot both ways (the
+#: commands docs/velocity.md reports); VELOCITY_EVAL_PER_COMMAND episodes each, so
+#: EVAL_EPISODES in all, env j of command k seeded EVAL_SEED + k * VELOCITY_EVAL_PER_COMMAND + j.
+VELOCITY_EVAL_COMMANDS: list[tuple[float, float]] = [(0.0, 0.0), (0.3, 0.0), (0.6, 0.0), (0.0, 0.5), (0.0, -0.5)]
+VELOCITY_EVAL_PER_COMMAND = EVAL_EPISODES // len(VELOCITY_EVAL_COMMANDS)
+
+
+def fixed_command(env: dict[str, Any], vx: float, yaw: float) -> dict[str, Any]:
+    """`env` with the command fixed at (vx, 0, yaw) for the whole episode: every range a point,
+    no standing draws, legged_gym's redraw rule (which keeps a point range's value)."""
+    return merge(env, {"command": {
+        "lin_vel_x": [vx, vx], "lin_vel_y": [0.0, 0.0], "ang_vel_yaw": [yaw, yaw],
+        "resampling": "uniform", "standing_probability": 0.0, "min_lin_vel_mps": 0.0,
+    }})
+
+
+def trunk_xy(names: list[str], obs: np.ndarray) -> np.ndarray:
+    """The trunk's horizontal position from an observation (the spec's trunk_position rows)."""
+    return np.array([obs[names.index("trunk_position_x")], obs[names.index("trunk_position_y")]])
+
+
+def track_command(act: Callable[[np.ndarray], np.ndarray], env: dict[str, Any], robot: str,
+                  backend: str, command: tuple[float, float], seed: int) -> list[dict[str, Any]]:
+    """VELOCITY_EVAL_PER_COMMAND first episodes of the deterministic `act` at the fixed
+    `command`, env j seeded `seed` + j: each one's mean |c_x − v_x| and |c_yaw − ω_z| over its
+    steps (v and ω in the trunk's frame, as the task tracks them), the trunk's horizontal drift
+    from its start, its return, steps and end reasons."""
+    n = VELOCITY_EVAL_PER_COMMAND
+    venv = HyQVectorEnv(num_envs=n, robot=robot, backend=backend, autoreset_mode="SameStep",
+                        **fixed_command(env, *command))
+    names = [row.name for row in venv.observation_table]
+    obs, _ = venv.reset(seed=seed)
+    start = [trunk_xy(names, o) for o in obs]
+    sums = np.zeros((n, 3))  # forward error, yaw error, return
+    episodes: list[dict[str, Any] | None] = [None] * n
+    while any(e is None for e in episodes):
+        obs, rewards, terminated, truncated, infos = venv.step(act(obs))
+        for i in range(n):
+            if episodes[i] is not None:
+                continue
+            done = bool(terminated[i] or truncated[i])
+            info = venv.final_info(i) if done else {k: infos[k][i] for k in ("velocity.command",
+                                                                             "velocity.lin_vel", "velocity.ang_vel")}
+            c, v, w = (np.asarray(info[k]) for k in ("velocity.command", "velocity.lin_vel", "velocity.ang_vel"))
+            sums[i] += (abs(c[0] - v[0]), abs(c[2] - w[2]), rewards[i])
+            if done:
+                steps = int(info["t"])
+                end = trunk_xy(names, venv.final_observation(i))
+                episodes[i] = {
+                    "command": list(command), "steps": steps, "return": float(sums[i, 2]),
+                    "forward_error_mps": float(sums[i, 0] / steps),
+                    "yaw_error_radps": float(sums[i, 1] / steps),
+                    "drift_m": float(np.linalg.norm(end - start[i])),
+                    "reasons": info["reasons"].split("+"),
+                }
+    venv.close()
+    return [e for e in episodes if e is not None]
+
+
+def evaluate_velocity(act: Callable[[np.ndarray], np.ndarray], env: dict[str, Any], robot: str,
+                      backend: str) -> dict[str, Any]:
+    """The deterministic policy `act` at every command of VELOCITY_EVAL_COMMANDS
+    (`track_command`), summarised by `summarize_velocity`."""
+    done: list[dict[str, Any]] = []
+    for k, command in enumerate(VELOCITY_EVAL_COMMANDS):
+        done += track_command(act, env, robot, backend, command, EVAL_SEED + k * VELOCITY_EVAL_PER_COMMAND)
+    return summarize_velocity(done)
+
+
+def summarize_velocity(done: list[dict[str, Any]]) -> dict[str, Any]:
+    """A velocity evaluation's figures with their 95 % intervals (hyq.stats, bootstrap seeded
+    with EVAL_SEED; rates Wilson's): the forward-speed error over the episodes commanded to
+    walk forward or stand, the yaw-rate error over those commanded to turn, the drift over the
+    standing episodes, the return and the fall rate."""
+    mean = lambda key, keep: hyq.stats.mean_ci([e[key] for e in done if keep(e["command"])], seed=EVAL_SEED)  # noqa: E731
+    estimates = {
+        "return": mean("return", lambda c: True),
+        "forward_error_mps": mean("forward_error_mps", lambda c: c[1] == 0.0),
+        "yaw_error_radps": mean("yaw_error_radps", lambda c: c[1] != 0.0),
+        "standing_drift_m": mean("drift_m", lambda c: c == [0.0, 0.0]),
+        "fell": hyq.stats.wilson(sum("fell" in e["reasons"] for e in done), len(done)),
+    }
+    result: dict[str, Any] = {"episodes": done, "estimates": estimates,
+                              "fall_rate": estimates["fell"]["mean"]}
+    for key in VELOCITY_EVAL_FIELDS[1:]:
+        figure = "fell" if key == "fall_rate" else key.removeprefix("mean_")
+        result[key] = estimates[figure]["mean"]
+        result[f"{key}_lo"], result[f"{key}_hi"] = estimates[figure]["ci95"]
+    return result
+
+
+#: evals.csv's columns under the velocity recipe, each figure followed by its interval's ends.
+VELOCITY_EVAL_FIELDS = ["env_steps", "mean_return", "forward_error_mps", "yaw_error_radps",
+                        "standing_drift_m", "fall_rate"]
+
+
+def evaluate_velocity_engines(act: Callable[[np.ndarray], np.ndarray], env: dict[str, Any], robot: str,
+                              backends: list[str]) -> dict[str, Any]:
+    """`evaluate_velocity` on every engine of `backends`; on several, the pooled figures, each
+    engine's under `per_engine` and the worst engine's errors and fall rate (`worst`)."""
+    engines = list(dict.fromkeys(backends))
+    per_engine = {name: evaluate_velocity(act, env, robot, name) for name in engines}
+    if len(engines) == 1:
+        return per_engine[engines[0]]
+    pooled = summarize_velocity([e for r in per_engine.values() for e in r["episodes"]])
+    worst = {key: max(r[key] for r in per_engine.values())
+             for key in ("forward_error_mps", "yaw_error_radps", "fall_rate")}
+    return {**pooled, "worst": worst, "per_engine": per_engine}
+
+
+def velocity_score(result: dict[str, Any]) -> tuple[float, float]:
+    """What the velocity recipe's best checkpoint maximises: no falls first (the worst engine's
+    fall rate), then the smallest sum of the forward and yaw errors (the worst engine's)."""
+    w = result.get("worst", result)
+    return (-w["fall_rate"], -(w["forward_error_mps"] + w["yaw_error_radps"]))
+
+
+def velocity_eval_fields(backends: list[str]) -> list[str]:
+    """evals.csv's columns under the velocity recipe (see VELOCITY_EVAL_FIELDS), then on
+    several engines each engine's forward error and fall rate."""
+    fields = [VELOCITY_EVAL_FIELDS[0]] + [f"{k}{end}" for k in VELOCITY_EVAL_FIELDS[1:] for end in ("", "_lo", "_hi")]
+    engines = list(dict.fromkeys(backends))
+    if len(engines) > 1:
+        fields += [f"{e}_{k}" for e in engines for k in ("forward_error_mps", "fall_rate")]
+    return fields
+
+
+def velocity_eval_row(env_steps: int, result: dict[str, Any], fields: list[str]) -> dict[str, float]:
+    """evals.csv's row of a velocity evaluation (see `velocity_eval_fields`)."""
+    row = {"env_steps": env_steps, **{k: result[k] for k in fields if k in result}}
+    for engine, r in result.get("per_engine", {}).items():
+        for key in ("forward_error_mps", "fall_rate"):
+            row[f"{engine}_{key}"] = r[key]
+    return {k: row[k] for k in fields}
+
+
+def velocity_eval_summary(result: dict[str, Any]) -> str:
+    """One line of a velocity evaluation: each figure with its 95 % interval, the fall rate as
+    k/n (on several engines, then each engine's forward error and falls)."""
+    e, text = result["estimates"], hyq.stats.text
+    line = (f"forward error {text(e['forward_error_mps'], 3)} m/s, yaw error "
+            f"{text(e['yaw_error_radps'], 3)} rad/s, standing drift {text(e['standing_drift_m'], 3)} m, "
+            f"return {text(e['return'], 2)}, fell {text(e['fell'])} (mean [95 % CI])")
+    for engine, r in result.get("per_engine", {}).items():
+        line += (f"; {engine}: forward error {text(r['estimates']['forward_error_mps'], 3)} m/s, "
+                 f"fell {text(r['estimates']['fell'])}")
+    return line
+
+
+class Evaluation:
+    """How a recipe's checkpoints are judged: the evaluation on the recipe's engines, evals.csv's
+    columns and rows, the printed line and the score the best checkpoint maximises."""
+
+    def __init__(self, recipe: dict[str, Any]) -> None:
+        velocity = recipe.get("evaluation") == "velocity"
+        self.kind = "velocity" if velocity else "goal"
+        self.evaluate = evaluate_velocity_engines if velocity else evaluate_engines
+        self.fields = velocity_eval_fields if velocity else eval_fields
+        self.row = velocity_eval_row if velocity else eval_row
+        self.summary = velocity_eval_summary if velocity else eval_summary
+        self.score = velocity_score if velocity else checkpoint_score
+
+
+def plot_velocity_evals(evals: list[dict[str, float]], path: Path, title: str) -> None:
+    """The velocity recipe's checkpoint evaluations as a 1x3 PNG: the forward and yaw errors,
+    the standing drift, and the fall rate, each with its 95 % interval."""
+    if not evals:
+        return
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    x = np.array([r["env_steps"] for r in evals]) / 1e6
+    fig, axes = plt.subplots(1, 3, figsize=(13, 4))
+    panels = (("forward_error_mps", "m/s", "forward-speed error"), ("yaw_error_radps", "rad/s", "yaw-rate error"),
+              ("standing_drift_m", "m", "drift at a zero command"))
+    for ax, (key, unit, name) in zip(axes, panels):
+        y = np.array([r[key] for r in evals])
+        bars = np.abs(np.array([[r[f"{key}_lo"] for r in evals], [r[f"{key}_hi"] for r in evals]]) - y)
+        ax.errorbar(x, y, yerr=bars, fmt="o-", label=name)
+        ax.set_ylabel(f"{name} ({unit})")
+    axes[2].plot(x, [r["fall_rate"] for r in evals], "s", color="C3", label="fall rate (share)")
+    for ax in axes:
+        ax.set_xlabel("env steps (millions)")
+        ax.grid(alpha=0.3)
+        ax.legend(loc="best")
+    fig.suptitle(f"{title}: deterministic, {EVAL_EPISODES} eval episodes at fixed commands, 95 % CI")
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)

@@ -18,7 +18,12 @@ train_sb3_ppo.py does. Same seed and
                                last), each with the env steps behind it
     progress.csv, evals.csv,   the learning curve, as train_sb3_ppo.py writes it
     progress.png
-    eval.json                  the final policy on the 20 evaluation episodes, and the run's timing
+    best.pt                    the best evaluated checkpoint (the goal recipes: the worst engine's
+                               reach rate, then the return; the velocity recipe: its falls, then
+                               its forward and yaw errors at fixed commands)
+    evals.png                  the velocity recipe's evaluations (its progress.png has no points)
+    eval.json                  the final policy on the 20 evaluation episodes, the best
+                               checkpoint's env steps, and the run's timing
     config.json                every setting of the run
 
 Export the policy for the Rust replay and as ONNX with examples/export_policy.py --run OUT.
@@ -89,7 +94,13 @@ RECIPE_ITERATIONS: dict[str, tuple[int, int]] = {
     "anymal_walk": (80, 20),
     "walk_randomized": (64, 32),
     "walk_rough": (256, 32),
+    "velocity": (400, 25),
 }
+
+
+#: The best evaluated checkpoint's file in OUT (recipes.Evaluation's score: the reach rate, or
+#: the velocity recipe's falls and tracking errors).
+BEST = "best.pt"
 
 
 class TimedEnv(HyQRslRlVecEnv):
@@ -164,8 +175,9 @@ def parse_args() -> argparse.Namespace:
     return parser.parse_args()
 
 
-def evaluate(runner: OnPolicyRunner, run: dict[str, Any]) -> dict[str, Any]:
-    """The deterministic policy (the Gaussian's mean) on the evaluation episodes."""
+def evaluate(runner: OnPolicyRunner, run: dict[str, Any], judge: recipes.Evaluation) -> dict[str, Any]:
+    """The deterministic policy (the Gaussian's mean) on the evaluation episodes, as the
+    recipe's checkpoints are judged (`judge`)."""
     policy = runner.alg.get_policy()
     runner.alg.eval_mode()
 
@@ -175,7 +187,7 @@ def evaluate(runner: OnPolicyRunner, run: dict[str, Any]) -> dict[str, Any]:
             return policy(group).numpy()
 
     try:
-        return recipes.evaluate_engines(act, run["eval_env"], run["robot"], run["backends"])
+        return judge.evaluate(act, run["eval_env"], run["robot"], run["backends"])
     finally:
         runner.alg.train_mode()
 
@@ -274,10 +286,12 @@ def main() -> None:
     per_iteration = cfg["num_steps_per_env"] * args.envs
     if args.resume:
         resume(runner, args.resume, env.observation_names, per_iteration)
-    evals = recipes.CurveFile(args.out / "evals.csv", recipes.eval_fields(run["backends"]))
+    judge = recipes.Evaluation(recipe)
+    evals = recipes.CurveFile(args.out / "evals.csv", judge.fields(run["backends"]))
     title = (f"PPO (rsl_rl) on {run['robot']}, {run['backend']}: "
              f"examples/train_rsl_rl.py --recipe {args.recipe}")
     done = 0
+    best: tuple[tuple[float, float], int] | None = None
     while done < iterations:
         # learn() in chunks of `every` iterations, with an evaluation after each.
         chunk = min(every, iterations - done)
@@ -285,20 +299,33 @@ def main() -> None:
         done += chunk
         steps = done * per_iteration
         start = time.monotonic()
-        result = evaluate(runner, run)
+        result = evaluate(runner, run, judge)
         clock.eval_s += time.monotonic() - start
-        evals.add(recipes.eval_row(steps, result, evals.fields))
-        print(f"[{steps} env steps] deterministic eval: {recipes.eval_summary(result)}", flush=True)
-        recipes.plot_curve(progress.rows, evals.rows, args.out / "progress.png", title)
+        evals.add(judge.row(steps, result, evals.fields))
+        print(f"[{steps} env steps] deterministic eval: {judge.summary(result)}", flush=True)
+        if best is None or judge.score(result) > best[0]:
+            # The checkpoint as evaluated (a later chunk's first save can reuse its model_N.pt).
+            best = (judge.score(result), runner.steps_before + steps)
+            runner.save(str(args.out / BEST))
+        if judge.kind == "velocity":
+            recipes.plot_curve(progress.rows, [], args.out / "progress.png", title)
+            recipes.plot_velocity_evals(evals.rows, args.out / "evals.png", title)
+        else:
+            recipes.plot_curve(progress.rows, evals.rows, args.out / "progress.png", title)
     timing = clock.summary(done * per_iteration)
     progress.close()
     evals.close()
     env.close()
     result["timing"] = timing
+    if best is not None:
+        # Chosen on the evaluation seeds (recipes.EVAL_SEED), not the seeds figures are
+        # reported on; export it with export_policy.py --run OUT --model OUT/best.pt.
+        result["best_checkpoint"] = BEST
+        result["best_checkpoint_env_steps"] = best[1]
     recipes.write_json(args.out / "eval.json", result)
     print(recipes.timing_line(timing))
     per = " per engine" if len(set(run["backends"])) > 1 else ""
-    print(f"eval over {recipes.EVAL_EPISODES} episodes{per}: {recipes.eval_summary(result)}")
+    print(f"eval over {recipes.EVAL_EPISODES} episodes{per}: {judge.summary(result)}")
 
 
 if __name__ == "__main__":

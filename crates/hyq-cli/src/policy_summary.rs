@@ -109,6 +109,43 @@ fn sides(report: &PolicyReport, out: &mut String) {
     out.push_str(&rates.render());
     let _ = writeln!(out, "\ngait, mean [95 % CI] over the episodes:");
     out.push_str(&gait.render());
+    velocity(report, out);
+}
+
+/// Under the velocity task, each engine's tracking errors, its commanded stands' feet speed
+/// and drift, and its falls; nothing under the spec's task.
+fn velocity(report: &PolicyReport, out: &mut String) {
+    if report.sides.iter().all(|s| s.velocity.is_none()) {
+        return;
+    }
+    let mut t = Table::new(&[
+        "<engine",
+        "<forward error (m/s)",
+        "<yaw error (rad/s)",
+        "<stand: feet speed (m/s)",
+        "<stand: drift (m)",
+        "<fell",
+    ]);
+    let n = report.episodes;
+    for s in &report.sides {
+        let v = s.velocity.unwrap_or_default();
+        t.row(vec![
+            s.label.clone(),
+            figure_cell(v.forward_error_mps, 1.0, 3, n),
+            figure_cell(v.yaw_error_radps, 1.0, 3, n),
+            figure_cell(v.standing_feet_speed_mps, 1.0, 3, n),
+            figure_cell(v.standing_drift_m, 1.0, 3, n),
+            s.rates
+                .as_ref()
+                .map_or("-".to_owned(), |r| rate_cell(&r.fell)),
+        ]);
+    }
+    // Writing into a String cannot fail.
+    let _ = writeln!(
+        out,
+        "\nvelocity task, mean [95 % CI] over the episodes (stand: episodes commanded zero throughout):"
+    );
+    out.push_str(&t.render());
 }
 
 /// The per-pair table: ratios of means (second over first), contact agreement, and the first
@@ -221,5 +258,49 @@ mod tests {
         assert_eq!(figure_cell(Some(f), 100.0, 1, 4), "50.0 [25.0, 75.0]");
         assert_eq!(figure_cell(Some(f), 1.0, 2, 5), "0.50 [0.25, 0.75] (4 eps)");
         assert_eq!(figure_cell(None, 1.0, 2, 5), "-");
+    }
+
+    /// The summary of the standing policy, 2 episodes of 30 steps on rapier, with `keys` set.
+    fn stand_summary(keys: &[(&str, &str)]) -> String {
+        use hyq_compare::{PolicyPlan, PolicySpec};
+        let mut all = vec![("task.max_time_steps", "30")];
+        all.extend_from_slice(keys);
+        let config = hyq_env::EnvConfig::load(None, &all).unwrap();
+        let spec = PolicySpec {
+            policy: "stand".into(),
+            seed: 3,
+            episodes: 2,
+            configuration: Vec::new(),
+        };
+        let model = hyq_physics::bundled::hyq();
+        let plan = PolicyPlan::new(model, config, hyq_env::Stand, spec).unwrap();
+        let side = plan
+            .run_side::<hyq_engines::backends::Rapier>("rapier")
+            .unwrap();
+        super::policy_summary(&plan.report(&[side], &[]))
+    }
+
+    #[test]
+    fn the_velocity_task_adds_its_table_and_the_spec_task_does_not() {
+        let text = stand_summary(&[
+            ("task.kind", "\"velocity\""),
+            ("command.lin_vel_x", "[0.3, 0.3]"),
+            ("command.lin_vel_y", "[0.0, 0.0]"),
+            ("command.ang_vel_yaw", "[0.0, 0.0]"),
+        ]);
+        assert!(text.contains("velocity task, mean [95 % CI]"), "{text}");
+        let row = text
+            .lines()
+            .skip_while(|l| !l.starts_with("velocity task"))
+            .find(|l| l.trim_start().starts_with("rapier"))
+            .unwrap();
+        // The robot stands, so its forward error is about the commanded 0.3 m/s; no falls, and
+        // no stand figures (the command was not zero).
+        let cells: Vec<&str> = row.split_whitespace().collect();
+        let forward: f64 = cells[1].parse().unwrap();
+        assert!((forward - 0.3).abs() < 0.02, "{row}");
+        assert_eq!(cells.iter().filter(|c| **c == "-").count(), 2, "{row}");
+        assert!(row.contains("0/2 [0, 66] %"), "{row}");
+        assert!(!stand_summary(&[]).contains("velocity task"));
     }
 }

@@ -25,7 +25,9 @@
 //! (per-engine episode outcomes, per-pair divergence, and the first engine's actions replayed
 //! open loop on every engine), with each engine's gait diagnostics ([`gait`]: foot slip,
 //! actions at their bounds, action changes, stance duration, and per pair the agreement of the
-//! foot-contact patterns), and is not judged against the ledger.
+//! foot-contact patterns), and is not judged against the ledger. Under the velocity-command
+//! task ([`velocity`]) it also gives each engine's tracking errors and, for commanded stands,
+//! the feet's speed and the trunk's drift.
 //!
 //! The library is generic over `hyq_physics::Backend` and names no engine. Its tests compare
 //! rapier with itself (exact agreement) and with a perturbed rapier (gravity 10 % stronger:
@@ -45,6 +47,7 @@ mod randomized;
 mod report;
 pub mod run;
 mod scenario;
+pub mod velocity;
 
 pub use compare::{ComparisonSpec, DEFAULT_ONE_STEP_STATES, Plan, Side, compare, parse_override};
 pub use error::CompareError;

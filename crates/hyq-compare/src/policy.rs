@@ -35,6 +35,7 @@ use crate::plot::{COLOURS, PAIR_COLOURS, Panel, plot_panels};
 use crate::randomized::{RandomizedSide, drew_alike};
 use crate::report::{PLOT_FILE, prepare_output_dir, sig, thin, write_report_files};
 use crate::run::{Trajectory, build_env, run_episode, run_script};
+use crate::velocity::{VelocityEpisode, VelocityStats};
 
 /// The most episodes per engine a policy comparison runs.
 pub const MAX_EPISODES: u32 = 1000;
@@ -114,6 +115,9 @@ pub struct EpisodeOutcome {
     pub randomize: Option<EpisodeRandomization>,
     /// The episode's gait diagnostics.
     pub gait: GaitEpisode,
+    /// Under `task.kind = "velocity"`, the task's figures (else not written).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub velocity: Option<VelocityEpisode>,
 }
 
 impl EpisodeOutcome {
@@ -138,6 +142,7 @@ impl EpisodeOutcome {
                 &t.action_low,
                 &t.action_high,
             ),
+            velocity: VelocityEpisode::of(t),
         }
     }
 }
@@ -314,6 +319,7 @@ fn side_report(s: &PolicySide, seed: u64) -> PolicySideReport {
         steps: Stats::of(&column(e, |o| o.steps as f64), seed),
         rates: Rates::of(e.iter().map(|o| o.end_reasons.as_slice())),
         gait: GaitStats::of(&e.iter().map(|o| o.gait).collect::<Vec<_>>(), seed),
+        velocity: VelocityStats::of(&e.iter().map(|o| o.velocity).collect::<Vec<_>>(), seed),
         ended_by: ends
             .into_iter()
             .map(|(reasons, episodes)| EndCount { reasons, episodes })
@@ -422,6 +428,10 @@ pub struct PolicySideReport {
     pub rates: Option<Rates>,
     /// The gait diagnostics over the episodes (see [`crate::gait`]).
     pub gait: GaitStats,
+    /// Under `task.kind = "velocity"`, the task's figures over the episodes (see
+    /// [`crate::velocity`]; else not written).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub velocity: Option<VelocityStats>,
     /// How the episodes ended.
     pub ended_by: Vec<EndCount>,
     /// With `[randomize]` on, the falls and pushes (else not written).
@@ -597,6 +607,7 @@ impl PolicyReport {
         let mut m = String::new();
         self.markdown_header(&mut m, command);
         self.markdown_per_engine(&mut m);
+        self.markdown_velocity(&mut m);
         self.markdown_gait(&mut m);
         self.markdown_randomized(&mut m);
         self.markdown_pairs(&mut m);
@@ -689,6 +700,57 @@ impl PolicyReport {
         let _ = writeln!(
             w,
             "\nIntervals: a mean's is the percentile bootstrap of the episodes (10,000 resamples seeded with {}), a rate's (k of n episodes) is Wilson's; both 95 %. An episode can end for several reasons at once.",
+            self.seed
+        );
+    }
+
+    /// Under the velocity task, each engine's tracking errors, its commanded stands' feet
+    /// speed and drift, and its falls; nothing under the spec's task.
+    fn markdown_velocity(&self, w: &mut String) {
+        if self.sides.iter().all(|s| s.velocity.is_none()) {
+            return;
+        }
+        let labels: Vec<&str> = self.sides.iter().map(|s| s.label.as_str()).collect();
+        // Writing into a String cannot fail.
+        let _ = writeln!(w, "\n## Velocity task\n");
+        let _ = writeln!(w, "| | {} |", labels.join(" | "));
+        let _ = writeln!(w, "|---|{}", "---|".repeat(labels.len()));
+        let mut row = |name: &str, f: fn(&VelocityStats) -> Option<Figure>, dp: usize| {
+            let cells: Vec<String> = self
+                .sides
+                .iter()
+                .map(|s| figure_text(s.velocity.and_then(|v| f(&v)), 1.0, dp, self.episodes))
+                .collect();
+            let _ = writeln!(w, "| {name} | {} |", cells.join(" | "));
+        };
+        row(
+            "forward-speed error, mean abs(c_x − v_x) (m/s)",
+            |v| v.forward_error_mps,
+            3,
+        );
+        row(
+            "yaw-rate error, mean abs(c_yaw − ω_z) (rad/s)",
+            |v| v.yaw_error_radps,
+            3,
+        );
+        row(
+            "zero command: feet's mean speed (m/s)",
+            |v| v.standing_feet_speed_mps,
+            3,
+        );
+        row("zero command: trunk drift (m)", |v| v.standing_drift_m, 3);
+        let fell: Vec<String> = self
+            .sides
+            .iter()
+            .map(|s| {
+                s.rates
+                    .map_or_else(|| "—".to_owned(), |r| rate_text(&r.fell))
+            })
+            .collect();
+        let _ = writeln!(w, "| fell | {} |", fell.join(" | "));
+        let _ = writeln!(
+            w,
+            "\nEach error: per episode, the mean over its steps of the gap between the command the step was judged by and the trunk's velocity in its own frame after the step; then the mean over the episodes with its 95 % bootstrap interval (seeded with {}). Zero command: only the episodes whose command was zero on every step (k of n when not all); the feet's speed is their collision spheres' centres' travel per step over Δt_env, averaged over feet and steps; the drift is the trunk's horizontal distance from its start to its end. Fell: k of n episodes with Wilson's 95 % interval.",
             self.seed
         );
     }

@@ -4,7 +4,7 @@
 
 use std::sync::Arc;
 
-use hyq_env::{Env, EnvConfig, EpisodeRandomization, Reasons, ResetOptions};
+use hyq_env::{Env, EnvConfig, EpisodeRandomization, Reasons, ResetOptions, VelocityInfo};
 use hyq_physics::na::{Isometry3, UnitQuaternion};
 use hyq_physics::{Backend, RobotModel, RobotState, TrunkState};
 use serde::Serialize;
@@ -78,6 +78,9 @@ pub struct Trajectory {
     /// `[randomize]`'s draws for the episode and its pushes, when it is on: the draws are the
     /// same on every engine for the same seed.
     pub randomize: Option<EpisodeRandomization>,
+    /// Under `task.kind = "velocity"`, what each step reported (its command and the trunk's
+    /// velocity in its frame), one per step; empty under the spec's task.
+    pub velocity: Vec<VelocityInfo>,
 }
 
 impl Trajectory {
@@ -206,6 +209,7 @@ pub fn run_episode<B: Backend>(
         initial_distance_m,
         final_distance_m: initial_distance_m,
         randomize: env.episode_draw().map(EpisodeRandomization::starting),
+        velocity: Vec::new(),
     };
     let mut poses = vec![Isometry3::identity(); model.links().len()];
     let mut record = |traj: &mut Trajectory, env: &Env<B>| {
@@ -229,8 +233,10 @@ pub fn run_episode<B: Backend>(
         let info = step.info;
         let r = &info.reward;
         traj.sums.terms.add(r);
-        // The step's reward: the spec's total, plus the gait regularisers' sum when they are on.
-        traj.sums.ret += info.goal_reward();
+        // The step's reward: the spec's total, plus the gait regularisers' sum when they are on;
+        // under the velocity task, the task's.
+        traj.sums.ret += info.total_reward();
+        traj.velocity.extend(info.velocity);
         traj.targets.extend_from_slice(&info.joint_targets);
         traj.actions.extend_from_slice(&action);
         traj.reasons = info.reasons;

@@ -140,6 +140,16 @@ pub struct ObsNoiseConfig {
     /// Trunk position rows (m). (default: off)
     #[serde(skip_serializing_if = "Option::is_none")]
     pub trunk_position: Option<f64>,
+    /// The velocity task's `base_lin_vel_*` rows (m/s); no rows under the spec's task.
+    /// (default: off)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub base_lin_vel: Option<f64>,
+    /// The velocity task's `base_ang_vel_*` rows (rad/s). (default: off)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub base_ang_vel: Option<f64>,
+    /// The velocity task's `projected_gravity_*` rows (1). (default: off)
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub projected_gravity: Option<f64>,
     /// Probability in [0, 1] that each contact flag reads flipped. (default: off)
     #[serde(skip_serializing_if = "Option::is_none")]
     pub contact_flip: Option<f64>,
@@ -163,13 +173,16 @@ impl ObsNoiseConfig {
     }
 
     /// Each deviation with its key.
-    pub fn deviations(&self) -> [(&'static str, Option<f64>); 5] {
+    pub fn deviations(&self) -> [(&'static str, Option<f64>); 8] {
         [
             ("joint_angle", self.joint_angle),
             ("joint_speed", self.joint_speed),
             ("quaternion", self.quaternion),
             ("trunk_accel", self.trunk_accel),
             ("trunk_position", self.trunk_position),
+            ("base_lin_vel", self.base_lin_vel),
+            ("base_ang_vel", self.base_ang_vel),
+            ("projected_gravity", self.projected_gravity),
         ]
     }
 
@@ -182,6 +195,9 @@ impl ObsNoiseConfig {
             quaternion: self.quaternion.or(under.quaternion),
             trunk_accel: self.trunk_accel.or(under.trunk_accel),
             trunk_position: self.trunk_position.or(under.trunk_position),
+            base_lin_vel: self.base_lin_vel.or(under.base_lin_vel),
+            base_ang_vel: self.base_ang_vel.or(under.base_ang_vel),
+            projected_gravity: self.projected_gravity.or(under.projected_gravity),
             contact_flip: self.contact_flip.or(under.contact_flip),
         }
     }

@@ -303,12 +303,18 @@ impl Randomizer {
     pub fn observe(&mut self, layout: &ObservationLayout, truth: &[f64], seen: &mut [f64]) {
         let n = &self.config.obs_noise;
         let uniform_noise = n.distribution == Some(NoiseDistribution::Uniform);
-        let groups: [(IndexRange<usize>, Option<f64>); 5] = [
+        let task = task_rows(layout);
+        let groups: [(IndexRange<usize>, Option<f64>); 9] = [
             (layout.joint_angles(), n.joint_angle),
             (layout.joint_speeds(), n.joint_speed),
             (layout.trunk_rotation(), n.quaternion),
             (layout.trunk_acceleration(), n.trunk_accel),
             (layout.trunk_position(), n.trunk_position),
+            (task[0].clone(), n.base_lin_vel),
+            (task[1].clone(), n.base_ang_vel),
+            (task[2].clone(), n.projected_gravity),
+            // q − q₀: the joint angles' noise, as the anchors give their offset rows.
+            (task[3].clone(), n.joint_angle),
         ];
         let flags = layout.foot_contacts().start..layout.trunk_contact() + 1;
         seen.copy_from_slice(truth);
@@ -334,6 +340,28 @@ impl Randomizer {
             }
         }
     }
+}
+
+/// The velocity task's noisy rows in `layout` (its `velocity_task` group): the body-frame
+/// linear and angular velocity, the projected gravity and the joint offsets; empty ranges when
+/// the layout has no such group. The command and last-action rows are known exactly and get
+/// none.
+fn task_rows(layout: &ObservationLayout) -> [IndexRange<usize>; 4] {
+    let Some(g) = layout
+        .groups()
+        .iter()
+        .find(|g| g.name == crate::velocity::GROUP)
+    else {
+        return [0..0, 0..0, 0..0, 0..0];
+    };
+    let s = g.rows.start;
+    let joints = layout.joint_angles().len();
+    [
+        s..s + 3,
+        s + 3..s + 6,
+        s + 6..s + 9,
+        s + 12..s + 12 + joints,
+    ]
 }
 
 #[cfg(test)]

@@ -1,0 +1,62 @@
+"""Invariant: the velocity recipe's checkpoint evaluation (examples/recipes.py's
+``evaluate_velocity``) runs the policy at each fixed command of ``VELOCITY_EVAL_COMMANDS`` on its
+own seeds and gives the forward-speed error, the yaw-rate error, the drift at a zero command and
+the return as means with their 95 % bootstrap intervals and the fall rate with its Wilson
+interval, all from hyq.stats; a known answer: the standing policy (zero offsets) stands, so its
+errors are the commands it ignores and it does not drift; a repeated evaluation gives the same."""
+
+import importlib.util
+from pathlib import Path
+
+import numpy as np
+
+import hyq.stats
+
+REPO = Path(__file__).resolve().parents[3]
+
+
+def recipes():
+    spec = importlib.util.spec_from_file_location("recipes", REPO / "examples" / "recipes.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_the_standing_policy_misses_each_command_by_the_command_and_stands_still():
+    r = recipes()
+    env = r.merge(r.RECIPES["velocity"]["env"], {"task": {"kind": "velocity", "max_time_steps": 40}})
+    stand = lambda obs: np.zeros((obs.shape[0], 12), dtype=np.float32)  # noqa: E731
+    result = r.evaluate_velocity(stand, env, "hyq", "rapier")
+    done = result["episodes"]
+    assert len(done) == r.EVAL_EPISODES
+    assert sorted({tuple(e["command"]) for e in done}) == sorted(r.VELOCITY_EVAL_COMMANDS)
+    e = result["estimates"]
+    forward = [x["forward_error_mps"] for x in done if x["command"][1] == 0.0]
+    assert e["forward_error_mps"] == hyq.stats.mean_ci(forward, seed=r.EVAL_SEED)
+    # Commanded 0, 0.3 and 0.6 m/s and standing: the error is about the mean command, 0.3 m/s.
+    assert abs(e["forward_error_mps"]["mean"] - 0.3) < 0.02, e["forward_error_mps"]
+    assert abs(e["yaw_error_radps"]["mean"] - 0.5) < 0.02, e["yaw_error_radps"]
+    assert 0.0 <= e["standing_drift_m"]["mean"] < 0.02, e["standing_drift_m"]
+    assert e["fell"] == hyq.stats.wilson(0, r.EVAL_EPISODES)
+    for key in ("mean_return", "forward_error_mps", "yaw_error_radps", "standing_drift_m", "fall_rate"):
+        assert result[f"{key}_lo"] <= result[key] <= result[f"{key}_hi"], key
+    line = r.velocity_eval_summary(result)
+    assert hyq.stats.text(e["forward_error_mps"], 3) in line and "0/20 [0 %, 16 %]" in line, line
+    # The checkpoint score prefers no falls, then smaller errors.
+    better = dict(result, forward_error_mps=0.1)
+    assert r.velocity_score(better) > r.velocity_score(result)
+    assert r.velocity_score(dict(better, fall_rate=0.05)) < r.velocity_score(result)
+    again = r.evaluate_velocity(stand, env, "hyq", "rapier")
+    assert again["estimates"] == e
+
+
+def test_the_velocity_recipe_trains_the_velocity_task_and_its_evaluation_fixes_the_command():
+    r = recipes()
+    recipe = r.RECIPES["velocity"]
+    assert recipe["env"]["task"]["kind"] == "velocity" and recipe["evaluation"] == "velocity"
+    fixed = r.fixed_command(recipe["env"], 0.6, -0.5)
+    assert fixed["command"]["lin_vel_x"] == [0.6, 0.6] and fixed["command"]["ang_vel_yaw"] == [-0.5, -0.5]
+    assert fixed["command"]["standing_probability"] == 0.0
+    # The recipe's other command keys stay.
+    assert fixed["command"]["resampling_time_s"] == recipe["env"]["command"]["resampling_time_s"]
+    assert r.Evaluation(recipe).kind == "velocity" and r.Evaluation(r.RECIPES["walk"]).kind == "goal"
