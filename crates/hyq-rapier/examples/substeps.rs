@@ -7,7 +7,8 @@
 //! target/profiling/examples/substeps stand 2 2000   # prints the trajectory hash
 //! ```
 //!
-//! Arguments: scenario (`stand` or `random`), solver iterations, number of PD sub-steps.
+//! Arguments: scenario (`stand` or `random`), solver iterations, number of PD sub-steps, and
+//! optionally `--mass-matrix-once-per-step` (`RapierOptions::mass_matrix_once_per_step`).
 //! `stand` first settles for 1000 sub-steps and then measures; `random` draws targets inside
 //! the limits every 10 sub-steps (one environment step) and resets to the spawn state when the
 //! trunk touches the ground, as the criterion benchmark does. Both print the mean wall time
@@ -24,7 +25,7 @@ use hyq_rapier::{RapierBackend, RapierOptions};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().collect();
-    let usage = "usage: substeps <stand|random> <solver iterations> <sub-steps>";
+    let usage = "usage: substeps <stand|random> <solver iterations> <sub-steps> [--mass-matrix-once-per-step]";
     let (Some(scenario), Some(iterations), Some(steps)) = (args.get(1), args.get(2), args.get(3))
     else {
         return Err(usage.into());
@@ -34,8 +35,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "random" => true,
         other => return Err(format!("unknown scenario {other:?}; {usage}").into()),
     };
+    let mass_matrix_once_per_step = match args.get(4).map(String::as_str) {
+        None => false,
+        Some("--mass-matrix-once-per-step") => true,
+        Some(other) => return Err(format!("unknown option {other:?}; {usage}").into()),
+    };
     let options = RapierOptions {
         solver_iterations: iterations.parse()?,
+        mass_matrix_once_per_step,
         ..RapierOptions::default()
     };
     let steps: u64 = steps.parse()?;

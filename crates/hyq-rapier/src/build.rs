@@ -398,6 +398,7 @@ pub(crate) fn integration_parameters(
     IntegrationParameters {
         dt: params.dt as Real,
         num_solver_iterations: options.solver_iterations,
+        multibody_mass_matrix_once_per_step: options.mass_matrix_once_per_step,
         static_contact_softness: SpringCoefficients::new(
             options.ground_contact_frequency as Real,
             options.ground_contact_damping_ratio as Real,

@@ -11,6 +11,10 @@ fn defaults() {
     assert_eq!(o.ground_contact_frequency, 240.0);
     assert_eq!(o.ground_contact_damping_ratio, 10.0);
     assert_eq!(o.prediction_distance, 0.02);
+    assert!(
+        !o.mass_matrix_once_per_step,
+        "off: the default keeps rapier's integrator"
+    );
     o.validate().expect("defaults are valid");
 }
 
@@ -19,6 +23,9 @@ fn reads_toml() {
     let o: RapierOptions = toml::from_str("solver_iterations = 4").expect("parses");
     assert_eq!(o.solver_iterations, 4);
     assert_eq!(o.ground_contact_frequency, 240.0);
+    let o: RapierOptions = toml::from_str("mass_matrix_once_per_step = true").expect("parses");
+    assert!(o.mass_matrix_once_per_step);
+    assert_eq!(o.solver_iterations, 2);
     let e = toml::from_str::<RapierOptions>("iterations = 4").expect_err("unknown field");
     assert!(e.to_string().contains("iterations"), "{e}");
 }

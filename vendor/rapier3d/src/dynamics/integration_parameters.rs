@@ -1,3 +1,4 @@
+// Changed by the hyq-env project (Apache-2.0 §4(b)); the changes: PATCHES.md at this crate's root.
 #[cfg(all(doc, feature = "alloc"))]
 use super::RigidBodyActivation;
 use crate::math::Real;
@@ -291,6 +292,17 @@ pub struct IntegrationParameters {
     pub num_internal_pgs_iterations: usize,
     /// The number of stabilization iterations run at each solver iterations (default: `1`).
     pub num_internal_stabilization_iterations: usize,
+    /// If `true`, each multibody's mass matrices (the augmented mass matrix and the one with the
+    /// implicit Coriolis and gyroscopic terms) and their factorizations are built once per step,
+    /// at the first solver iteration, and reused by the later ones (default: `false`: rebuilt at
+    /// every solver iteration, after each position update).
+    ///
+    /// Building them is most of a multibody's cost, so with `n` solver iterations this saves
+    /// `n − 1` of those builds per step. The later iterations then use the matrices of the
+    /// configuration and velocities at the start of the step (the free accelerations and joint
+    /// constraints are still recomputed at every iteration), which changes results by terms of
+    /// the order of the step's motion: check the accuracy a simulation needs before enabling it.
+    pub multibody_mass_matrix_once_per_step: bool,
     /// Maximum number of CCD substeps performed by the solver (default: `1`).
     ///
     /// Also the global CCD on/off switch: `0` disables **all** CCD for the world (including the
@@ -413,6 +425,7 @@ impl Default for IntegrationParameters {
             warmstart_coefficient: 1.0,
             num_internal_pgs_iterations: 1,
             num_internal_stabilization_iterations: 1,
+            multibody_mass_matrix_once_per_step: false,
             num_solver_iterations: 4,
             normalized_allowed_linear_error: 0.005,
             normalized_max_corrective_velocity: 3.0,

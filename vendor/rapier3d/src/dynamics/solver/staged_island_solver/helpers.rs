@@ -1,3 +1,4 @@
+// Changed by the hyq-env project (Apache-2.0 §4(b)); the changes: PATCHES.md at this crate's root.
 //! Staged-solver entry points on [`ContactConstraintsSet`] and
 //! [`VelocitySolver`]: generic (multibody) constraint init and the
 //! multibody-only halves of buffer init and position integration.
@@ -144,7 +145,9 @@ impl VelocitySolver {
 
             if !is_last_substep {
                 multibody.update_velocities(bodies);
-                multibody.update_mass_matrix(params.dt, bodies);
+                if !params.multibody_mass_matrix_once_per_step {
+                    multibody.update_mass_matrix(params.dt, bodies);
+                }
                 multibody.update_acceleration(params.dt, bodies);
 
                 let mut solver_vels_incr = self
