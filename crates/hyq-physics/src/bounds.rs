@@ -137,11 +137,11 @@ pub const JOINT_EFFORT: Bound = Bound {
 pub const JOINT_VELOCITY: Bound = Bound {
     quantity: "joint `velocity`",
     unit: "rad/s",
-    low: 0.0,
-    low_open: true,
+    low: 1e-3,
+    low_open: false,
     high: 1e4,
     high_open: false,
-    why: "about 95 000 rpm; it bounds the joint-speed observation rows, finite in float32",
+    why: "a milliradian per second at least (a slower joint is a fixed one) and about 95 000 rpm at most; it bounds the joint-speed observation rows, which stay nonzero and finite in float32",
 };
 
 /// Passive joint damping (N·m·s/rad).
