@@ -115,7 +115,7 @@ pub use records::{
 pub use renderer::{
     DEFAULT_HEIGHT_PX, DEFAULT_WIDTH_PX, MAX_SIDE_PX, MIN_SIDE_PX, RenderConfig, Renderer,
 };
-pub use scene::{Overlay, RobotPose, Scene};
+pub use scene::{Overlay, RobotPose, Scene, VelocityHud};
 pub use text::{SANS, SANS_BOLD};
 pub use writer::{
     GIF_MAX_FPS, GIF_MAX_SIDE_PX, GifWriter, PngSequence, encode_png, gif_delay_cs, write_gif,
