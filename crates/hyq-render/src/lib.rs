@@ -7,7 +7,9 @@
 //!   trunk; the ground has a 1 m grid, and a height field ([`Scene::with_terrain`]) is drawn
 //!   shaded with the grid draped over it; the trunk box, leg capsules and foot spheres are the
 //!   model's collision shapes, feet in contact turn orange and a trunk touching the ground
-//!   turns red. Everything is drawn on the CPU with tiny-skia's anti-aliased 2-D rasteriser
+//!   turns red. Under the velocity-command task ([`Scene::with_velocity`]) the command and the
+//!   trunk's measured velocity are arrows on the ground under the trunk and rows of the
+//!   overlay ([`VelocityHud`]). Everything is drawn on the CPU with tiny-skia's anti-aliased 2-D rasteriser
 //!   (this crate only projects and orders the shapes), text with a bundled font.
 //! - [`write_gif`] / [`GifWriter`] (streaming) and [`write_png`] / [`PngSequence`] write
 //!   frames to files.

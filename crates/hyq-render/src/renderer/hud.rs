@@ -27,14 +27,14 @@ const MEASURED: Rgb = Rgb::hex(0x7b3fa0);
 const MEASURED_TEXT: Rgb = Rgb::hex(0xd2a8f0);
 
 /// Arrow length (m) per m/s, for a robot of the reference size, and the longest arrow (m).
-const ARROW_M_PER_MPS: f64 = 1.2;
+const ARROW_M_PER_MPS: f64 = 2.0;
 const ARROW_MAX_M: f64 = 4.0;
 /// Half widths (m) of the command's and the measured arrow's shafts.
-const COMMAND_HALF_WIDTH_M: f64 = 0.07;
-const MEASURED_HALF_WIDTH_M: f64 = 0.03;
+const COMMAND_HALF_WIDTH_M: f64 = 0.08;
+const MEASURED_HALF_WIDTH_M: f64 = 0.035;
 /// The yaw arcs' radii (m): the command's, and the measured one's inside it.
-const COMMAND_ARC_M: f64 = 0.75;
-const MEASURED_ARC_M: f64 = 0.62;
+const COMMAND_ARC_M: f64 = 0.95;
+const MEASURED_ARC_M: f64 = 0.8;
 /// Arc sweep (rad) per rad/s of yaw rate, and the largest sweep.
 const ARC_RAD_PER_RADPS: f64 = FRAC_PI_2;
 const ARC_MAX_RAD: f64 = 1.8 * PI;
