@@ -89,6 +89,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             d_n: outcome.normalised_distance,
             distance_to_goal: outcome.distance,
             regularizers: None,
+            velocity: None,
         };
         writeln!(log, "{}", serde_json::to_string(&record)?)?;
 

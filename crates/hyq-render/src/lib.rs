@@ -108,11 +108,11 @@ pub use hyq_spec::TermValues;
 pub use plot::{
     DISTANCE_PLOT_SIZE, EpisodePlots, JsonlPlots, PlotOptions, REGULARIZER_PLOT_CELL,
     REWARD_PLOT_SIZE, plot_distance, plot_episode, plot_jsonl, plot_records, plot_regularizers,
-    plot_reward_terms, reward_plot_legend,
+    plot_reward_terms, plot_velocity_terms, reward_plot_legend,
 };
 pub use records::{
-    EpisodeSeries, JsonlRecords, MAX_RECORD_LINE_BYTES, PlotRecord, cumulative, parse_jsonl,
-    read_jsonl, split_episodes,
+    EpisodeSeries, JsonlRecords, MAX_RECORD_LINE_BYTES, PlotRecord, VELOCITY_COMMAND_COLUMNS,
+    VelocityPlotRecord, cumulative, parse_jsonl, read_jsonl, split_episodes,
 };
 pub use renderer::{
     DEFAULT_HEIGHT_PX, DEFAULT_WIDTH_PX, MAX_SIDE_PX, MIN_SIDE_PX, RenderConfig, Renderer,
