@@ -90,8 +90,7 @@ impl RobotArgs {
     /// The chosen robot's model: a bundled one is shared, a profile is loaded. A choice that is
     /// neither, or a profile that cannot be used, is a usage error naming it.
     pub fn model(&self) -> Result<Arc<RobotModel>, Failure> {
-        let settle = |model| crate::robot::settle_height(model);
-        hyq_formats::robots::resolve_with(&self.choice, Some(&settle)).map_err(|e| {
+        hyq_formats::robots::resolve_with(&self.choice, Some(&settle_height)).map_err(|e| {
             usage(format!(
                 "--robot {}: {}",
                 self.choice,
@@ -248,6 +247,15 @@ fn file_keys(path: &std::path::Path) -> Result<Vec<String>, Failure> {
     let mut keys = Vec::new();
     walk("", &table, &mut keys);
     Ok(keys)
+}
+
+/// The trunk frame's height (m) after holding the standing pose on the default engine
+/// (rapier): what `hyq robot init` writes and an MJCF file given alone takes as its standing
+/// height ([`hyq_env::settle`]).
+pub fn settle_height(model: Arc<RobotModel>) -> Result<f64, String> {
+    let engine = hyq_engines::DEFAULT.name;
+    hyq_engines::with_engine!(engine, B => hyq_env::settle::settle_height::<B>(model))
+        .unwrap_or_else(|| Err(format!("this hyq was built without the {engine} engine")))
 }
 
 /// An environment on backend `B` with `config`.

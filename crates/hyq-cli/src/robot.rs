@@ -8,17 +8,12 @@ use std::path::{Component, Path, PathBuf};
 use std::sync::Arc;
 
 use clap::{Args, Subcommand};
-use hyq_env::policy::{Policy as _, Stand};
-use hyq_env::{EnvConfig, ResetOptions};
+use hyq_env::settle::SETTLE_S;
 use hyq_formats::draft::{self, Draft};
-use hyq_physics::{Backend, RobotModel};
 
 use crate::Failure;
-use crate::options::{make_env, usage};
+use crate::options::{settle_height, usage};
 use crate::output::{self, OutputFile};
-
-/// How long (s) the settle run holds the standing pose before the trunk's height is read.
-pub const SETTLE_S: f64 = 1.0;
 
 /// `hyq robot`'s subcommands.
 #[derive(Debug, Subcommand)]
@@ -126,39 +121,6 @@ fn settle(draft: &mut Draft) {
             draft.set_standing_note(&note);
         }
     }
-}
-
-/// The trunk frame's height (m) after [`SETTLE_S`] of holding the standing pose on the default
-/// engine (rapier), default configuration, seed 0; an error if the episode ends (a fall, the
-/// trunk on the ground) or the height is not a positive number.
-pub fn settle_height(model: Arc<RobotModel>) -> Result<f64, String> {
-    let engine = hyq_engines::DEFAULT.name;
-    hyq_engines::with_engine!(engine, B => settle_on::<B>(model))
-        .unwrap_or_else(|| Err(format!("this hyq was built without the {engine} engine")))
-}
-
-fn settle_on<B: Backend>(model: Arc<RobotModel>) -> Result<f64, String> {
-    let n = model.num_joints();
-    let mut env = make_env::<B>(model, EnvConfig::default()).map_err(|f| f.message)?;
-    env.reset(Some(0), &ResetOptions::default())
-        .map_err(|e| e.to_string())?;
-    let steps = (SETTLE_S / env.env_dt()).round() as usize;
-    let mut a = vec![0.0; n];
-    for _ in 0..steps {
-        Stand.act(&env.policy_input(), &mut a);
-        let s = env.step(&a).map_err(|e| e.to_string())?;
-        if s.terminated || s.truncated {
-            return Err(format!(
-                "the episode ended while standing: {:?}",
-                s.info.reasons
-            ));
-        }
-    }
-    let z = env.trunk().pose.translation.vector.z;
-    if !z.is_finite() || z <= 0.0 {
-        return Err(format!("the trunk ended at a height of {z} m"));
-    }
-    Ok(z)
 }
 
 /// `file`'s path as seen from directory `base`: relative when both resolve and share more than

@@ -940,8 +940,10 @@ fn an_error_echoing_a_long_value_stays_a_short_line() {
 
 #[test]
 fn robot_init_bad_inputs() {
-    let assets = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets");
-    let hyq_urdf = format!("{assets}/hyq/hyq.urdf");
+    let hyq_urdf = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../assets/hyq/hyq.urdf")
+        .display()
+        .to_string();
     fails(
         2,
         &["robot", "init", "/nonexistent/robot.urdf"],

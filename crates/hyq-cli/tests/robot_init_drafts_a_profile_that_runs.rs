@@ -13,11 +13,21 @@ mod common;
 use common::{hyq, hyq_ok, scratch, stderr};
 use hyq_physics::Profile;
 
-const ASSETS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets");
-const FIXTURES: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../hyq-formats/tests/fixtures");
+/// `file` under the repository's assets/ directory, as a string for the command line.
+fn asset(file: &str) -> String {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets");
+    dir.join(file).display().to_string()
+}
+
+/// `file` under hyq-formats' test fixtures (the SRDFs written from the profiles).
+fn fixture(file: &str) -> String {
+    let dir =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../hyq-formats/tests/fixtures");
+    dir.join(file).display().to_string()
+}
 
 fn hand_made(robot: &str) -> Profile {
-    let text = std::fs::read_to_string(format!("{ASSETS}/{robot}/profile.toml")).unwrap();
+    let text = std::fs::read_to_string(asset(&format!("{robot}/profile.toml"))).unwrap();
     Profile::from_toml_str(&text, robot).unwrap()
 }
 
@@ -25,8 +35,8 @@ fn hand_made(robot: &str) -> Profile {
 fn init(name: &str, file: &str, srdf: Option<&str>) -> (String, Profile) {
     let out = scratch(name);
     let out = out.to_str().unwrap().to_owned();
-    let file = format!("{ASSETS}/{file}");
-    let srdf = srdf.map(|s| format!("{FIXTURES}/{s}"));
+    let file = asset(file);
+    let srdf = srdf.map(fixture);
     let mut args = vec!["robot", "init", file.as_str(), "--out", out.as_str()];
     if let Some(s) = &srdf {
         args.extend(["--srdf", s.as_str()]);
@@ -93,7 +103,7 @@ fn anymal_c_from_its_urdf_and_standing_state_stands() {
 
 #[test]
 fn stdout_without_out_and_an_existing_file_only_with_force() {
-    let text = hyq_ok(&["robot", "init", &format!("{ASSETS}/go1/go1.xml")]);
+    let text = hyq_ok(&["robot", "init", &asset("go1/go1.xml")]);
     assert!(
         text.starts_with("# Robot profile drafted by `hyq robot init`"),
         "{text}"
@@ -102,7 +112,7 @@ fn stdout_without_out_and_an_existing_file_only_with_force() {
     let out = scratch("kept.toml");
     std::fs::write(&out, "kept").unwrap();
     let out = out.to_str().unwrap();
-    let file = format!("{ASSETS}/go1/go1.xml");
+    let file = asset("go1/go1.xml");
     let refused = hyq(&["robot", "init", &file, "--out", out]);
     assert_eq!(refused.status.code(), Some(2));
     assert!(stderr(&refused).contains("--force"), "{}", stderr(&refused));

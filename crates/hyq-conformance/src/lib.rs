@@ -70,6 +70,7 @@ mod contacts;
 pub mod determinism;
 mod dynamics;
 pub mod fixtures;
+pub mod go1_pair;
 mod independent_fk;
 mod kinematics;
 mod randomization;

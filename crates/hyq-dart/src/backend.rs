@@ -514,8 +514,9 @@ impl Backend for DartBackend {
                 message: format!(
                     "randomize.contact_stiffness_scale / contact_damping_scale drew {} / {}, but \
                      DART 6.12's contact is rigid (an LCP): its only softness settings, the \
-                     error reduction and constraint force mixing, are process-wide, so one \
-                     world's episode cannot vary them",
+                     error reduction and constraint force mixing, are process-wide, and mapped \
+                     onto them as a spring-damper the factors change only how fast a \
+                     penetration is undone, not the depth at rest",
                     c.contact_stiffness_scale, c.contact_damping_scale
                 ),
             });

@@ -54,6 +54,7 @@
 //! | [`velocity`] | `task.kind = "velocity"`: the velocity-command task's state, observation group and info (rules in `hyq-tasks`) |
 //! | [`regularizers`] | `[regularizers]`: the gait regularisers' state and info added to the goal task's reward (rules in `hyq-tasks`) |
 //! | `gait` (private) | the state both of them keep between steps: the previous action and joint speeds, the feet's air times and velocities |
+//! | [`settle`] | a robot's standing height as `hyq robot init` measures it: the standing pose held for 1 s, seed 0 |
 //! | [`record`] | [`StepRecord`]: the per-step JSONL schema |
 //! | [`terrain`] | [`terrain::Ground`]: the ground of each episode, the robot put down on it, the goal over it, the curriculum |
 //! | [`testing`] | [`testing::ScriptedBackend`]: a scripted backend for contract tests |
@@ -77,6 +78,7 @@ pub mod policy;
 pub mod randomize;
 pub mod record;
 pub mod regularizers;
+pub mod settle;
 pub mod terrain;
 pub mod testing;
 pub mod vec_env;

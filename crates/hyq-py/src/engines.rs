@@ -282,43 +282,14 @@ fn with_pool<B: Backend>(vec: VecEnv<B>, threads: Option<usize>) -> PyResult<Box
     Ok(Box::new(vec) as Box<dyn VecView>)
 }
 
-/// How long (s) a drafted robot holds its standing pose before its standing height is read:
-/// the command line's `hyq robot init` figure, so both fronts build the same model.
-const SETTLE_S: f64 = 1.0;
-
-/// The trunk frame's height (m) after [`SETTLE_S`] of holding the standing pose on the default
-/// engine (rapier), default configuration, seed 0, as the command line's `hyq robot init`
-/// measures it; an error if the episode ends or the height is not a positive number.
+/// The trunk frame's height (m) after holding the standing pose on the default engine
+/// (rapier), as the command line's `hyq robot init` measures it ([`hyq_env::settle`]).
 fn settle_height(model: Arc<RobotModel>) -> Result<f64, String> {
     let engine = hyq_engines::DEFAULT.name;
-    hyq_engines::with_engine!(engine, B => settle_on::<B>(model)).unwrap_or_else(|| {
-        Err(format!(
-            "this package was built without the {engine} engine"
-        ))
-    })
-}
-
-fn settle_on<B: Backend>(model: Arc<RobotModel>) -> Result<f64, String> {
-    use hyq_env::policy::{Policy as _, Stand};
-    let n = model.num_joints();
-    let mut env = Env::<B>::new(model, EnvConfig::default()).map_err(|e| e.to_string())?;
-    env.reset(Some(0), &ResetOptions::default())
-        .map_err(|e| e.to_string())?;
-    let steps = (SETTLE_S / env.env_dt()).round() as usize;
-    let mut a = vec![0.0; n];
-    for _ in 0..steps {
-        Stand.act(&env.policy_input(), &mut a);
-        let s = env.step(&a).map_err(|e| e.to_string())?;
-        if s.terminated || s.truncated {
-            return Err(format!(
-                "the episode ended while standing: {:?}",
-                s.info.reasons
-            ));
-        }
-    }
-    let z = env.trunk().pose.translation.vector.z;
-    if !z.is_finite() || z <= 0.0 {
-        return Err(format!("the trunk ended at a height of {z} m"));
-    }
-    Ok(z)
+    hyq_engines::with_engine!(engine, B => hyq_env::settle::settle_height::<B>(model))
+        .unwrap_or_else(|| {
+            Err(format!(
+                "this package was built without the {engine} engine"
+            ))
+        })
 }
