@@ -26,11 +26,13 @@ fn velocity_episode(n: u64) -> Vec<PlotRecord> {
             } else {
                 [-0.3, 0.1, -0.4]
             };
-            let mut terms = hyq_tasks::TermValues::default();
-            terms.tracking_lin_vel = (x / 9.0).sin().abs();
-            terms.tracking_ang_vel = 1.0 - 0.01 * x;
-            terms.torques = 1e4 * x;
-            terms.feet_air_time = -0.1 * (t % 7) as f64;
+            let terms = hyq_tasks::TermValues {
+                tracking_lin_vel: (x / 9.0).sin().abs(),
+                tracking_ang_vel: 1.0 - 0.01 * x,
+                torques: 1e4 * x,
+                feet_air_time: -0.1 * (t % 7) as f64,
+                ..Default::default()
+            };
             PlotRecord {
                 t,
                 episode: Some(3),
