@@ -222,3 +222,31 @@ fn a_non_finite_velocity_is_refused_with_an_error_naming_it() {
         );
     }
 }
+
+#[test]
+fn the_taller_velocity_panel_is_drawn_from_about_355_by_260_pixels() {
+    let (trunk, q) = turned(0.0);
+    let contacts = no_contacts();
+    let overlay = Overlay {
+        time_s: 1.0,
+        distance_to_goal_m: 4.0,
+        episode_return: 1.5,
+    };
+    let scene = joints_scene(&trunk, &q, &contacts).with_velocity(hud([0.0; 3], [0.0; 3]));
+    let drawn = |width, height| {
+        let config = hyq_render::RenderConfig {
+            width,
+            height,
+            ..hyq_render::RenderConfig::default()
+        };
+        let mut r = Renderer::new(model(), config).unwrap();
+        r.render(&scene).unwrap() != r.render(&scene.with_overlay(overlay)).unwrap()
+    };
+    // The goal task's panel fits 320 × 240; this one, two rows taller, does not.
+    assert!(!drawn(320, 240));
+    assert!(!drawn(350, 300));
+    assert!(!drawn(400, 255));
+    assert!(drawn(355, 260));
+    assert!(drawn(360, 270));
+    assert!(drawn(400, 300));
+}
