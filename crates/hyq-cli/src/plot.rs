@@ -5,7 +5,9 @@
 //! multipliers, the step reward with the fixed penalties, and the cumulative reward with the
 //! cumulative r_b, r_n and r_e) and `episode_NNN_distance.png` (D_n over time, and the §4.3
 //! curve R_e(D_n) with the episode's points (D_n^t, Σ r_e) on it). NNN counts the episodes of
-//! the run or file from 001.
+//! the run or file from 001. Under `[regularizers]` a third, `episode_NNN_regularizers.png`;
+//! under `task.kind = "velocity"` also `episode_NNN_velocity.png` (the command, the task's
+//! reward and every task term unscaled, docs/velocity.md).
 //!
 //! A JSONL record does not carry the configuration it was made with, so `hyq plot` reads k_exp
 //! (for the R_e curve) and the env step (for the time axis) from the same `--config` and `--set`
@@ -17,7 +19,9 @@ use std::path::{Path, PathBuf};
 
 use clap::Args;
 use hyq_env::{EnvConfig, StepInfo};
-use hyq_render::{EpisodeSeries, PlotError, PlotOptions, PlotRecord, TermValues};
+use hyq_render::{
+    EpisodeSeries, PlotError, PlotOptions, PlotRecord, TermValues, VelocityPlotRecord,
+};
 
 use crate::Failure;
 use crate::options::{ConfigArgs, usage};
@@ -101,7 +105,11 @@ pub fn execute(args: PlotArgs) -> Result<(), Failure> {
         .map_err(plot_failure)?;
     staged.publish().map_err(|e| published_failure(&out, &e))?;
     for p in &plots {
-        for path in [&p.rewards, &p.distance] {
+        let optional = [p.regularizers.as_ref(), p.velocity.as_ref()];
+        for path in [&p.rewards, &p.distance]
+            .into_iter()
+            .chain(optional.into_iter().flatten())
+        {
             let name = path.file_name().unwrap_or_default();
             print_line(&out.join(name).display().to_string())?;
         }
@@ -146,16 +154,22 @@ impl LivePlots {
     }
 
     /// Adds one env step of the current episode. Its terms are the record's: with the height
-    /// penalty off, the env's m_height is 1, as an absent `m_height` reads in a record.
+    /// penalty off, the env's m_height is 1, as an absent `m_height` reads in a record; its
+    /// reward is the record's (the velocity task's under `task.kind = "velocity"`).
     pub fn push(&mut self, info: &StepInfo) {
         self.series.push(&PlotRecord {
             t: info.t,
             episode: Some(info.episode),
-            reward: info.goal_reward(),
+            reward: info.total_reward(),
             terms: TermValues::all(&info.reward),
             d_n: Some(info.d_n),
             distance_to_goal: info.distance_to_goal,
             regularizers: info.regularizers.map(|r| r.terms),
+            velocity: info.velocity.map(|v| VelocityPlotRecord {
+                command: v.command,
+                terms: v.terms,
+                reward: v.reward,
+            }),
         });
     }
 

@@ -98,6 +98,7 @@ fn the_reward_plot_has_a_legend_entry_for_every_term() {
         d_n: Some(1.0),
         distance_to_goal: 5.0,
         regularizers: None,
+        velocity: None,
     };
     let series = hyq_render::EpisodeSeries::from_records(&[record]);
     let legend = hyq_render::reward_plot_legend(&series);

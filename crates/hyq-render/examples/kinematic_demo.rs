@@ -80,17 +80,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         })?;
         previous = position;
         episode_return += outcome.reward.total;
-        let b = outcome.reward;
-        let record = PlotRecord {
-            t: step,
-            episode: Some(1),
-            reward: b.total,
-            terms: TermValues::all(&b),
-            d_n: outcome.normalised_distance,
-            distance_to_goal: outcome.distance,
-            regularizers: None,
-        };
-        writeln!(log, "{}", serde_json::to_string(&record)?)?;
+        writeln!(log, "{}", serde_json::to_string(&record(step, &outcome))?)?;
 
         if step % frame_every == 0 {
             let scene = Scene::new(RobotPose::Links(&poses), &contacts)
@@ -111,8 +101,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
     }
     gif.finish()?;
-    log.flush()?;
-    drop(log);
+    log.into_inner()?; // flushed and closed before the plots read it
     let options = PlotOptions {
         title: "scripted trot (kinematic)".into(),
         k_exp: config.exp_rew_scaling,
@@ -125,6 +114,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         plots.len()
     );
     Ok(())
+}
+
+/// The JSONL record of step `step` of the episode, scored as `outcome`.
+fn record(step: u64, outcome: &hyq_spec::StepOutcome) -> PlotRecord {
+    let b = outcome.reward;
+    PlotRecord {
+        t: step,
+        episode: Some(1),
+        reward: b.total,
+        terms: TermValues::all(&b),
+        d_n: outcome.normalised_distance,
+        distance_to_goal: outcome.distance,
+        regularizers: None,
+        velocity: None,
+    }
 }
 
 /// The scripted trot at time `t` (s): the joint angles into `q` (from the `standing` pose),

@@ -7,7 +7,9 @@
 //!   trunk; the ground has a 1 m grid, and a height field ([`Scene::with_terrain`]) is drawn
 //!   shaded with the grid draped over it; the trunk box, leg capsules and foot spheres are the
 //!   model's collision shapes, feet in contact turn orange and a trunk touching the ground
-//!   turns red. Everything is drawn on the CPU with tiny-skia's anti-aliased 2-D rasteriser
+//!   turns red. Under the velocity-command task ([`Scene::with_velocity`]) the command and the
+//!   trunk's measured velocity are arrows on the ground under the trunk and rows of the
+//!   overlay ([`VelocityHud`]). Everything is drawn on the CPU with tiny-skia's anti-aliased 2-D rasteriser
 //!   (this crate only projects and orders the shapes), text with a bundled font.
 //! - [`write_gif`] / [`GifWriter`] (streaming) and [`write_png`] / [`PngSequence`] write
 //!   frames to files.
@@ -106,16 +108,16 @@ pub use hyq_spec::TermValues;
 pub use plot::{
     DISTANCE_PLOT_SIZE, EpisodePlots, JsonlPlots, PlotOptions, REGULARIZER_PLOT_CELL,
     REWARD_PLOT_SIZE, plot_distance, plot_episode, plot_jsonl, plot_records, plot_regularizers,
-    plot_reward_terms, reward_plot_legend,
+    plot_reward_terms, plot_velocity_terms, reward_plot_legend,
 };
 pub use records::{
-    EpisodeSeries, JsonlRecords, MAX_RECORD_LINE_BYTES, PlotRecord, cumulative, parse_jsonl,
-    read_jsonl, split_episodes,
+    EpisodeSeries, JsonlRecords, MAX_RECORD_LINE_BYTES, PlotRecord, VELOCITY_COMMAND_COLUMNS,
+    VelocityPlotRecord, cumulative, parse_jsonl, read_jsonl, split_episodes,
 };
 pub use renderer::{
     DEFAULT_HEIGHT_PX, DEFAULT_WIDTH_PX, MAX_SIDE_PX, MIN_SIDE_PX, RenderConfig, Renderer,
 };
-pub use scene::{Overlay, RobotPose, Scene};
+pub use scene::{Overlay, RobotPose, Scene, VelocityHud};
 pub use text::{SANS, SANS_BOLD};
 pub use writer::{
     GIF_MAX_FPS, GIF_MAX_SIDE_PX, GifWriter, PngSequence, encode_png, gif_delay_cs, write_gif,

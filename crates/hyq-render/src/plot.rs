@@ -4,6 +4,8 @@
 //! - [`plot_reward_terms`]: every reward term per step (r_b, r_n, r_e, r_reach), the penalty
 //!   multipliers (m_yaw, m_pitch, m_height), the step reward with the fixed penalties, and the
 //!   cumulative reward with the cumulative r_b, r_n (the spec's Figure 4) and r_e.
+//! - [`plot_regularizers`] and [`plot_velocity_terms`]: the gait regularisers, and the velocity
+//!   task's command, reward and terms, when the records hold them.
 //! - [`plot_distance`]: D_n over time, and the §4.3 curve R_e(D_n) (Figures 5–6, from
 //!   `hyq_spec::reward::exponential::cumulative_exponential_reward`) with the episode's points
 //!   (D_n^t, Σ_{s≤t} r_e^s) on it. r_e is R_e's change per step and D_n^0 = 1 where R_e = 0, so
@@ -26,7 +28,9 @@ use plotters::style::FontStyle;
 
 use crate::error::PlotError;
 use crate::frame::Frame;
-use crate::records::{EpisodeSeries, PlotRecord, cumulative, read_jsonl, split_episodes};
+use crate::records::{
+    EpisodeSeries, PlotRecord, VELOCITY_COMMAND_COLUMNS, cumulative, read_jsonl, split_episodes,
+};
 use crate::text::{SANS, SANS_BOLD};
 use crate::writer::write_png;
 
@@ -604,6 +608,110 @@ pub fn plot_regularizers(
     })
 }
 
+/// Named columns of a series.
+type Columns = [(&'static str, Vec<f64>)];
+
+/// The velocity task's columns of `series`: the command's, then the terms'; an error when the
+/// series holds none.
+fn velocity_columns(series: &EpisodeSeries) -> Result<(&Columns, &Columns), PlotError> {
+    let n = VELOCITY_COMMAND_COLUMNS.len();
+    let holds_command = series.velocity.len() > n
+        && series.velocity[..n]
+            .iter()
+            .zip(VELOCITY_COMMAND_COLUMNS)
+            .all(|((a, _), b)| *a == b);
+    if !holds_command {
+        return Err(PlotError::Empty {
+            what: "the episode's velocity-task columns".into(),
+        });
+    }
+    Ok(series.velocity.split_at(n))
+}
+
+/// Writes the velocity task's plot of one episode to `path`: the command over time, the
+/// step's reward (the task's), and every task term unscaled, each in a panel of its own (two to
+/// a row of [`REGULARIZER_PLOT_CELL`]'s height). An episode without the task's columns is an
+/// error.
+pub fn plot_velocity_terms(
+    series: &EpisodeSeries,
+    options: &PlotOptions,
+    path: impl AsRef<Path>,
+) -> Result<(), PlotError> {
+    series.validate()?;
+    check_options(options)?;
+    let (command, terms) = velocity_columns(series)?;
+    let (t, x_desc) = options.time_axis(&series.t);
+    let t = &t;
+    let rows = (terms.len() + 2).div_ceil(2);
+    let (width, row_height) = REGULARIZER_PLOT_CELL;
+    let height = 60 + row_height * u32::try_from(rows).unwrap_or(u32::MAX / row_height / 2);
+    let title = heading(
+        &options.title,
+        &format!(
+            "velocity task: command and terms, unscaled ({} steps)",
+            series.len()
+        ),
+    );
+    const COLOURS: [RGBColor; 7] = [BLUE, ORANGE, GREEN, RED, TEAL, PURPLE, BROWN];
+    render_png(path.as_ref(), (width, height), "velocity", |root| {
+        let body = root
+            .titled(
+                &title,
+                (FAMILY, 24, FontStyle::Bold).into_font().color(&INK),
+            )
+            .map_err(|e| e.to_string())?;
+        let areas = body.split_evenly((rows, 2));
+        let command_lines: Vec<Line<'_>> = command
+            .iter()
+            .zip(["v_x (m/s)", "v_y (m/s)", "ω_z (rad/s)"])
+            .zip([BLUE, ORANGE, GREEN])
+            .map(|((column, label), colour)| Line {
+                label: label.to_owned(),
+                colour,
+                ys: &column.1,
+                width: 2,
+            })
+            .collect();
+        let y_range = padded_range(command.iter().flat_map(|c| &c.1), &[0.0]);
+        line_panel(
+            &areas[0],
+            "command",
+            (t, x_desc),
+            &command_lines,
+            "",
+            y_range,
+            &[],
+        )?;
+        let reward = [Line {
+            label: "reward".to_owned(),
+            colour: INK,
+            ys: &series.reward,
+            width: 2,
+        }];
+        let y_range = padded_range(series.reward.iter(), &[0.0]);
+        line_panel(
+            &areas[1],
+            "step reward",
+            (t, x_desc),
+            &reward,
+            "per step",
+            y_range,
+            &[],
+        )?;
+        for (k, (area, (name, column))) in areas[2..].iter().zip(terms).enumerate() {
+            let lines = [Line {
+                label: (*name).to_owned(),
+                colour: COLOURS[k % COLOURS.len()],
+                ys: column,
+                width: 2,
+            }];
+            let y_range = padded_range(column.iter(), &[0.0]);
+            line_panel(area, name, (t, x_desc), &lines, "per step", y_range, &[])?;
+        }
+        Ok(())
+    })
+}
+
 /// Writes the distance plot of one episode ([`DISTANCE_PLOT_SIZE`]) to `path`: D_n over time,
 /// and R_e(D_n) with the episode's points.
 pub fn plot_distance(
@@ -766,11 +874,14 @@ pub struct EpisodePlots {
     /// `<stem>_regularizers.png`, from [`plot_regularizers`], when the episode's records hold
     /// gait regularisers.
     pub regularizers: Option<PathBuf>,
+    /// `<stem>_velocity.png`, from [`plot_velocity_terms`], when the episode's records hold
+    /// the velocity task's command and terms.
+    pub velocity: Option<PathBuf>,
 }
 
 /// Writes both plots of one episode into `dir` (created if missing) as `<stem>_rewards.png` and
-/// `<stem>_distance.png`, and `<stem>_regularizers.png` when its records hold gait
-/// regularisers.
+/// `<stem>_distance.png`, `<stem>_regularizers.png` when its records hold gait regularisers,
+/// and `<stem>_velocity.png` when they hold the velocity task's.
 pub fn plot_episode(
     series: &EpisodeSeries,
     options: &PlotOptions,
@@ -787,11 +898,15 @@ pub fn plot_episode(
         distance: dir.join(format!("{stem}_distance.png")),
         regularizers: (!series.regularizers.is_empty())
             .then(|| dir.join(format!("{stem}_regularizers.png"))),
+        velocity: (!series.velocity.is_empty()).then(|| dir.join(format!("{stem}_velocity.png"))),
     };
     plot_reward_terms(series, options, &plots.rewards)?;
     plot_distance(series, options, &plots.distance)?;
     if let Some(path) = &plots.regularizers {
         plot_regularizers(series, options, path)?;
+    }
+    if let Some(path) = &plots.velocity {
+        plot_velocity_terms(series, options, path)?;
     }
     Ok(plots)
 }

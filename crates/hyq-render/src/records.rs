@@ -8,7 +8,8 @@
 //! `m_height` optional: the spec's per-term breakdown, penalties as the positive amounts
 //! subtracted), `d_n` (D_n^t; `null` is read as unknown, as older records held it) and
 //! `distance_to_goal` (D^t, m), `episode` (the episode's number; optional here) and
-//! `regularizers` (the gait regularisers that were on, unscaled; optional). Other keys
+//! `regularizers` (the gait regularisers that were on, unscaled; optional) and `velocity` (the
+//! velocity task's command, terms and reward; optional). Other keys
 //! (`obs`, `action`, `goal`, …) are ignored, so the environment can log more without breaking
 //! the plots.
 //!
@@ -29,6 +30,7 @@ use std::path::Path;
 use hyq_physics::input::{self, Line};
 use hyq_spec::{NUM_REWARD_TERMS, REWARD_TERMS, TermValues, terms::term_index};
 use hyq_tasks::ReportedRegularizers;
+use hyq_tasks::TermValues as TaskTerms;
 use serde::{Deserialize, Serialize};
 
 use crate::error::PlotError;
@@ -56,7 +58,28 @@ pub struct PlotRecord {
     /// The gait regularisers that were on, unscaled (`[regularizers]`; absent when off).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub regularizers: Option<ReportedRegularizers>,
+    /// The velocity task's part (`task.kind = "velocity"`; absent under the spec's task).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub velocity: Option<VelocityPlotRecord>,
 }
+
+/// The velocity task's part of a record (hyq-env's `VelocityRecord`), as the plots read it.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct VelocityPlotRecord {
+    /// The command the step was judged by: v_x, v_y (m/s), ω_z (rad/s).
+    pub command: [f64; 3],
+    /// Every term of the task, unscaled (hyq-tasks' `TERM_NAMES`).
+    pub terms: TaskTerms,
+    /// The task's reward (the record's `reward` too).
+    pub reward: f64,
+}
+
+/// The names of the velocity task's columns before its terms ([`EpisodeSeries::velocity`]).
+pub const VELOCITY_COMMAND_COLUMNS: [&str; 3] = [
+    "command_lin_vel_x",
+    "command_lin_vel_y",
+    "command_ang_vel_yaw",
+];
 
 /// The longest line of a JSONL record file read (bytes): 1 MiB, several hundred times a step
 /// record, so that a wrong file (`/dev/zero`, a binary) is refused at once (hyq-physics'
@@ -191,6 +214,32 @@ pub struct EpisodeSeries {
     /// Each gait regulariser the records hold (`[regularizers]`, the terms that were on),
     /// unscaled, one value per step, in hyq-tasks' order; empty when they were off.
     pub regularizers: Vec<(&'static str, Vec<f64>)>,
+    /// The velocity task's columns when the records hold it: the command
+    /// ([`VELOCITY_COMMAND_COLUMNS`]), then every task term unscaled in hyq-tasks'
+    /// `TERM_NAMES` order; empty under the spec's task.
+    pub velocity: Vec<(&'static str, Vec<f64>)>,
+}
+
+/// Appends one step's named values to `columns` (`steps` counting this one): a name first
+/// seen now starts at 0 for the earlier steps, a name the step lacks reads 0 there.
+fn push_named(
+    columns: &mut Vec<(&'static str, Vec<f64>)>,
+    steps: usize,
+    values: impl Iterator<Item = (&'static str, f64)>,
+) {
+    for (name, v) in values {
+        match columns.iter_mut().find(|(n, _)| *n == name) {
+            Some((_, column)) => column.push(v),
+            None => {
+                let mut column = vec![0.0; steps - 1];
+                column.push(v);
+                columns.push((name, column));
+            }
+        }
+    }
+    for (_, column) in columns.iter_mut() {
+        column.resize(steps, 0.0);
+    }
 }
 
 impl EpisodeSeries {
@@ -218,26 +267,26 @@ impl EpisodeSeries {
         }
         self.d_n.push(r.d_n);
         self.distance_to_goal.push(r.distance_to_goal);
-        self.push_regularizers(r.regularizers.as_ref());
-    }
-
-    /// Appends one step's regularisers: a term first seen now starts at 0 for the earlier
-    /// steps, a term a step lacks reads 0 there.
-    fn push_regularizers(&mut self, reported: Option<&ReportedRegularizers>) {
         let steps = self.t.len();
-        for (name, v) in reported.into_iter().flat_map(ReportedRegularizers::iter) {
-            match self.regularizers.iter_mut().find(|(n, _)| *n == name) {
-                Some((_, column)) => column.push(v),
-                None => {
-                    let mut column = vec![0.0; steps - 1];
-                    column.push(v);
-                    self.regularizers.push((name, column));
-                }
-            }
-        }
-        for (_, column) in &mut self.regularizers {
-            column.resize(steps, 0.0);
-        }
+        let regularizers = r.regularizers.as_ref();
+        push_named(
+            &mut self.regularizers,
+            steps,
+            regularizers
+                .into_iter()
+                .flat_map(ReportedRegularizers::iter),
+        );
+        let velocity = r.velocity.iter().flat_map(|v| {
+            let terms = hyq_tasks::TERM_NAMES
+                .iter()
+                .copied()
+                .zip(v.terms.to_array());
+            VELOCITY_COMMAND_COLUMNS
+                .into_iter()
+                .zip(v.command)
+                .chain(terms)
+        });
+        push_named(&mut self.velocity, steps, velocity);
     }
 
     /// The column of the term named `name` (`None` for a name that is no term).
@@ -263,6 +312,7 @@ impl EpisodeSeries {
             .chain([("distance_to_goal", &self.distance_to_goal)])
             .map(|(name, column)| (name, column.as_slice()))
             .chain(self.regularizers.iter().map(|(n, c)| (*n, c.as_slice())))
+            .chain(self.velocity.iter().map(|(n, c)| (*n, c.as_slice())))
     }
 
     /// Checks that the series is non-empty, every column has one value per step and every

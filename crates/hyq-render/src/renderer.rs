@@ -30,9 +30,11 @@ use crate::clip;
 use crate::error::RenderError;
 use crate::frame::Frame;
 use crate::geom::{clip_polygon_near, clip_segment_near, convex_hull, push_circle_points};
-use crate::scene::{Overlay, RobotPose, Scene};
+use crate::scene::{Overlay, RobotPose, Scene, VelocityHud};
 use crate::terrain::{LIFT_M, Quad, TERRAIN_HALF_M, draped, quads};
 use crate::text::{SANS, SANS_BOLD, TextPainter, bundled};
+
+mod hud;
 
 /// Image size, camera placement and ground grid.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -375,8 +377,11 @@ impl Renderer {
         }
         self.collect_prims(&cam, scene.contacts, scene.goal.as_ref());
         self.draw_prims();
+        if let Some(hud) = &scene.velocity {
+            self.draw_velocity_arrows(&cam, hud);
+        }
         if let Some(overlay) = &scene.overlay {
-            self.draw_overlay(overlay, scene.contacts);
+            self.draw_overlay(overlay, scene.contacts, scene.velocity.as_ref());
         }
 
         // Every pixel is opaque (the sky covers the whole image first), so premultiplied RGBA
@@ -442,6 +447,18 @@ impl Renderer {
                     value: v,
                 });
             }
+        }
+        if let Some(hud) = &scene.velocity
+            && let Some(&v) = hud
+                .command
+                .iter()
+                .chain(&hud.measured)
+                .find(|v| !v.is_finite())
+        {
+            return Err(RenderError::NonFinite {
+                what: "velocity display (command or measured velocity)".to_owned(),
+                value: v,
+            });
         }
         for (what, p) in [("goal", scene.goal), ("camera target", scene.camera_target)] {
             if let Some(&v) = p.iter().flat_map(|p| p.iter()).find(|v| !v.is_finite()) {
@@ -887,21 +904,39 @@ impl Renderer {
         }
     }
 
-    /// The text panel in the top-left corner.
-    fn draw_overlay(&mut self, overlay: &Overlay, contacts: &[bool]) {
+    /// The text panel in the top-left corner: time, distance to the goal and return, or under
+    /// the velocity task time, return and the task's three rows (`hud.rs`); then the feet.
+    fn draw_overlay(&mut self, overlay: &Overlay, contacts: &[bool], hud: Option<&VelocityHud>) {
         let pad = 8.0;
         let margin = 8.0;
-        let labels = ["time", "to goal", "return"];
-        let label_w = labels
+        let goal_rows = [
+            ("time", overlay.time_s, " s"),
+            ("to goal", overlay.distance_to_goal_m, " m"),
+            ("return", overlay.episode_return, ""),
+        ];
+        let velocity_rows = [goal_rows[0], goal_rows[2]];
+        let plain: &[(&str, f64, &str)] = if hud.is_some() {
+            &velocity_rows
+        } else {
+            &goal_rows
+        };
+        let hud_labels: &[&str] = if hud.is_some() { &hud::ROW_LABELS } else { &[] };
+        let label_w = plain
             .iter()
+            .map(|r| r.0)
+            .chain(hud_labels.iter().copied())
             .map(|l| self.text.width(l, TEXT_PX))
             .fold(0.0, f32::max);
         // Values are right-aligned in a column as wide as a wide value, so that the panel does
         // not change size from frame to frame (DejaVu's digits all have the same width).
-        let value_w = self.bold.width("-0000.00 m", TEXT_PX);
+        let mut value_w = self.bold.width("-0000.00 m", TEXT_PX);
+        if hud.is_some() {
+            value_w = value_w.max(self.velocity_value_width());
+        }
         let feet_w = self.foot_names.len() as f32 * 44.0;
         let inner_w = (label_w + 14.0 + value_w).max(feet_w);
-        let rows = labels.len() as f32 + if self.foot_names.is_empty() { 0.0 } else { 1.0 };
+        let n_rows = plain.len() + hud_labels.len();
+        let rows = n_rows as f32 + if self.foot_names.is_empty() { 0.0 } else { 1.0 };
         let panel_w = inner_w + 2.0 * pad;
         let panel_h = rows * LINE_PX + 2.0 * pad - 2.0;
         // The text has a fixed pixel size, so in a small frame (an 84 × 84 rgb_array for
@@ -918,22 +953,16 @@ impl Renderer {
         }
         let label_paint = paint(Shader::SolidColor(TEXT_LABEL.opaque()));
         let value_paint = paint(Shader::SolidColor(TEXT_VALUE.opaque()));
-        let values = [
-            (overlay.time_s, " s"),
-            (overlay.distance_to_goal_m, " m"),
-            (overlay.episode_return, ""),
-        ];
         let x0 = margin + pad;
         let right = margin + pad + inner_w;
-        for (row, (label, (value, unit))) in labels.iter().zip(values).enumerate() {
-            let baseline = margin + pad + TEXT_PX - 1.0 + row as f32 * LINE_PX;
+        let baseline_of = |row: usize| margin + pad + TEXT_PX - 1.0 + row as f32 * LINE_PX;
+        for (row, &(label, value, unit)) in plain.iter().enumerate() {
+            let baseline = baseline_of(row);
             self.text
                 .draw(&mut self.pixmap, label, TEXT_PX, x0, baseline, &label_paint);
             self.line.clear();
-            // A small negative value would print as "-0.00"; what shows is zero.
-            let value = if value.abs() < 0.005 { 0.0 } else { value };
             // Writing to a String cannot fail.
-            let _ = write!(self.line, "{value:.2}{unit}");
+            let _ = write!(self.line, "{:.2}{unit}", shown(value));
             let w = self.bold.width(&self.line, TEXT_PX);
             self.bold.draw(
                 &mut self.pixmap,
@@ -944,8 +973,11 @@ impl Renderer {
                 &value_paint,
             );
         }
+        if let Some(hud) = hud {
+            self.draw_velocity_rows(x0, right, baseline_of(plain.len()), hud, &label_paint);
+        }
         // One dot per foot, orange when in contact, with the foot's name from the profile.
-        let baseline = margin + pad + TEXT_PX - 1.0 + labels.len() as f32 * LINE_PX;
+        let baseline = baseline_of(n_rows);
         self.draw_feet(x0, baseline, contacts, &label_paint);
     }
 
@@ -1006,6 +1038,12 @@ impl Renderer {
         push_projected(cam, &self.clipped, &mut pb);
         pb.finish()
     }
+}
+
+/// A value as the overlay prints it: a small negative value would print as "-0.00"; what shows
+/// is zero.
+fn shown(value: f64) -> f64 {
+    if value.abs() < 0.005 { 0.0 } else { value }
 }
 
 /// Gives every collision shape of the model its role: trunk, a foot (the tracked feet's

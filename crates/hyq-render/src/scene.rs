@@ -1,4 +1,5 @@
-//! What one frame shows: the robot's pose, its contacts, the goal and the overlay numbers.
+//! What one frame shows: the robot's pose, its contacts, the goal, the overlay numbers and the
+//! velocity task's command.
 //! Plain values only, so any environment, log or test can fill it.
 
 use hyq_physics::Terrain;
@@ -31,6 +32,24 @@ pub struct Overlay {
     pub episode_return: f64,
 }
 
+/// The velocity-command task's display (docs/velocity.md): the command and what the trunk does,
+/// both in the trunk's heading frame (x forward, y to the left, ω_z about the vertical), as the
+/// task's reward compares them.
+///
+/// The renderer draws it on the ground under the trunk: the command as a wide green arrow of
+/// (v_x, v_y) and a green curved arrow around the trunk for ω_z (a quarter turn per rad/s,
+/// counter-clockwise seen from above for a positive rate), the measured values likewise in
+/// purple, narrower and on a smaller circle; and in the text overlay, three rows of command and
+/// measured value side by side.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct VelocityHud {
+    /// The command: forward and sideways speed (m/s), yaw rate (rad/s).
+    pub command: [f64; 3],
+    /// The trunk's measured velocity in the same order and units (its frame's, as the task's
+    /// info reports it).
+    pub measured: [f64; 3],
+}
+
 /// Everything one frame shows.
 #[derive(Clone, Copy, Debug)]
 pub struct Scene<'a> {
@@ -53,6 +72,8 @@ pub struct Scene<'a> {
     /// shaded around the camera's target, the grid draped over it, shadows, discs and the goal's
     /// ring laid on it.
     pub terrain: Option<&'a Terrain>,
+    /// The velocity-command task's arrows and numbers; `None` (the spec's task) draws none.
+    pub velocity: Option<VelocityHud>,
 }
 
 impl<'a> Scene<'a> {
@@ -65,7 +86,14 @@ impl<'a> Scene<'a> {
             overlay: None,
             camera_target: None,
             terrain: None,
+            velocity: None,
         }
+    }
+
+    /// The same scene with the velocity-command task's display.
+    pub fn with_velocity(mut self, hud: VelocityHud) -> Self {
+        self.velocity = Some(hud);
+        self
     }
 
     /// The same scene with a goal marker at `goal`.

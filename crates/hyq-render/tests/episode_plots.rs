@@ -64,6 +64,7 @@ fn spec_episode() -> Vec<PlotRecord> {
             d_n: outcome.normalised_distance,
             distance_to_goal: outcome.distance,
             regularizers: None,
+            velocity: None,
         });
     }
     records

@@ -263,7 +263,7 @@ fn goal_marker_is_drawn_where_the_goal_projects() {
 }
 
 #[test]
-fn bad_scenes_and_settings_are_refused_by_name() {
+fn bad_scenes_are_refused_by_name() {
     let mut r = renderer();
     let (trunk, q) = standing_at(0.0, 0.0);
     let contacts = no_contacts();
@@ -322,7 +322,10 @@ fn bad_scenes_and_settings_are_refused_by_name() {
         matches!(err, RenderError::FrameSize { got_width: 10, .. }),
         "{err}"
     );
+}
 
+#[test]
+fn bad_settings_are_refused_by_name() {
     for (config, field) in [
         (
             RenderConfig {

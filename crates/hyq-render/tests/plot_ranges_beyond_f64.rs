@@ -30,6 +30,7 @@ fn record(t: u64, reward: f64, r_e: f64, d_n: f64) -> PlotRecord {
         d_n: Some(d_n),
         distance_to_goal: 1.0,
         regularizers: None,
+        velocity: None,
     }
 }
 
