@@ -260,13 +260,26 @@ fn render_episode<B: Backend>(mut env: Env<B>, args: &RenderArgs) -> Result<(), 
     let t = env.info().t;
     print_line(&format!(
         "wrote {frames} frames ({:.2} s simulated, {} env steps, {:.2} fps, {}x{}) to {}; \
-         stopped by {ended}; return {ret:.3}, distance to goal {:.3} m",
+         stopped by {ended}; return {ret:.3}, {}",
         t as f64 * env.env_dt(),
         t,
         plan.fps,
         args.width,
         args.height,
         args.out.display(),
-        env.info().distance_to_goal,
+        last_state(env.info()),
     ))
+}
+
+/// The summary's last words: under the velocity task the last command and the trunk's velocity
+/// (the goal is not the task there), else the distance to the goal.
+fn last_state(info: &hyq_env::StepInfo) -> String {
+    match &info.velocity {
+        Some(v) => format!(
+            "command v_x {:.3} m/s, v_y {:.3} m/s, yaw rate {:.3} rad/s, trunk v_x {:.3} m/s, \
+             v_y {:.3} m/s, yaw rate {:.3} rad/s",
+            v.command[0], v.command[1], v.command[2], v.lin_vel[0], v.lin_vel[1], v.ang_vel[2]
+        ),
+        None => format!("distance to goal {:.3} m", info.distance_to_goal),
+    }
 }

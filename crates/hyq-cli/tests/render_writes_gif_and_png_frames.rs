@@ -2,7 +2,9 @@
 //! numbered PNG frames (a directory), every frame of the requested size, one frame per 1/fps
 //! simulated seconds from the reset on, each showing a scene (not one flat colour) with the
 //! trunk at the image centre, changing as the robot moves; the same seed writes the same frames; and bad `--out`, `--width`,
-//! `--fps` or `--seconds` values are refused with one error line naming them.
+//! `--fps` or `--seconds` values are refused with one error line naming them; the printed summary
+//! ends with the distance to the goal, or under the velocity task with the command and the trunk's
+//! velocity.
 
 // In tests a failed unwrap is a failed test, with its location.
 #![allow(clippy::unwrap_used)]
@@ -193,5 +195,44 @@ fn bad_render_options_are_one_line_errors_naming_them() {
     usage_error_naming(
         &["render", "--out", "/nonexistent-dir/sub/x.gif"],
         &["--out", "/nonexistent-dir/sub/x.gif"],
+    );
+}
+
+#[test]
+fn the_summary_ends_with_the_command_and_velocity_under_the_velocity_task_and_the_goal_otherwise() {
+    let run = |name: &str, extra: &[&str]| {
+        let out = scratch(name);
+        let mut args = vec![
+            "render",
+            "--seconds",
+            "0.1",
+            "--fps",
+            "10",
+            "--width",
+            "400",
+            "--height",
+            "300",
+        ];
+        args.extend_from_slice(extra);
+        args.extend_from_slice(&["--out", out.to_str().unwrap()]);
+        hyq_ok(&args)
+    };
+    let goal = run("render_goal_summary.gif", &[]);
+    assert!(goal.contains("distance to goal"), "{goal}");
+    let fixed = [
+        "--set",
+        "task.kind=\"velocity\"",
+        "--set",
+        "command.lin_vel_x=[0.4, 0.4]",
+        "--set",
+        "command.lin_vel_y=[0.0, 0.0]",
+        "--set",
+        "command.ang_vel_yaw=[0.0, 0.0]",
+    ];
+    let velocity = run("render_velocity_summary.gif", &fixed);
+    assert!(!velocity.contains("distance to goal"), "{velocity}");
+    assert!(
+        velocity.contains("command v_x 0.400 m/s, v_y 0.000 m/s, yaw rate 0.000 rad/s, trunk v_x "),
+        "{velocity}"
     );
 }
