@@ -108,18 +108,8 @@ impl Draft {
 fn read_urdf(path: &Path) -> Result<urdf_rs::Robot, DraftError> {
     let origin = path.display().to_string();
     let text = input::read_text(path, &input::URDF).map_err(|e| DraftError::at(&origin, e))?;
-    input::check_xml_depth(&text, input::XML_MAX_DEPTH).map_err(|e| DraftError::at(&origin, e))?;
-    urdf_rs::read_from_string(&text).map_err(|e| {
-        let folded: Vec<String> = e
-            .to_string()
-            .split_whitespace()
-            .map(str::to_owned)
-            .collect();
-        DraftError::at(
-            &origin,
-            format_args!("not a URDF: {}", hyq_physics::printable(&folded.join(" "))),
-        )
-    })
+    hyq_physics::model::parse_urdf(&text)
+        .map_err(|e| DraftError::at(&origin, format_args!("not a URDF: {e}")))
 }
 
 /// The draft: the provisional model (file order) gives the legs, which give the order and

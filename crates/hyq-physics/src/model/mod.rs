@@ -300,26 +300,9 @@ impl RobotModel {
         urdf_origin: &str,
         profile: &Profile,
     ) -> Result<Self, ModelError> {
-        let malformed = |message: String| ModelError::Urdf {
+        let robot = parse_urdf(urdf_text).map_err(|message| ModelError::Urdf {
             origin: urdf_origin.to_owned(),
             message,
-        };
-        if urdf_text.len() as u64 > input::URDF.max_bytes {
-            return Err(malformed(format!(
-                "larger than {}, which no URDF is",
-                input::size_text(input::URDF.max_bytes)
-            )));
-        }
-        input::check_xml_depth(urdf_text, input::XML_MAX_DEPTH).map_err(malformed)?;
-        // The parser's message folded onto one line, anything unprintable escaped: it may quote
-        // the file.
-        let robot = urdf_rs::read_from_string(urdf_text).map_err(|e| {
-            let folded = e
-                .to_string()
-                .split_whitespace()
-                .collect::<Vec<_>>()
-                .join(" ");
-            malformed(crate::printable(&folded))
         })?;
         check_counts(&robot)?;
         Self::from_urdf_robot(&robot, profile)
@@ -661,6 +644,28 @@ impl RobotModel {
             })
             .fold(f64::INFINITY, f64::min)
     }
+}
+
+/// URDF text parsed into a description: refused (one line, the parser's message folded and
+/// anything unprintable escaped, since it may quote the file) when larger than any URDF
+/// ([`input::URDF`]), nested deeper than [`input::XML_MAX_DEPTH`] (a deeper text would
+/// overflow the parser's stack) or not a URDF. What every reader of URDF text goes through.
+pub fn parse_urdf(urdf_text: &str) -> Result<urdf_rs::Robot, String> {
+    if urdf_text.len() as u64 > input::URDF.max_bytes {
+        return Err(format!(
+            "larger than {}, which no URDF is",
+            input::size_text(input::URDF.max_bytes)
+        ));
+    }
+    input::check_xml_depth(urdf_text, input::XML_MAX_DEPTH)?;
+    urdf_rs::read_from_string(urdf_text).map_err(|e| {
+        let folded = e
+            .to_string()
+            .split_whitespace()
+            .collect::<Vec<_>>()
+            .join(" ");
+        crate::printable(&folded)
+    })
 }
 
 /// Refuses a URDF with more links, joints or collision shapes than [`crate::bounds`] allows,
