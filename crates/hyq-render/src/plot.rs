@@ -585,7 +585,6 @@ pub fn plot_regularizers(
         &options.title,
         &format!("gait regularisers, unscaled ({} steps)", series.len()),
     );
-    const COLOURS: [RGBColor; 7] = [BLUE, ORANGE, GREEN, RED, TEAL, PURPLE, BROWN];
     render_png(path.as_ref(), (width, height), "regularizers", |root| {
         let body = root
             .titled(
@@ -594,18 +593,30 @@ pub fn plot_regularizers(
             )
             .map_err(|e| e.to_string())?;
         let areas = body.split_evenly((rows, 2));
-        for (k, (area, (name, column))) in areas.iter().zip(&series.regularizers).enumerate() {
-            let lines = [Line {
-                label: (*name).to_owned(),
-                colour: COLOURS[k % COLOURS.len()],
-                ys: column,
-                width: 2,
-            }];
-            let y_range = padded_range(column.iter(), &[0.0]);
-            line_panel(area, name, (t, x_desc), &lines, "per step", y_range, &[])?;
-        }
-        Ok(())
+        term_panels(&areas, &series.regularizers, (t, x_desc))
     })
+}
+
+/// The colours of one-term panels, in turn.
+const TERM_COLOURS: [RGBColor; 7] = [BLUE, ORANGE, GREEN, RED, TEAL, PURPLE, BROWN];
+
+/// One panel per named column, in `areas` order, each its term per step over time.
+fn term_panels(
+    areas: &[DrawingArea<BitMapBackend<'_>, Shift>],
+    columns: &Columns,
+    (t, x_desc): (&[f64], &str),
+) -> Result<(), String> {
+    for (k, (area, (name, column))) in areas.iter().zip(columns).enumerate() {
+        let lines = [Line {
+            label: (*name).to_owned(),
+            colour: TERM_COLOURS[k % TERM_COLOURS.len()],
+            ys: column,
+            width: 2,
+        }];
+        let y_range = padded_range(column.iter(), &[0.0]);
+        line_panel(area, name, (t, x_desc), &lines, "per step", y_range, &[])?;
+    }
+    Ok(())
 }
 
 /// Named columns of a series.
@@ -652,7 +663,6 @@ pub fn plot_velocity_terms(
             series.len()
         ),
     );
-    const COLOURS: [RGBColor; 7] = [BLUE, ORANGE, GREEN, RED, TEAL, PURPLE, BROWN];
     render_png(path.as_ref(), (width, height), "velocity", |root| {
         let body = root
             .titled(
@@ -698,17 +708,7 @@ pub fn plot_velocity_terms(
             y_range,
             &[],
         )?;
-        for (k, (area, (name, column))) in areas[2..].iter().zip(terms).enumerate() {
-            let lines = [Line {
-                label: (*name).to_owned(),
-                colour: COLOURS[k % COLOURS.len()],
-                ys: column,
-                width: 2,
-            }];
-            let y_range = padded_range(column.iter(), &[0.0]);
-            line_panel(area, name, (t, x_desc), &lines, "per step", y_range, &[])?;
-        }
-        Ok(())
+        term_panels(&areas[2..], terms, (t, x_desc))
     })
 }
 
