@@ -1,18 +1,13 @@
 //! Invariant: the per-step hot paths allocate nothing. `EpisodeRules::evaluate_step` and
-//! `ObservationLayout::write` run every env step; this test binary counts the global
-//! allocator's calls around 1000 of them.
+//! `ObservationLayout::write` run every env step; this test counts the allocations made on its
+//! own thread around 1000 of them (allocation-counter's global allocator counts per thread, so
+//! the test harness's other threads cannot add to the count).
 
 use hyq_spec::nalgebra::{Point3, UnitQuaternion, Vector3};
 use hyq_spec::{
     Clipping, EpisodeRules, HeightPenalty, Observation, ObservationLayout, RobotDescription,
     StepSnapshot, TaskConfig,
 };
-use stats_alloc::{INSTRUMENTED_SYSTEM, Region, StatsAlloc};
-use std::alloc::System;
-
-#[global_allocator]
-static GLOBAL: &StatsAlloc<System> = &INSTRUMENTED_SYSTEM;
-
 #[test]
 fn evaluating_a_step_and_writing_an_observation_allocate_nothing() {
     let robot = RobotDescription::hyq_spec();
@@ -37,42 +32,38 @@ fn evaluating_a_step_and_writing_an_observation_allocate_nothing() {
     let feet = [true, false, false, true];
     let mut out = [0.0f32; 39];
 
-    let region = Region::new(GLOBAL);
     let mut total = 0.0;
-    for t in 1..=1000u64 {
-        angles[0] = -1.0 + 1e-3 * t as f64; // sometimes at a limit, sometimes not
-        let position = Point3::new(0.005 * t as f64, 0.0, 0.62);
-        let snapshot = StepSnapshot {
-            step: t,
-            previous_position: Point3::new(0.005 * (t - 1) as f64, 0.0, 0.62),
-            position,
-            orientation: UnitQuaternion::from_euler_angles(0.0, 0.01, 1e-4 * t as f64),
-            joint_angles: &angles,
-            joint_ranges: robot.joint_ranges(),
-            trunk_contact: t % 7 == 0,
-        };
-        let outcome = rules
-            .evaluate_step(&snapshot)
-            .unwrap_or_else(|e| panic!("{e}"));
-        total += outcome.reward.total;
-        let obs = Observation {
-            joint_angles: &angles,
-            joint_speeds: &speeds,
-            foot_contacts: &feet,
-            trunk_contact: snapshot.trunk_contact,
-            trunk_rotation: snapshot.orientation,
-            trunk_acceleration: Vector3::new(0.0, 0.0, 0.1),
-            trunk_position: position,
-        };
-        layout
-            .write(&obs, Clipping::ToDeclaredBounds, &mut out)
-            .unwrap_or_else(|e| panic!("{e}"));
-    }
-    let stats = region.change();
+    let counted = allocation_counter::measure(|| {
+        for t in 1..=1000u64 {
+            angles[0] = -1.0 + 1e-3 * t as f64; // sometimes at a limit, sometimes not
+            let position = Point3::new(0.005 * t as f64, 0.0, 0.62);
+            let snapshot = StepSnapshot {
+                step: t,
+                previous_position: Point3::new(0.005 * (t - 1) as f64, 0.0, 0.62),
+                position,
+                orientation: UnitQuaternion::from_euler_angles(0.0, 0.01, 1e-4 * t as f64),
+                joint_angles: &angles,
+                joint_ranges: robot.joint_ranges(),
+                trunk_contact: t % 7 == 0,
+            };
+            let outcome = rules
+                .evaluate_step(&snapshot)
+                .unwrap_or_else(|e| panic!("{e}"));
+            total += outcome.reward.total;
+            let obs = Observation {
+                joint_angles: &angles,
+                joint_speeds: &speeds,
+                foot_contacts: &feet,
+                trunk_contact: snapshot.trunk_contact,
+                trunk_rotation: snapshot.orientation,
+                trunk_acceleration: Vector3::new(0.0, 0.0, 0.1),
+                trunk_position: position,
+            };
+            layout
+                .write(&obs, Clipping::ToDeclaredBounds, &mut out)
+                .unwrap_or_else(|e| panic!("{e}"));
+        }
+    });
     assert!(total.is_finite());
-    assert_eq!(
-        stats.allocations + stats.reallocations,
-        0,
-        "{stats:?} in 1000 steps"
-    );
+    assert_eq!(counted.count_total, 0, "{counted:?} in 1000 steps");
 }
