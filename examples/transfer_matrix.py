@@ -1,14 +1,16 @@
 """The train x deploy matrix: a walker trained on each engine, each pair and all three, judged on every engine.
 
     python examples/transfer_matrix.py --out runs/matrix [--rows rapier,dart+mujoco,...]
-        [--recipe walk] [--envs 12] [--episodes 100] [--seed 1000] [--hyq PATH]
+        [--recipe walk] [--env JSON] [--envs 12] [--episodes 100] [--seed 1000] [--hyq PATH]
     python examples/transfer_matrix.py --out runs/matrix --table-only
 
 For each row (a set of training engines, written with "+": `rapier`, `dart+mujoco`,
 `rapier+dart+mujoco`) it runs, in `OUT/ROW/`:
 
-1. `examples/train_sb3_ppo.py --recipe RECIPE --backends ROW --envs ENVS --out OUT/ROW/run`
-   (the checkpoint chosen on the training engines' own evaluation episodes, seeds 2000 on);
+1. `examples/train_sb3_ppo.py --recipe RECIPE --backends ROW --envs ENVS [--env JSON] --out
+   OUT/ROW/run` (the checkpoint chosen on the training engines' own evaluation episodes, seeds
+   2000 on; `--env` changes the training environment, e.g. randomised contact, while the
+   judging episodes of step 3 stay on the default environment with the reset noise);
 2. `examples/export_policy.py --run OUT/ROW/run --checkpoint best --out OUT/ROW/policy.safetensors`;
 3. `hyq compare --backends rapier,dart,mujoco --policy mlp:OUT/ROW/policy.safetensors --episodes
    EPISODES --seed SEED --set reset.joint_noise_rad=0.05 --set reset.yaw_noise_deg=5 --out
@@ -74,6 +76,8 @@ def train_row(args: argparse.Namespace, row: str, directory: Path) -> None:
                    "--seed", str(args.train_seed), "--out", str(run)]
         if args.steps:
             command += ["--steps", str(args.steps)]
+        if args.env:
+            command += ["--env", args.env]
         load_before = os.getloadavg()[0]
         started = time.monotonic()
         run_step(command, directory / "train.log")
@@ -168,6 +172,7 @@ def main() -> None:
     parser.add_argument("--out", type=Path, required=True, help="the matrix's directory (one folder per row)")
     parser.add_argument("--rows", default=",".join(ROWS), help="rows, comma-separated (default: all seven)")
     parser.add_argument("--recipe", default="walk", help="train_sb3_ppo.py's recipe (default: walk)")
+    parser.add_argument("--env", help="JSON object of training-environment keys to change (train_sb3_ppo.py --env)")
     parser.add_argument("--envs", type=int, default=12, help="training envs, split round-robin over the row's engines")
     parser.add_argument("--steps", type=int, help="training env steps (default: the recipe's)")
     parser.add_argument("--train-seed", type=int, default=0)
