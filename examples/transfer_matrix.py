@@ -42,6 +42,9 @@ import hyq.stats
 ENGINES = ["rapier", "dart", "mujoco"]
 ROWS = ["rapier", "dart", "mujoco", "rapier+dart", "rapier+mujoco", "dart+mujoco", "rapier+dart+mujoco"]
 EXAMPLES = Path(__file__).resolve().parent
+#: The scripts run from the checkout's root, named relative to it, so that the command a policy
+#: file records (`training_command`) names no machine's folders but the output's.
+REPO = EXAMPLES.parent
 RESET_NOISE = ["--set", "reset.joint_noise_rad=0.05", "--set", "reset.yaw_noise_deg=5"]
 
 
@@ -60,7 +63,7 @@ def run_step(command: list[str], log: Path) -> None:
     """Runs `command`, its output to `log`; a failure stops the matrix with one line."""
     print("$", " ".join(command), flush=True)
     with open(log, "w", encoding="utf-8") as out:
-        done = subprocess.run(command, stdout=out, stderr=subprocess.STDOUT, check=False)
+        done = subprocess.run(command, stdout=out, stderr=subprocess.STDOUT, check=False, cwd=REPO)
     if done.returncode != 0:
         raise SystemExit(f"error: `{' '.join(command)}` failed ({done.returncode}); its output is in {log}")
 
@@ -71,7 +74,7 @@ def train_row(args: argparse.Namespace, row: str, directory: Path) -> None:
     report = directory / "compare" / "report.json"
     directory.mkdir(parents=True, exist_ok=True)
     if not (run / "eval.json").exists():
-        command = [sys.executable, str(EXAMPLES / "train_sb3_ppo.py"), "--recipe", args.recipe,
+        command = [sys.executable, "examples/train_sb3_ppo.py", "--recipe", args.recipe,
                    "--backends", row.replace("+", ","), "--envs", str(args.envs),
                    "--seed", str(args.train_seed), "--out", str(run)]
         if args.steps:
@@ -85,7 +88,7 @@ def train_row(args: argparse.Namespace, row: str, directory: Path) -> None:
         (directory / "load.json").write_text(json.dumps(
             {"load_before": load_before, "load_after": os.getloadavg()[0], "wall_s": wall}), encoding="utf-8")
     if not policy.exists():
-        run_step([sys.executable, str(EXAMPLES / "export_policy.py"), "--run", str(run), "--checkpoint", "best",
+        run_step([sys.executable, "examples/export_policy.py", "--run", str(run), "--checkpoint", "best",
                   "--out", str(policy)], directory / "export.log")
     if not report.exists():
         run_step([args.hyq, "compare", "--backends", ",".join(ENGINES), "--policy", f"mlp:{policy}",
@@ -183,6 +186,7 @@ def main() -> None:
     parser.add_argument("--table-only", action="store_true", help="only write the table from the rows already run")
     args = parser.parse_args()
     rows = parse_rows(args.rows)
+    args.out = args.out.resolve()
     if not args.table_only:
         for row in rows:
             train_row(args, row, args.out / row)
