@@ -91,7 +91,7 @@ pub const TARGETS: [Target; 11] = [
         goal: Goal::RatioAtLeast {
             num: Series::Dart,
             den: Series::DartPyBullet,
-            target: 1.5,
+            target: 2.0,
         },
     },
     Target {
