@@ -21,7 +21,7 @@ row has the same recipe, env count, steps and seed; only its engines differ. At 
 alone with `--table-only`) it writes `OUT/matrix.md` and `OUT/matrix.json`: each row's trunk
 travel toward the goal per engine (mean with its 95 % bootstrap interval), reach rate and the
 episodes that fell or hit a joint limit (Wilson 95 %), its training wall time with the load
-average before and after it, and for each engine the row did not train on, the held-out ratio:
+average at its start and end (as the trainer measured them), and for each engine the row did not train on, the held-out ratio:
 its mean travel over the training engines' mean (the per-episode mean of the training engines,
 paired by episode), with the bootstrap interval (`hyq.stats.ratio_of_means`).
 """
@@ -30,11 +30,9 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
 import shutil
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import hyq.stats
@@ -81,12 +79,7 @@ def train_row(args: argparse.Namespace, row: str, directory: Path) -> None:
             command += ["--steps", str(args.steps)]
         if args.env:
             command += ["--env", args.env]
-        load_before = os.getloadavg()[0]
-        started = time.monotonic()
         run_step(command, directory / "train.log")
-        wall = time.monotonic() - started
-        (directory / "load.json").write_text(json.dumps(
-            {"load_before": load_before, "load_after": os.getloadavg()[0], "wall_s": wall}), encoding="utf-8")
     if not policy.exists():
         run_step([sys.executable, "examples/export_policy.py", "--run", str(run), "--checkpoint", "best",
                   "--out", str(policy)], directory / "export.log")
@@ -135,8 +128,7 @@ def row_result(row: str, directory: Path) -> dict:
             if engine not in trained:
                 held_out[engine] = hyq.stats.ratio_of_means(travel[engine], trained_mean, seed=0, paired=True)
     timing = load_json(directory / "run" / "eval.json").get("timing", {})
-    load = load_json(directory / "load.json") if (directory / "load.json").exists() else {}
-    return {"row": row, "engines": per_engine, "held_out": held_out, "timing": timing, "load": load,
+    return {"row": row, "engines": per_engine, "held_out": held_out, "timing": timing,
             "episodes": report.get("episodes"), "seed": report.get("seed")}
 
 
@@ -148,7 +140,7 @@ def rate_text(rate: dict) -> str:
 def table(results: list[dict]) -> str:
     """The matrix as markdown: travel per engine, then reach and falls, held-out ratios, times."""
     head = "| trained on | " + " | ".join(f"travel on {e} (m)" for e in ENGINES) + \
-        " | held out / trained | reached, r / D / M (%) | fell or joint limit, r / D / M | training |"
+        " | held out / trained | reached, k [95 %, in %]: r / D / M | fell or joint limit, k: r / D / M | training |"
     lines = [head, "|" + "---|" * (len(ENGINES) + 5)]
     for r in results:
         trained = r["row"].split("+")
@@ -161,10 +153,9 @@ def table(results: list[dict]) -> str:
         ends = " / ".join(
             str(r["engines"][e]["fell"]["k"] + r["engines"][e]["joint_limit"]["k"]) for e in ENGINES)
         t = r["timing"]
-        load = r["load"]
         train = f"{t['wall_s'] / 60:.2f} min, {t['env_steps']} steps" if "wall_s" in t else "?"
-        if load:
-            train += f" (load {load['load_before']:.1f}-{load['load_after']:.1f})"
+        if "load_average_start" in t:
+            train += f" (load {t['load_average_start']:.1f}-{t['load_average_end']:.1f})"
         lines.append(f"| {r['row'].replace('+', ' + ')} | " + " | ".join(cells) +
                      f" | {held} | {reached} | {ends} | {train} |")
     return "\n".join(lines) + "\n"

@@ -30,7 +30,8 @@ def write_row(root: Path, row: str, travel: dict[str, list[float]], reached: dic
     report = {"episodes": len(travel["rapier"]), "seed": 1000, "sides": sides}
     (directory / "compare" / "report.json").write_text(json.dumps(report), encoding="utf-8")
     (directory / "run" / "eval.json").write_text(
-        json.dumps({"timing": {"wall_s": 150.0, "env_steps": 200_000}}), encoding="utf-8")
+        json.dumps({"timing": {"wall_s": 150.0, "env_steps": 200_000, "load_average_start": 0.4,
+                               "load_average_end": 1.25}}), encoding="utf-8")
 
 
 def run(*args: str) -> subprocess.CompletedProcess:
@@ -60,7 +61,7 @@ def test_the_table_holds_each_engines_figures_and_the_held_out_ratio(tmp_path):
                                f"| **{dart_travel}** |")
     assert f"rapier {hyq.stats.text(expected)}" in lines[2]
     assert "| 0 [0, 49] / 1 [5, 70] / 2 [15, 85] |" in lines[2]
-    assert "2.50 min, 200000 steps" in lines[2]
+    assert "2.50 min, 200000 steps (load 0.4-1.2)" in lines[2]
     assert "none held out" in lines[3]
 
 
