@@ -155,7 +155,8 @@ def table(results: list[dict]) -> str:
         t = r["timing"]
         train = f"{t['wall_s'] / 60:.2f} min, {t['env_steps']} steps" if "wall_s" in t else "?"
         if "load_average_start" in t:
-            train += f" (load {t['load_average_start']:.1f}-{t['load_average_end']:.1f})"
+            # The trainer records `uptime`'s three figures; the first is the last minute's.
+            train += f" (load {t['load_average_start'][0]:.1f}-{t['load_average_end'][0]:.1f})"
         lines.append(f"| {r['row'].replace('+', ' + ')} | " + " | ".join(cells) +
                      f" | {held} | {reached} | {ends} | {train} |")
     return "\n".join(lines) + "\n"

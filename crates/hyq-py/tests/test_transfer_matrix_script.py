@@ -30,8 +30,8 @@ def write_row(root: Path, row: str, travel: dict[str, list[float]], reached: dic
     report = {"episodes": len(travel["rapier"]), "seed": 1000, "sides": sides}
     (directory / "compare" / "report.json").write_text(json.dumps(report), encoding="utf-8")
     (directory / "run" / "eval.json").write_text(
-        json.dumps({"timing": {"wall_s": 150.0, "env_steps": 200_000, "load_average_start": 0.4,
-                               "load_average_end": 1.25}}), encoding="utf-8")
+        json.dumps({"timing": {"wall_s": 150.0, "env_steps": 200_000, "load_average_start": [0.4, 0.3, 0.2],
+                               "load_average_end": [1.25, 0.5, 0.3]}}), encoding="utf-8")
 
 
 def run(*args: str) -> subprocess.CompletedProcess:
