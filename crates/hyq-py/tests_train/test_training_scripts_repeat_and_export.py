@@ -250,3 +250,27 @@ def test_backends_trains_on_a_mix_and_evaluates_on_every_engine(tmp_path: Path) 
         assert done.returncode != 0 and "--backends rapier,bullet" in done.stderr
         assert len(done.stderr.strip().splitlines()) == 1, done.stderr
     assert not (tmp_path / "never").exists()
+
+
+def test_an_eps_curriculum_changes_the_training_cube_and_repeats_to_the_bit(tmp_path) -> None:
+    """--eps-curriculum 0.3:0.1:512:2 on 4 envs × 128 steps: the cube is 0.3 m for the first
+    rollout and 0.1 m from the second on, the checkpoints judged on the recipe's 0.1 m all along;
+    the same command gives the same run to the bit."""
+    args = [*SB3, "--recipe", "reach", "--eps-curriculum", "0.3:0.1:512:2"]
+    a, b = (train("train_sb3_ppo.py", args, tmp_path / n) for n in "ab")
+    result = json.loads((a / "eval.json").read_text())
+    assert result["eps_curriculum_changes"] == [[0, 0.3], [512, 0.1]]
+    config = json.loads((a / "config.json").read_text())
+    assert config["eps_curriculum"] == {"start": 0.3, "end": 0.1, "steps": 512, "stages": 2}
+    assert config["env"]["accepted_error"] == 0.1 and config["eval_env"]["accepted_error"] == 0.1
+    assert (a / "evals.csv").read_text() == (b / "evals.csv").read_text()
+    from stable_baselines3 import PPO
+
+    pa, pb = (PPO.load(r / "model.zip", device="cpu").policy.state_dict() for r in (a, b))
+    assert all(torch.equal(pa[k], pb[k]) for k in pa)
+
+
+def test_a_run_without_a_curriculum_records_none(sb3_runs) -> None:
+    config = json.loads((sb3_runs[0] / "config.json").read_text())
+    assert "eps_curriculum" not in config
+    assert "eps_curriculum_changes" not in json.loads((sb3_runs[0] / "eval.json").read_text())
