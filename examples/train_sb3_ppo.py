@@ -14,7 +14,9 @@ and RECIPE_STEPS here. Every part can be changed from the command line (--robot,
 --env, --ppo, --net, --steps, --seed), so the same script trains on other robots, engines and
 environment settings; --backends rapier,dart,mujoco trains on several engines at once (the
 envs assigned round-robin to them), evaluates every checkpoint on each and keeps the one whose
-worst engine reaches most often (eval.json and evals.csv then hold each engine's figures). N envs stepped in Rust (hyq.sb3.HyQVecEnv, same-step resets with SB3's
+worst engine reaches most often (eval.json and evals.csv then hold each engine's figures);
+--eps-curriculum START:END:STEPS[:STAGES] trains with a reach cube shrinking in stages (eval.json
+then lists each change) while the checkpoints are judged on the environment's own cube. N envs stepped in Rust (hyq.sb3.HyQVecEnv, same-step resets with SB3's
 terminal_observation and TimeLimit.truncated, so PPO bootstraps timeouts), VecNormalize on
 observations and rewards, a fixed budget of env steps. Same seed and --torch-threads: the same
 run, bit for bit. It writes into OUT:
