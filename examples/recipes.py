@@ -331,6 +331,43 @@ def eval_summary(result: dict[str, Any]) -> str:
     return line
 
 
+def eps_curriculum(text: str) -> dict[str, Any]:
+    """`--eps-curriculum START:END:STEPS[:STAGES]`: the reach cube's side (`accepted_error`, m)
+    in the training envs goes from START to END in STAGES equal stages (default 5), the last
+    (END) starting at STEPS env steps: a large cube first, so that the reach bonus is found
+    while the gait is still crude, and the recipe's cube from STEPS on. One-line error on bad
+    input."""
+    fields = text.split(":")
+    usage = (f"error: --eps-curriculum {text!r}: expected START:END:STEPS[:STAGES], e.g. "
+             "0.5:0.1:600000 (the cube's side in m from START to END, in STAGES stages, the "
+             "last from STEPS env steps on)")
+    if len(fields) not in (3, 4):
+        raise SystemExit(usage)
+    try:
+        start, end = float(fields[0]), float(fields[1])
+        steps = int(fields[2])
+        stages = int(fields[3]) if len(fields) == 4 else 5
+    except ValueError:
+        raise SystemExit(usage) from None
+    if not (np.isfinite(start) and np.isfinite(end) and start > 0.0 and end > 0.0):
+        raise SystemExit(f"error: --eps-curriculum {text!r}: START and END must be finite sides "
+                         "above 0 m")
+    if steps < 1 or stages < 2:
+        raise SystemExit(f"error: --eps-curriculum {text!r}: STEPS must be at least 1 and STAGES "
+                         "at least 2")
+    return {"start": start, "end": end, "steps": steps, "stages": stages}
+
+
+def curriculum_stage(curriculum: dict[str, Any], env_steps: int) -> tuple[int, float]:
+    """The stage (0 first) and its cube side after `env_steps`: stage k of n starts at
+    k·STEPS/(n − 1) env steps with the side START + (END − START)·k/(n − 1)."""
+    last = curriculum["stages"] - 1
+    stage = min(last, env_steps * last // curriculum["steps"])
+    # Written so that the first stage is START and the last END to the bit.
+    f = stage / last
+    return stage, curriculum["start"] * (1.0 - f) + curriculum["end"] * f
+
+
 def git_commit() -> str:
     """The commit of the checkout the script runs from ("unknown" outside git)."""
     try:

@@ -14,7 +14,9 @@ and RECIPE_STEPS here. Every part can be changed from the command line (--robot,
 --env, --ppo, --net, --steps, --seed), so the same script trains on other robots, engines and
 environment settings; --backends rapier,dart,mujoco trains on several engines at once (the
 envs assigned round-robin to them), evaluates every checkpoint on each and keeps the one whose
-worst engine reaches most often (eval.json and evals.csv then hold each engine's figures). N envs stepped in Rust (hyq.sb3.HyQVecEnv, same-step resets with SB3's
+worst engine reaches most often (eval.json and evals.csv then hold each engine's figures);
+--eps-curriculum START:END:STEPS[:STAGES] trains with a reach cube shrinking in stages (eval.json
+then lists each change) while the checkpoints are judged on the environment's own cube. N envs stepped in Rust (hyq.sb3.HyQVecEnv, same-step resets with SB3's
 terminal_observation and TimeLimit.truncated, so PPO bootstraps timeouts), VecNormalize on
 observations and rewards, a fixed budget of env steps. Same seed and --torch-threads: the same
 run, bit for bit. It writes into OUT:
@@ -171,6 +173,42 @@ class Curve(BaseCallback):
         self.plot()
 
 
+class EpsCurriculum(BaseCallback):
+    """`--eps-curriculum`: at the end of the first rollout of each new stage
+    (recipes.curriculum_stage), replaces the training envs by envs whose reach cube is the
+    stage's side. The envs' configuration is fixed when they are built (a reach cube that
+    changed under a running episode would change its rules), so the stage's envs are new ones,
+    seeded `seed + 100000·stage + i`, and the episodes running at the change end there
+    unrecorded: PPO has already bootstrapped the rollout's last values, as for a time limit.
+    The checkpoints are judged on the recipe's cube all along (run["eval_env"])."""
+
+    def __init__(self, curriculum: dict[str, Any], make_env: Any, seed: int) -> None:
+        super().__init__()
+        self.curriculum = curriculum
+        self.make_env = make_env
+        self.seed = seed
+        self.stage = 0
+        #: (env steps, cube side) at each change, the first at 0.
+        self.changes: list[tuple[int, float]] = [(0, recipes.curriculum_stage(curriculum, 0)[1])]
+
+    def _on_step(self) -> bool:
+        return True
+
+    def _on_rollout_end(self) -> None:
+        stage, side = recipes.curriculum_stage(self.curriculum, self.num_timesteps)
+        if stage == self.stage:
+            return
+        self.stage = stage
+        norm = self.model.get_vec_normalize_env()
+        monitor = norm.venv
+        monitor.venv.close()
+        monitor.venv = self.make_env(side, self.seed + 100_000 * stage)
+        self.model._last_obs = norm.reset()
+        self.model._last_episode_starts = np.ones(norm.num_envs, dtype=bool)
+        self.changes.append((self.num_timesteps, side))
+        print(f"[{self.num_timesteps} env steps] reach cube in training: {side:g} m", flush=True)
+
+
 def evaluate(model: PPO, obs_norm: VecNormalize, run: dict[str, Any]) -> dict[str, Any]:
     """The deterministic policy on the evaluation episodes (recipes.evaluate)."""
 
@@ -201,6 +239,11 @@ def parse_args() -> argparse.Namespace:
     parser.add_argument("--checkpoint-every", type=int,
                         help="env steps between checkpoints and evaluations (default: the recipe's)")
     parser.add_argument("--curve-episodes", type=int, default=32, help="least episodes per curve row")
+    parser.add_argument("--eps-curriculum", metavar="START:END:STEPS[:STAGES]",
+                        help="train with a reach cube (accepted_error) shrinking from START to "
+                             "END m in STAGES stages (default 5), the last from STEPS env steps "
+                             "on; the checkpoints are judged on the environment's own cube "
+                             "(default: off, the cube fixed)")
     parser.add_argument("--env", type=json.loads, default={},
                         help='JSON object of environment keys to change, e.g. \'{"fall_penalty": 0}\'')
     parser.add_argument("--ppo", type=json.loads, default={}, help="JSON object of PPO settings to change")
@@ -227,10 +270,12 @@ def main() -> None:
     net = {**RECIPE_NET, **args.net}
     if net["activation"] not in ACTIVATIONS:
         raise SystemExit(f"error: --net activation {net['activation']!r}: expected one of {sorted(ACTIVATIONS)}")
+    curriculum = None if args.eps_curriculum is None else recipes.eps_curriculum(args.eps_curriculum)
     args.out.mkdir(parents=True, exist_ok=True)
     config = {
         **run, "trainer": "sb3", "ppo": ppo_kwargs, "net": net, "steps": args.steps or steps,
         "envs": args.envs, "seed": args.seed, "torch_threads": args.torch_threads,
+        **({} if curriculum is None else {"eps_curriculum": curriculum}),
         "commit": recipes.git_commit(), "command": " ".join(sys.argv),
     }
     recipes.write_json(args.out / "config.json", config)
@@ -240,8 +285,20 @@ def main() -> None:
     torch.set_num_threads(args.torch_threads)
     set_random_seed(args.seed)
     clock = recipes.Clock()
-    venv = TimedVecEnv(clock, num_envs=args.envs, seed=args.seed, robot=run["robot"],
-                       backend=run["backends"], **run["env"])
+
+    def make_env(env_keys: dict[str, Any], seed: int) -> TimedVecEnv:
+        return TimedVecEnv(clock, num_envs=args.envs, seed=seed, robot=run["robot"],
+                           backend=run["backends"], **env_keys)
+
+    callbacks: list[BaseCallback] = []
+    if curriculum is None:
+        venv = make_env(run["env"], args.seed)
+    else:
+        def make_stage_env(side: float, seed: int) -> TimedVecEnv:
+            return make_env({**run["env"], "accepted_error": side}, seed)
+
+        callbacks.append(EpsCurriculum(curriculum, make_stage_env, args.seed))
+        venv = make_stage_env(callbacks[0].changes[0][1], args.seed)
     venv = VecNormalize(VecMonitor(venv), norm_obs=True, norm_reward=True, clip_obs=10.0,
                         gamma=ppo_kwargs["gamma"])
     # Saved with the statistics, so an export can tell them from another robot's.
@@ -268,7 +325,8 @@ def main() -> None:
         **sb3_kwargs,
     )
     curve = Curve(args.out, args.curve_episodes, args.checkpoint_every or every, run, clock)
-    model.learn(total_timesteps=config["steps"], callback=CallbackList([curve]), progress_bar=True)
+    model.learn(total_timesteps=config["steps"], callback=CallbackList([curve, *callbacks]),
+                progress_bar=True)
     timing = clock.summary(model.num_timesteps)
     model.save(args.out / "model.zip")
     venv.save(str(args.out / "vecnormalize.pkl"))
@@ -280,6 +338,9 @@ def main() -> None:
         # The checkpoint that reached the goal most often (then: the highest mean return) on the
         # evaluation episodes; export it with --checkpoint best.
         result["best_checkpoint_env_steps"] = curve.best[1]
+    if callbacks:
+        # Each change of the training envs' reach cube: [env steps, side in m].
+        result["eps_curriculum_changes"] = [list(c) for c in callbacks[0].changes]
     recipes.write_json(args.out / "eval.json", result)
     print(recipes.timing_line(timing))
     per = " per engine" if len(set(run["backends"])) > 1 else ""

@@ -250,3 +250,33 @@ def test_backends_trains_on_a_mix_and_evaluates_on_every_engine(tmp_path: Path) 
         assert done.returncode != 0 and "--backends rapier,bullet" in done.stderr
         assert len(done.stderr.strip().splitlines()) == 1, done.stderr
     assert not (tmp_path / "never").exists()
+
+
+def test_an_eps_curriculum_changes_the_training_cube_and_repeats_to_the_bit(tmp_path) -> None:
+    """--eps-curriculum 20:0.1:512:2 on 4 envs × 128 steps: the cube is 20 m for the first
+    rollout (every training episode starts inside it and is reached at its first step) and
+    0.1 m from the second on, the checkpoints judged on the recipe's 0.1 m all along; the same
+    command gives the same run to the bit."""
+    args = [*SB3, "--recipe", "reach", "--eps-curriculum", "20:0.1:512:2"]
+    a, b = (train("train_sb3_ppo.py", args, tmp_path / n) for n in "ab")
+    result = json.loads((a / "eval.json").read_text())
+    assert result["eps_curriculum_changes"] == [[0, 20.0], [512, 0.1]]
+    config = json.loads((a / "config.json").read_text())
+    assert config["eps_curriculum"] == {"start": 20.0, "end": 0.1, "steps": 512, "stages": 2}
+    assert config["env"]["accepted_error"] == 0.1 and config["eval_env"]["accepted_error"] == 0.1
+    first = (a / "progress.csv").read_text().splitlines()[:2]
+    row = dict(zip(first[0].split(","), first[1].split(",")))
+    assert (row["env_steps"], row["episodes"], row["reach_rate"], row["mean_length"]) == ("512", "512", "1", "1")
+    # Judged on the 0.1 m cube, the deterministic policy reaches in none of its 40 steps.
+    assert result["reach_rate"] == 0.0
+    assert (a / "evals.csv").read_text() == (b / "evals.csv").read_text()
+    from stable_baselines3 import PPO
+
+    pa, pb = (PPO.load(r / "model.zip", device="cpu").policy.state_dict() for r in (a, b))
+    assert all(torch.equal(pa[k], pb[k]) for k in pa)
+
+
+def test_a_run_without_a_curriculum_records_none(sb3_runs) -> None:
+    config = json.loads((sb3_runs[0] / "config.json").read_text())
+    assert "eps_curriculum" not in config
+    assert "eps_curriculum_changes" not in json.loads((sb3_runs[0] / "eval.json").read_text())
