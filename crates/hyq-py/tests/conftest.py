@@ -6,6 +6,7 @@ test`` builds and installs it into its venv first.
 
 from __future__ import annotations
 
+import importlib.util
 import os
 import subprocess
 from pathlib import Path
@@ -41,3 +42,13 @@ def hyq_cli() -> Path:
     path = target / "debug" / "hyq"
     assert path.is_file(), f"cargo built hyq-cli but {path} is missing"
     return path
+
+
+@pytest.fixture(scope="session")
+def recipes():
+    """examples/recipes.py, the training examples' shared module, loaded from the checkout (it
+    is not part of the installed package)."""
+    spec = importlib.util.spec_from_file_location("recipes", REPO / "examples" / "recipes.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module

@@ -2,23 +2,11 @@
 training envs' reach cube START in its first stage and END, to the bit, from STEPS env steps on,
 in equal stages between; bad input is refused in one line."""
 
-import importlib.util
-from pathlib import Path
-
 import pytest
 
-REPO = Path(__file__).resolve().parents[3]
 
-
-def recipes():
-    spec = importlib.util.spec_from_file_location("recipes", REPO / "examples" / "recipes.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
-def test_the_stages_run_from_start_to_end_at_steps():
-    r = recipes()
+def test_the_stages_run_from_start_to_end_at_steps(recipes):
+    r = recipes
     c = r.eps_curriculum("0.5:0.1:600000")
     assert c == {"start": 0.5, "end": 0.1, "steps": 600000, "stages": 5}
     assert r.curriculum_stage(c, 0) == (0, 0.5)
@@ -34,8 +22,8 @@ def test_the_stages_run_from_start_to_end_at_steps():
     assert all(a >= b for a, b in zip(sides, sides[1:]))
 
 
-def test_two_stages_switch_once():
-    r = recipes()
+def test_two_stages_switch_once(recipes):
+    r = recipes
     c = r.eps_curriculum("0.3:0.1:512:2")
     assert [r.curriculum_stage(c, t) for t in (0, 511, 512)] == [(0, 0.3), (0, 0.3), (1, 0.1)]
 
@@ -52,9 +40,9 @@ def test_two_stages_switch_once():
     ("0.5:0.1:0", "STEPS must be at least 1"),
     ("0.5:0.1:100:1", "STAGES at least 2"),
 ])
-def test_bad_curricula_are_refused_in_one_line(text, says):
+def test_bad_curricula_are_refused_in_one_line(recipes, text, says):
     with pytest.raises(SystemExit) as e:
-        recipes().eps_curriculum(text)
+        recipes.eps_curriculum(text)
     message = str(e.value)
     assert message.startswith(f"error: --eps-curriculum {text!r}: ") and says in message
     assert "\n" not in message

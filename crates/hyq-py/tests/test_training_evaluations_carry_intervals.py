@@ -3,25 +3,13 @@ examples/train_sb3_ppo.py and examples/train_rsl_rl.py call) give each mean with
 bootstrap interval and each rate with its Wilson interval, computed by hyq.stats (the Rust
 hyq-stats), printed and recorded in evals.csv; a repeated evaluation records the same."""
 
-import importlib.util
-from pathlib import Path
-
 import numpy as np
 
 import hyq.stats
 
-REPO = Path(__file__).resolve().parents[3]
 
-
-def recipes():
-    spec = importlib.util.spec_from_file_location("recipes", REPO / "examples" / "recipes.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
-def test_an_evaluation_gives_every_figure_with_its_interval():
-    r = recipes()
+def test_an_evaluation_gives_every_figure_with_its_interval(recipes):
+    r = recipes
     # Reset noise makes the short episodes differ; a zero action stands the robot still.
     env = {"env_config": {"task.max_time_steps": 40, "reset.joint_noise_rad": 0.05}}
     act = lambda obs: np.zeros((obs.shape[0], 12), dtype=np.float32)  # noqa: E731

@@ -5,25 +5,13 @@ the return as means with their 95 % bootstrap intervals and the fall rate with i
 interval, all from hyq.stats; a known answer: the standing policy (zero offsets) stands, so its
 errors are the commands it ignores and it does not drift; a repeated evaluation gives the same."""
 
-import importlib.util
-from pathlib import Path
-
 import numpy as np
 
 import hyq.stats
 
-REPO = Path(__file__).resolve().parents[3]
 
-
-def recipes():
-    spec = importlib.util.spec_from_file_location("recipes", REPO / "examples" / "recipes.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
-
-
-def test_the_standing_policy_misses_each_command_by_the_command_and_stands_still():
-    r = recipes()
+def test_the_standing_policy_misses_each_command_by_the_command_and_stands_still(recipes):
+    r = recipes
     env = r.merge(r.RECIPES["velocity"]["env"], {"task": {"kind": "velocity", "max_time_steps": 40}})
     stand = lambda obs: np.zeros((obs.shape[0], 12), dtype=np.float32)  # noqa: E731
     result = r.evaluate_velocity(stand, env, "hyq", "rapier")
@@ -50,8 +38,8 @@ def test_the_standing_policy_misses_each_command_by_the_command_and_stands_still
     assert again["estimates"] == e
 
 
-def test_the_velocity_recipe_trains_the_velocity_task_and_its_evaluation_fixes_the_command():
-    r = recipes()
+def test_the_velocity_recipe_trains_the_velocity_task_and_its_evaluation_fixes_the_command(recipes):
+    r = recipes
     recipe = r.RECIPES["velocity"]
     assert recipe["env"]["task"]["kind"] == "velocity" and recipe["evaluation"] == "velocity"
     fixed = r.fixed_command(recipe["env"], 0.6, -0.5)
