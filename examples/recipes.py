@@ -100,6 +100,15 @@ WALK_ROUGH_ENV: dict[str, Any] = {
 #: anchor's (theirs are ±1 to 1.5 m/s for robots a tenth of HyQ's mass; a CPU run has a small
 #: budget, spent around the commands the checkpoints are judged at); the walk's action mode
 #: (Playground's action scale 0.5 rad) and reset noise.
+#: Go1 (12.7 kg, kp 35 servos) on the walk's environment with a fall costing four times as much
+#: and legged_gym's action-rate regulariser: with the walk's own fall penalty its walkers fell in
+#: 7-39 of 60 episodes (docs/training.md, "Go1").
+GO1_WALK_ENV: dict[str, Any] = {
+    **WALK_ENV,
+    "fall_penalty": 20.0,
+    "regularizers": {"action_rate": -0.01},
+}
+
 VELOCITY_ENV: dict[str, Any] = {
     "task": {"kind": "velocity"},
     "velocity": {"preset": "playground"},
@@ -127,6 +136,8 @@ RECIPES: dict[str, dict[str, Any]] = {
     "walk": {"env": WALK_ENV, "robot": "hyq", "backend": "mujoco"},
     "reach": {"env": REACH_ENV, "robot": "hyq", "backend": "mujoco"},
     "anymal_walk": {"env": WALK_ENV, "robot": "anymal_c", "backend": "mujoco"},
+    # Trained on the three engines at once (15 envs, five each), judged on each.
+    "go1_walk": {"env": GO1_WALK_ENV, "robot": "go1", "backend": "rapier,dart,mujoco", "envs": 15},
     "walk_randomized": {"env": WALK_RANDOMIZED_ENV, "robot": "hyq", "backend": "mujoco"},
     # Its checkpoints are judged on the full relief: the curriculum's first level is a tenth of it.
     "walk_rough": {"env": WALK_ROUGH_ENV, "robot": "hyq", "backend": "mujoco",
@@ -156,11 +167,12 @@ def check_backend(backend: str, option: str | None = None) -> None:
 
 def engines_of(backend: str | None, backends: str | None, default: str) -> list[str]:
     """The engines a run trains on: `--backends A,B,...` (each env of the vector env on the next
-    engine of the list, round-robin), else `--backend`, else the recipe's; each built in."""
+    engine of the list, round-robin), else `--backend`, else the recipe's (one engine, or several
+    separated by commas); each built in."""
     if backend is not None and backends is not None:
         raise SystemExit("error: --backend and --backends: give one of them")
     if backends is None:
-        names = [backend or default]
+        names = [backend] if backend is not None else default.split(",")
     else:
         names = [name.strip() for name in backends.split(",")]
         if not all(names):

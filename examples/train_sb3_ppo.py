@@ -80,6 +80,7 @@ RECIPE_STEPS: dict[str, tuple[int, int]] = {
     "walk": (200_000, 100_000),
     "reach": (600_000, 100_000),
     "anymal_walk": (200_000, 100_000),
+    "go1_walk": (600_000, 100_000),
     "walk_randomized": (400_000, 100_000),
     # Not yet run with SB3: the committed rough-ground policy is rsl_rl's fine-tuning of the
     # walker (docs/terrain.md), which SB3's recipe cannot start from (its observation is wider).
@@ -89,8 +90,17 @@ RECIPE_STEPS: dict[str, tuple[int, int]] = {
 #: budget ("lr_schedule"), since at a constant 3e-4 the deterministic policy reached the goal in
 #: 7 of 20 episodes at 400k steps and then lost it again (2 to 4 of 20 at 600k to 1M steps, with
 #: episodes walking backwards; docs/training.md).
+#: Go1: a learning rate of 1e-3 falling linearly (at 3e-4 no gait was found in 600k steps), and
+#: an update's epochs stopped once its KL divergence passes 0.02 (without it the run that found a
+#: 2.4 m walker at 400k steps unlearnt it by 600k).
 RECIPE_PPO_CHANGES: dict[str, dict[str, Any]] = {
     "reach": {"lr_schedule": "linear"},
+    "go1_walk": {"learning_rate": 1e-3, "lr_schedule": "linear", "target_kl": 0.02},
+}
+#: Each recipe's changes to RECIPE_NET. Go1: an initial action noise of σ 0.37 (log_std -1): at
+#: 0.14 its servos, against their Coulomb friction, moved too little for any gait to be found.
+RECIPE_NET_CHANGES: dict[str, dict[str, Any]] = {
+    "go1_walk": {"log_std_init": -1.0},
 }
 ACTIVATIONS = {"tanh": torch.nn.Tanh, "relu": torch.nn.ReLU, "elu": torch.nn.ELU}
 
@@ -232,7 +242,7 @@ def parse_args() -> argparse.Namespace:
                              "least their number), each checkpoint evaluated on every one of "
                              "them and the best chosen by the worst engine's reach rate")
     parser.add_argument("--steps", type=int, help="total env steps (default: the recipe's)")
-    parser.add_argument("--envs", type=int, default=16, help="parallel envs (default: 16)")
+    parser.add_argument("--envs", type=int, help="parallel envs (default: the recipe's, else 16)")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--torch-threads", type=int, default=1,
                         help="PyTorch's CPU threads (default: 1; part of what makes a run repeat)")
@@ -267,7 +277,9 @@ def main() -> None:
     # The engines' names joined, for titles and config.json ("mujoco"; "rapier,dart,mujoco").
     run["backend"] = ",".join(run["backends"])
     ppo_kwargs = {**RECIPE_PPO, **RECIPE_PPO_CHANGES.get(args.recipe, {}), **args.ppo}
-    net = {**RECIPE_NET, **args.net}
+    net = {**RECIPE_NET, **RECIPE_NET_CHANGES.get(args.recipe, {}), **args.net}
+    if args.envs is None:
+        args.envs = recipe.get("envs", 16)
     if net["activation"] not in ACTIVATIONS:
         raise SystemExit(f"error: --net activation {net['activation']!r}: expected one of {sorted(ACTIVATIONS)}")
     curriculum = None if args.eps_curriculum is None else recipes.eps_curriculum(args.eps_curriculum)

@@ -280,3 +280,31 @@ def test_a_run_without_a_curriculum_records_none(sb3_runs) -> None:
     config = json.loads((sb3_runs[0] / "config.json").read_text())
     assert "eps_curriculum" not in config
     assert "eps_curriculum_changes" not in json.loads((sb3_runs[0] / "eval.json").read_text())
+
+
+def test_the_go1_recipe_trains_on_the_three_engines_with_its_own_settings(tmp_path: Path) -> None:
+    import hyq
+
+    args = ["--recipe", "go1_walk", "--steps", "480", "--checkpoint-every", "100000",
+            "--ppo", json.dumps({"n_steps": 32, "batch_size": 160}), "--env", ENV]
+    if set(hyq.BACKENDS) != {"rapier", "dart", "mujoco"}:
+        # The recipe's engines are its default: a build without one is refused in one line.
+        done = script("train_sb3_ppo.py", *args, "--out", tmp_path / "never")
+        assert done.returncode != 0 and len(done.stderr.strip().splitlines()) == 1, done.stderr
+        assert not (tmp_path / "never").exists()
+        return
+    out = train("train_sb3_ppo.py", args, tmp_path / "go1")
+    config = json.loads((out / "config.json").read_text())
+    assert config["robot"] == "go1" and config["backends"] == ["rapier", "dart", "mujoco"]
+    assert config["envs"] == 15
+    assert {k: config["ppo"][k] for k in ("learning_rate", "lr_schedule", "target_kl")} == {
+        "learning_rate": 1e-3, "lr_schedule": "linear", "target_kl": 0.02}
+    assert config["ppo"]["n_steps"] == 32 and config["net"]["log_std_init"] == -1.0
+    assert config["env"]["fall_penalty"] == 20.0
+    assert config["env"]["regularizers"] == {"action_rate": -0.01}
+    assert list(json.loads((out / "eval.json").read_text())["per_engine"]) == config["backends"]
+    # --envs still wins over the recipe's 15, and rsl_rl has no Go1 recipe.
+    again = train("train_sb3_ppo.py", [*args, "--envs", "3"], tmp_path / "three")
+    assert json.loads((again / "config.json").read_text())["envs"] == 3
+    done = script("train_rsl_rl.py", "--recipe", "go1_walk", "--out", tmp_path / "never")
+    assert done.returncode != 0 and "go1_walk" in done.stderr
