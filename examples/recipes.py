@@ -132,6 +132,23 @@ VELOCITY_ENV: dict[str, Any] = {
 #: the training environment, "eval_env": changes merged over it). MuJoCo steps about 3x faster
 #: than rapier (the README's speed table), and the env is most of a training run's time on 2
 #: cores, so the recipes train there; the policy file runs on every engine (docs/training.md).
+#: The velocity task's first stage for HyQ, resumed from the rsl_rl walk at 150 iterations
+#: (docs/velocity.md, "Training"): forward commands of 0.3-0.6 m/s only, no standing or turning
+#: draws; a narrower tracking kernel (σ 0.1, where standing at 0.3 m/s earns 0.41 of a tracking
+#: term's maximum against 0.70 at Playground's 0.25); Playground's torque cost scaled down tenfold
+#: (its −2e-4 is for Go1's torques, a twentieth of HyQ's); and the action rate fifty times
+#: Playground's (−0.5): at −0.01 the runs' deterministic policy stood while the training noise
+#: (σ 0.13 on the actions) shuffled the robot forward, 0.54 m/s at a 0.6 m/s command with the
+#: noise and 0.01 m/s without it.
+VELOCITY_FORWARD_ENV: dict[str, Any] = {
+    **VELOCITY_ENV,
+    "velocity": {**VELOCITY_ENV["velocity"], "tracking_sigma": 0.1, "torques_abs": -2e-5,
+                 "action_rate": -0.5},
+    "command": {**VELOCITY_ENV["command"], "lin_vel_x": [0.3, 0.6], "lin_vel_y": [0.0, 0.0],
+                "ang_vel_yaw": [0.0, 0.0], "standing_probability": 0.0,
+                "keep_nonzero_probability": [1.0, 0.25, 0.5]},
+}
+
 RECIPES: dict[str, dict[str, Any]] = {
     "walk": {"env": WALK_ENV, "robot": "hyq", "backend": "mujoco"},
     "reach": {"env": REACH_ENV, "robot": "hyq", "backend": "mujoco"},
@@ -144,6 +161,8 @@ RECIPES: dict[str, dict[str, Any]] = {
                    "eval_env": {"terrain": {"curriculum": False}}},
     # Its checkpoints are judged by tracking error at fixed commands (VELOCITY_EVAL_COMMANDS).
     "velocity": {"env": VELOCITY_ENV, "robot": "hyq", "backend": "mujoco", "evaluation": "velocity"},
+    "velocity_forward": {"env": VELOCITY_FORWARD_ENV, "robot": "hyq", "backend": "mujoco",
+                         "evaluation": "velocity"},
 }
 
 #: The checkpoints' evaluation: EVAL_EPISODES episodes, env i seeded EVAL_SEED + i, with the
@@ -581,8 +600,12 @@ def fixed_command(env: dict[str, Any], vx: float, yaw: float) -> dict[str, Any]:
 
 
 def trunk_xy(names: list[str], obs: np.ndarray) -> np.ndarray:
-    """The trunk's horizontal position from an observation (the spec's trunk_position rows)."""
-    return np.array([obs[names.index("trunk_position_x")], obs[names.index("trunk_position_y")]])
+    """The trunk's horizontal position from an observation: the spec's position rows, named
+    after the robot's trunk link (`trunk_position_x` on HyQ, `base_position_x` on ANYmal C)."""
+    rows = [i for axis in "xy" for i, name in enumerate(names) if name.endswith(f"_position_{axis}")]
+    if len(rows) != 2:
+        raise ValueError(f"expected one trunk position row per axis, found {[names[i] for i in rows]}")
+    return np.array([obs[rows[0]], obs[rows[1]]])
 
 
 def track_command(act: Callable[[np.ndarray], np.ndarray], env: dict[str, Any], robot: str,

@@ -95,6 +95,7 @@ RECIPE_ITERATIONS: dict[str, tuple[int, int]] = {
     "walk_randomized": (64, 32),
     "walk_rough": (256, 32),
     "velocity": (400, 25),
+    "velocity_forward": (400, 50),
 }
 
 

@@ -48,3 +48,26 @@ def test_the_velocity_recipe_trains_the_velocity_task_and_its_evaluation_fixes_t
     # The recipe's other command keys stay.
     assert fixed["command"]["resampling_time_s"] == recipe["env"]["command"]["resampling_time_s"]
     assert r.Evaluation(recipe).kind == "velocity" and r.Evaluation(r.RECIPES["walk"]).kind == "goal"
+
+
+def test_the_evaluation_finds_the_trunk_of_another_robot(recipes):
+    # ANYmal C's trunk link is "base": its position rows are base_position_x/y, which the drift
+    # measurement found by HyQ's names only (a ValueError before).
+    r = recipes
+    env = r.merge(r.RECIPES["velocity_forward"]["env"], {"task": {"kind": "velocity", "max_time_steps": 40}})
+    stand = lambda obs: np.zeros((obs.shape[0], 12), dtype=np.float32)  # noqa: E731
+    result = r.evaluate_velocity(stand, env, "anymal_c", "rapier")
+    assert 0.0 <= result["estimates"]["standing_drift_m"]["mean"] < 0.02, result["estimates"]
+    assert abs(result["estimates"]["forward_error_mps"]["mean"] - 0.3) < 0.02
+
+
+def test_the_forward_recipe_is_the_velocity_recipe_with_forward_commands_and_its_costs(recipes):
+    r = recipes
+    base, forward = r.RECIPES["velocity"]["env"], r.RECIPES["velocity_forward"]["env"]
+    assert forward["command"]["lin_vel_x"] == [0.3, 0.6] and forward["command"]["standing_probability"] == 0.0
+    assert forward["command"]["lin_vel_y"] == [0.0, 0.0] and forward["command"]["ang_vel_yaw"] == [0.0, 0.0]
+    assert forward["velocity"] == {**base["velocity"], "tracking_sigma": 0.1, "torques_abs": -2e-5,
+                                   "action_rate": -0.5}
+    assert {k: v for k, v in forward.items() if k not in ("command", "velocity")} == \
+        {k: v for k, v in base.items() if k not in ("command", "velocity")}
+    assert r.RECIPES["velocity_forward"]["evaluation"] == "velocity"
