@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import json
 import subprocess
+import tomllib
 from pathlib import Path
 
 import numpy as np
@@ -49,7 +50,10 @@ def test_onnxruntime_matches_the_rust_forward_pass(hyq_cli: Path, policy: Path, 
     # Step t's action was computed from the observation after step t - 1.
     obs = np.array([s["obs"] for s in steps[:-1]], dtype=np.float32)
     rust = np.array([s["action"] for s in steps[1:]], dtype=np.float64)
-    ours = OnnxPolicy(policy.with_suffix(".onnx"), robot=robot)(obs).astype(np.float64)
+    # Checked against the environment `hyq run` replayed it in: the file's own (a velocity-task
+    # policy's observation is the task's 75 rows, not the goal task's 39).
+    trained = {key: tomllib.loads(f"v = {value}")["v"] for key, value in read_policy(policy).env_config.items()}
+    ours = OnnxPolicy(policy.with_suffix(".onnx"), robot=robot, env_config=trained)(obs).astype(np.float64)
     assert ours.shape == rust.shape
     worst = float(np.max(np.abs(ours - rust)))
     assert worst <= TOLERANCE, f"{policy.name}: largest difference {worst:.3g}"
