@@ -232,7 +232,8 @@ def evaluate(model: PPO, obs_norm: VecNormalize, run: dict[str, Any]) -> dict[st
 def parse_args() -> argparse.Namespace:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", type=Path, required=True, help="output directory")
-    parser.add_argument("--recipe", choices=sorted(recipes.RECIPES), default="walk",
+    # The velocity recipes are rsl_rl's (examples/train_rsl_rl.py): SB3 has no budget for them.
+    parser.add_argument("--recipe", choices=sorted(RECIPE_STEPS), default="walk",
                         help="the environment, robot and engine (examples/recipes.py; default: walk)")
     parser.add_argument("--robot", help="the robot (default: the recipe's)")
     parser.add_argument("--backend", help="the engine (default: the recipe's)")

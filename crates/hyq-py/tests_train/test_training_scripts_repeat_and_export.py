@@ -308,3 +308,11 @@ def test_the_go1_recipe_trains_on_the_three_engines_with_its_own_settings(tmp_pa
     assert json.loads((again / "config.json").read_text())["envs"] == 3
     done = script("train_rsl_rl.py", "--recipe", "go1_walk", "--out", tmp_path / "never")
     assert done.returncode != 0 and "go1_walk" in done.stderr
+
+
+def test_a_recipe_of_the_other_trainer_is_refused_in_one_line(tmp_path: Path) -> None:
+    # SB3 has no budget for the velocity recipes (they are rsl_rl's); it raised a KeyError.
+    for name, recipe in (("train_sb3_ppo.py", "velocity_forward"), ("train_rsl_rl.py", "go1_walk")):
+        done = script(name, "--recipe", recipe, "--out", tmp_path / "never")
+        assert done.returncode == 2 and "invalid choice" in done.stderr and "Traceback" not in done.stderr
+    assert not (tmp_path / "never").exists()
