@@ -92,14 +92,6 @@ WALK_ROUGH_ENV: dict[str, Any] = {
     "observation": {"extra": ["height_scan"]},
 }
 
-#: The velocity-command task (docs/velocity.md): follow a commanded forward and sideways speed
-#: and yaw rate. MuJoCo Playground's reward preset (its orientation, stand-still and termination
-#: terms teach a level trunk and a still stand at a zero command; legged_gym's 0.5 s air-time
-#: threshold is a long swing for HyQ's size) and Playground's command rule (each component kept,
-#: redrawn or zeroed after an exponential time of mean 5 s), with narrower ranges than either
-#: anchor's (theirs are ±1 to 1.5 m/s for robots a tenth of HyQ's mass; a CPU run has a small
-#: budget, spent around the commands the checkpoints are judged at); the walk's action mode
-#: (Playground's action scale 0.5 rad) and reset noise.
 #: Go1 (12.7 kg, kp 35 servos) on the walk's environment with a fall costing four times as much
 #: and legged_gym's action-rate regulariser: with the walk's own fall penalty its walkers fell in
 #: 7-39 of 60 episodes (docs/training.md, "Go1").
@@ -109,6 +101,14 @@ GO1_WALK_ENV: dict[str, Any] = {
     "regularizers": {"action_rate": -0.01},
 }
 
+#: The velocity-command task (docs/velocity.md): follow a commanded forward and sideways speed
+#: and yaw rate. MuJoCo Playground's reward preset (its orientation, stand-still and termination
+#: terms teach a level trunk and a still stand at a zero command; legged_gym's 0.5 s air-time
+#: threshold is a long swing for HyQ's size) and Playground's command rule (each component kept,
+#: redrawn or zeroed after an exponential time of mean 5 s), with narrower ranges than either
+#: anchor's (theirs are ±1 to 1.5 m/s for robots a tenth of HyQ's mass; a CPU run has a small
+#: budget, spent around the commands the checkpoints are judged at); the walk's action mode
+#: (Playground's action scale 0.5 rad) and reset noise.
 VELOCITY_ENV: dict[str, Any] = {
     "task": {"kind": "velocity"},
     "velocity": {"preset": "playground"},
@@ -128,12 +128,8 @@ VELOCITY_ENV: dict[str, Any] = {
     "reset": {"joint_noise_rad": 0.05, "yaw_noise_deg": 5.0},
 }
 
-#: name -> (environment, robot, backend, and, where the checkpoints' evaluation differs from
-#: the training environment, "eval_env": changes merged over it). MuJoCo steps about 3x faster
-#: than rapier (the README's speed table), and the env is most of a training run's time on 2
-#: cores, so the recipes train there; the policy file runs on every engine (docs/training.md).
 #: The velocity task's first stage for HyQ, resumed from the rsl_rl walk at 150 iterations
-#: (docs/velocity.md, "Training"): forward commands of 0.3-0.6 m/s only, no standing or turning
+#: (docs/velocity.md, "Why the runs stood"): forward commands of 0.3-0.6 m/s only, no standing or turning
 #: draws; a narrower tracking kernel (σ 0.1, where standing at 0.3 m/s earns 0.41 of a tracking
 #: term's maximum against 0.70 at Playground's 0.25); Playground's torque cost scaled down tenfold
 #: (its −2e-4 is for Go1's torques, a twentieth of HyQ's); and the action rate fifty times
@@ -149,6 +145,11 @@ VELOCITY_FORWARD_ENV: dict[str, Any] = {
                 "keep_nonzero_probability": [1.0, 0.25, 0.5]},
 }
 
+#: name -> (environment, robot, backend (one engine, or several joined by commas), optionally
+#: "envs" (the vector env's size, else 16), and, where the checkpoints' evaluation differs from
+#: the training environment, "eval_env": changes merged over it). MuJoCo steps about 3x faster
+#: than rapier (the README's speed table), and the env is most of a training run's time on 2
+#: cores, so the recipes train there; the policy file runs on every engine (docs/training.md).
 RECIPES: dict[str, dict[str, Any]] = {
     "walk": {"env": WALK_ENV, "robot": "hyq", "backend": "mujoco"},
     "reach": {"env": REACH_ENV, "robot": "hyq", "backend": "mujoco"},
@@ -200,6 +201,11 @@ def engines_of(backend: str | None, backends: str | None, default: str) -> list[
     for name in dict.fromkeys(names):
         check_backend(name, None if backends is None else f"--backends {backends}")
     return names
+
+
+def envs_of(envs: int | None, recipe: dict[str, Any]) -> int:
+    """The vector env's size: `--envs`, else the recipe's, else 16."""
+    return envs if envs is not None else recipe.get("envs", 16)
 
 
 def merge(base: dict[str, Any], changes: dict[str, Any]) -> dict[str, Any]:
@@ -599,13 +605,13 @@ def fixed_command(env: dict[str, Any], vx: float, yaw: float) -> dict[str, Any]:
     }})
 
 
-def trunk_xy(names: list[str], obs: np.ndarray) -> np.ndarray:
-    """The trunk's horizontal position from an observation: the spec's position rows, named
+def trunk_xy_rows(names: list[str]) -> list[int]:
+    """The observation rows of the trunk's horizontal position: the spec's position rows, named
     after the robot's trunk link (`trunk_position_x` on HyQ, `base_position_x` on ANYmal C)."""
     rows = [i for axis in "xy" for i, name in enumerate(names) if name.endswith(f"_position_{axis}")]
     if len(rows) != 2:
         raise ValueError(f"expected one trunk position row per axis, found {[names[i] for i in rows]}")
-    return np.array([obs[rows[0]], obs[rows[1]]])
+    return rows
 
 
 def track_command(act: Callable[[np.ndarray], np.ndarray], env: dict[str, Any], robot: str,
@@ -617,9 +623,9 @@ def track_command(act: Callable[[np.ndarray], np.ndarray], env: dict[str, Any], 
     n = VELOCITY_EVAL_PER_COMMAND
     venv = HyQVectorEnv(num_envs=n, robot=robot, backend=backend, autoreset_mode="SameStep",
                         **fixed_command(env, *command))
-    names = [row.name for row in venv.observation_table]
+    xy = trunk_xy_rows([row.name for row in venv.observation_table])
     obs, _ = venv.reset(seed=seed)
-    start = [trunk_xy(names, o) for o in obs]
+    start = obs[:, xy]
     sums = np.zeros((n, 3))  # forward error, yaw error, return
     episodes: list[dict[str, Any] | None] = [None] * n
     while any(e is None for e in episodes):
@@ -634,7 +640,7 @@ def track_command(act: Callable[[np.ndarray], np.ndarray], env: dict[str, Any], 
             sums[i] += (abs(c[0] - v[0]), abs(c[2] - w[2]), rewards[i])
             if done:
                 steps = int(info["t"])
-                end = trunk_xy(names, venv.final_observation(i))
+                end = venv.final_observation(i)[xy]
                 episodes[i] = {
                     "command": list(command), "steps": steps, "return": float(sums[i, 2]),
                     "forward_error_mps": float(sums[i, 0] / steps),

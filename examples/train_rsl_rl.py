@@ -247,8 +247,7 @@ def main() -> None:
     args = parse_args()
     recipe = recipes.RECIPES[args.recipe]
     iterations, every = RECIPE_ITERATIONS[args.recipe]
-    if args.envs is None:
-        args.envs = recipe.get("envs", 16)
+    args.envs = recipes.envs_of(args.envs, recipe)
     iterations = args.iterations or iterations
     every = args.checkpoint_every or every
     env_keys = recipes.merge(recipe["env"], args.env)

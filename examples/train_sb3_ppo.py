@@ -279,8 +279,7 @@ def main() -> None:
     run["backend"] = ",".join(run["backends"])
     ppo_kwargs = {**RECIPE_PPO, **RECIPE_PPO_CHANGES.get(args.recipe, {}), **args.ppo}
     net = {**RECIPE_NET, **RECIPE_NET_CHANGES.get(args.recipe, {}), **args.net}
-    if args.envs is None:
-        args.envs = recipe.get("envs", 16)
+    args.envs = recipes.envs_of(args.envs, recipe)
     if net["activation"] not in ACTIVATIONS:
         raise SystemExit(f"error: --net activation {net['activation']!r}: expected one of {sorted(ACTIVATIONS)}")
     curriculum = None if args.eps_curriculum is None else recipes.eps_curriculum(args.eps_curriculum)
