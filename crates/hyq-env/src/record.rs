@@ -252,6 +252,11 @@ pub struct VelocityRecord {
     pub terms: hyq_tasks::TermValues,
     /// The task's reward (the record's `reward` too).
     pub reward: f64,
+    /// What the command was compared with: the trunk's v_x, v_y (m/s) and ω_z (rad/s) in its
+    /// own frame at the end of the step (the info's `lin_vel` and `ang_vel`). Absent from
+    /// records written before it was recorded.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub measured: Option<[f64; 3]>,
 }
 
 impl<'a> StepRecord<'a> {
@@ -289,6 +294,7 @@ impl<'a> StepRecord<'a> {
                 command: v.command,
                 terms: v.terms,
                 reward: v.reward,
+                measured: Some([v.lin_vel[0], v.lin_vel[1], v.ang_vel[2]]),
             }),
             regularizers: info.regularizers.map(|r| r.terms),
         }

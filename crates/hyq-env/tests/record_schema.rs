@@ -343,7 +343,8 @@ fn regularizers_are_written_only_when_on_last_and_read_back() {
 }
 
 #[test]
-fn a_velocity_task_record_holds_the_tasks_reward_command_and_terms_and_reads_back() {
+fn a_velocity_task_record_holds_the_tasks_reward_command_terms_and_measured_velocity_and_reads_back()
+ {
     // On rapier, standing: the scripted backend's still trunk earns a clipped 0, which the
     // spec's neutral reward would equal.
     let mut env = rapier(&[("task.kind", "velocity")]);
@@ -375,6 +376,15 @@ fn a_velocity_task_record_holds_the_tasks_reward_command_and_terms_and_reads_bac
     {
         assert_eq!(terms[*name], serde_json::json!(v), "{name}");
     }
+    // What the command was compared with: the trunk's v_x, v_y and ω_z in its frame.
+    assert_eq!(
+        value["velocity"]["measured"],
+        serde_json::json!([task.lin_vel[0], task.lin_vel[1], task.ang_vel[2]])
+    );
+    assert!(
+        task.lin_vel[0] != 0.0 || task.ang_vel[2] != 0.0,
+        "the trunk moves a little"
+    );
     let back = StepRecord::from_json_line(&line).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(back.to_json_line(), line);
     assert_eq!(back.reward, task.reward);

@@ -112,7 +112,8 @@ pub use plot::{
 };
 pub use records::{
     EpisodeSeries, JsonlRecords, MAX_RECORD_LINE_BYTES, PlotRecord, VELOCITY_COMMAND_COLUMNS,
-    VelocityPlotRecord, cumulative, parse_jsonl, read_jsonl, split_episodes,
+    VELOCITY_MEASURED_COLUMNS, VelocityPlotRecord, cumulative, parse_jsonl, read_jsonl,
+    split_episodes,
 };
 pub use renderer::{
     DEFAULT_HEIGHT_PX, DEFAULT_WIDTH_PX, MAX_SIDE_PX, MIN_SIDE_PX, RenderConfig, Renderer,

@@ -671,21 +671,43 @@ pub fn plot_velocity_terms(
             )
             .map_err(|e| e.to_string())?;
         let areas = body.split_evenly((rows, 2));
+        // The command in thick lines, the trunk's measured velocity (when recorded) in thin
+        // ones of the same colour, so a follower's thin line runs along its thick one.
+        let labels = ["v_x (m/s)", "v_y (m/s)", "ω_z (rad/s)"];
+        let colours = [BLUE, ORANGE, GREEN];
+        let measured = &series.velocity_measured;
         let command_lines: Vec<Line<'_>> = command
             .iter()
-            .zip(["v_x (m/s)", "v_y (m/s)", "ω_z (rad/s)"])
-            .zip([BLUE, ORANGE, GREEN])
+            .zip(labels)
+            .zip(colours)
             .map(|((column, label), colour)| Line {
                 label: label.to_owned(),
                 colour,
                 ys: &column.1,
                 width: 2,
             })
+            .chain(
+                measured
+                    .iter()
+                    .zip(labels)
+                    .zip(colours)
+                    .map(|((column, label), colour)| Line {
+                        label: format!("{label}, measured"),
+                        colour,
+                        ys: &column.1,
+                        width: 1,
+                    }),
+            )
             .collect();
-        let y_range = padded_range(command.iter().flat_map(|c| &c.1), &[0.0]);
+        let y_range = padded_range(command.iter().chain(measured).flat_map(|c| &c.1), &[0.0]);
+        let panel = if measured.is_empty() {
+            "command"
+        } else {
+            "command (thick) and measured (thin)"
+        };
         line_panel(
             &areas[0],
-            "command",
+            panel,
             (t, x_desc),
             &command_lines,
             "",

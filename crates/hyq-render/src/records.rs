@@ -72,7 +72,19 @@ pub struct VelocityPlotRecord {
     pub terms: TaskTerms,
     /// The task's reward (the record's `reward` too).
     pub reward: f64,
+    /// The trunk's v_x, v_y (m/s) and ω_z (rad/s) in its frame, what the command was compared
+    /// with (absent from records written before it was recorded).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub measured: Option<[f64; 3]>,
 }
+
+/// The names of the columns of the trunk's measured velocity beside the command
+/// ([`EpisodeSeries::velocity_measured`]).
+pub const VELOCITY_MEASURED_COLUMNS: [&str; 3] = [
+    "measured_lin_vel_x",
+    "measured_lin_vel_y",
+    "measured_ang_vel_yaw",
+];
 
 /// The names of the velocity task's columns before its terms ([`EpisodeSeries::velocity`]).
 pub const VELOCITY_COMMAND_COLUMNS: [&str; 3] = [
@@ -218,6 +230,9 @@ pub struct EpisodeSeries {
     /// ([`VELOCITY_COMMAND_COLUMNS`]), then every task term unscaled in hyq-tasks'
     /// `TERM_NAMES` order; empty under the spec's task.
     pub velocity: Vec<(&'static str, Vec<f64>)>,
+    /// The trunk's measured velocity beside the command ([`VELOCITY_MEASURED_COLUMNS`]) when
+    /// the records hold it; empty otherwise.
+    pub velocity_measured: Vec<(&'static str, Vec<f64>)>,
 }
 
 /// Appends one step's named values to `columns` (`steps` counting this one): a name first
@@ -287,6 +302,12 @@ impl EpisodeSeries {
                 .chain(terms)
         });
         push_named(&mut self.velocity, steps, velocity);
+        let measured = r
+            .velocity
+            .iter()
+            .filter_map(|v| v.measured)
+            .flat_map(|m| VELOCITY_MEASURED_COLUMNS.into_iter().zip(m));
+        push_named(&mut self.velocity_measured, steps, measured);
     }
 
     /// The column of the term named `name` (`None` for a name that is no term).
@@ -313,6 +334,11 @@ impl EpisodeSeries {
             .map(|(name, column)| (name, column.as_slice()))
             .chain(self.regularizers.iter().map(|(n, c)| (*n, c.as_slice())))
             .chain(self.velocity.iter().map(|(n, c)| (*n, c.as_slice())))
+            .chain(
+                self.velocity_measured
+                    .iter()
+                    .map(|(n, c)| (*n, c.as_slice())),
+            )
     }
 
     /// Checks that the series is non-empty, every column has one value per step and every

@@ -1,6 +1,8 @@
-//! Records of the velocity-command task (`velocity`: the command, every task term unscaled and
-//! the task's reward) read back from JSONL and get a plot of their own, `<stem>_velocity.png`:
-//! the command, the step reward and a panel per task term, in hyq-tasks' order; records of the
+//! Records of the velocity-command task (`velocity`: the command, every task term unscaled, the
+//! task's reward and the trunk's measured velocity) read back from JSONL and get a plot of their
+//! own, `<stem>_velocity.png`: the command with the measured velocity, the step reward and a
+//! panel per task term, in hyq-tasks' order; records written before the measured velocity was
+//! recorded read and plot without it; records of the
 //! spec's task get none; a non-finite value is refused by its column's name; a plot without the
 //! task's columns is an error, not a blank image.
 
@@ -12,7 +14,8 @@ mod common;
 use common::*;
 use hyq_render::{
     EpisodeSeries, PlotOptions, PlotRecord, REGULARIZER_PLOT_CELL, TermValues,
-    VELOCITY_COMMAND_COLUMNS, VelocityPlotRecord, parse_jsonl, plot_episode, plot_velocity_terms,
+    VELOCITY_COMMAND_COLUMNS, VELOCITY_MEASURED_COLUMNS, VelocityPlotRecord, parse_jsonl,
+    plot_episode, plot_velocity_terms,
 };
 use hyq_spec::RewardBreakdown;
 
@@ -45,6 +48,8 @@ fn velocity_episode(n: u64) -> Vec<PlotRecord> {
                     command,
                     terms,
                     reward: 0.01 * terms.tracking_lin_vel,
+                    // A follower that lags its command by a tenth.
+                    measured: Some(command.map(|c| 0.9 * c)),
                 }),
             }
         })
@@ -84,6 +89,11 @@ fn velocity_records_get_a_plot_of_the_command_and_every_task_term() {
         .find(|(n, _)| *n == "torques")
         .unwrap();
     assert_eq!(torques.1[9], 1e5);
+    // The trunk's measured velocity, in its own columns beside the command's.
+    let measured: Vec<&str> = series.velocity_measured.iter().map(|(n, _)| *n).collect();
+    assert_eq!(measured, VELOCITY_MEASURED_COLUMNS);
+    assert_eq!(series.velocity_measured[0].1[28], 0.45);
+    assert_eq!(series.velocity_measured[2].1[29], 0.9 * -0.4);
 
     let plots = plot_episode(&series, &PlotOptions::default(), &dir, "ep").unwrap();
     let path = plots.velocity.clone().unwrap();
@@ -107,6 +117,37 @@ fn velocity_records_get_a_plot_of_the_command_and_every_task_term() {
     let mut other = series.clone();
     other.velocity[1].1[40] = 0.9;
     plot_velocity_terms(&other, &PlotOptions::default(), &again).unwrap();
+    assert_ne!(
+        std::fs::read(&path).unwrap(),
+        std::fs::read(&again).unwrap()
+    );
+    // The measured velocity is drawn: another measured value draws other bytes.
+    let mut other = series.clone();
+    other.velocity_measured[0].1[40] = -0.2;
+    plot_velocity_terms(&other, &PlotOptions::default(), &again).unwrap();
+    assert_ne!(
+        std::fs::read(&path).unwrap(),
+        std::fs::read(&again).unwrap()
+    );
+    // A record written before the measured velocity was recorded reads and plots without it.
+    let old: String = jsonl
+        .lines()
+        .map(|l| {
+            let cut = l.find(r#","measured":["#).unwrap();
+            let end = cut + l[cut..].find(']').unwrap() + 1;
+            format!("{}{}\n", &l[..cut], &l[end..])
+        })
+        .collect();
+    let old = parse_jsonl(old.as_bytes(), "old").unwrap();
+    assert!(
+        old.records
+            .iter()
+            .all(|r| r.velocity.unwrap().measured.is_none())
+    );
+    let old = EpisodeSeries::from_records(&old.records);
+    assert!(old.velocity_measured.is_empty());
+    assert_eq!(old.velocity, series.velocity);
+    plot_velocity_terms(&old, &PlotOptions::default(), &again).unwrap();
     assert_ne!(
         std::fs::read(&path).unwrap(),
         std::fs::read(&again).unwrap()
