@@ -172,8 +172,9 @@ pub const RECORD_KEYS: [RecordKey; 21] = [
         name: "velocity",
         kind: "object",
         meaning: "under `task.kind = \"velocity\"`: the `command` the step was judged by \
-                  (v_x, v_y in m/s, ω_z in rad/s), every task term unscaled (`terms`: {velocity}) \
-                  and the task's `reward`",
+                  (v_x, v_y in m/s, ω_z in rad/s), every task term unscaled (`terms`: {velocity}), \
+                  the task's `reward` and `measured`, the trunk's v_x, v_y (m/s) and ω_z \
+                  (rad/s) in its frame that the command is compared with",
         optional: true,
     },
     RecordKey {

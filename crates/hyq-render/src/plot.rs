@@ -639,6 +639,48 @@ fn velocity_columns(series: &EpisodeSeries) -> Result<(&Columns, &Columns), Plot
     Ok(series.velocity.split_at(n))
 }
 
+/// The velocity plot's first panel: the command in thick lines and the trunk's measured
+/// velocity (when recorded) in thin ones of the same colour, so a follower's thin line runs
+/// along its thick one; with their y range and the panel's caption.
+fn command_and_measured<'a>(
+    command: &'a Columns,
+    series: &'a EpisodeSeries,
+) -> (Vec<Line<'a>>, (f64, f64), &'static str) {
+    let labels = ["v_x (m/s)", "v_y (m/s)", "ω_z (rad/s)"];
+    let colours = [BLUE, ORANGE, GREEN];
+    let measured = &series.velocity_measured;
+    let lines = command
+        .iter()
+        .zip(labels)
+        .zip(colours)
+        .map(|((column, label), colour)| Line {
+            label: label.to_owned(),
+            colour,
+            ys: &column.1,
+            width: 2,
+        })
+        .chain(
+            measured
+                .iter()
+                .zip(labels)
+                .zip(colours)
+                .map(|((column, label), colour)| Line {
+                    label: format!("{label}, measured"),
+                    colour,
+                    ys: &column.1,
+                    width: 1,
+                }),
+        )
+        .collect();
+    let y_range = padded_range(command.iter().chain(measured).flat_map(|c| &c.1), &[0.0]);
+    let panel = if measured.is_empty() {
+        "command"
+    } else {
+        "command (thick) and measured (thin)"
+    };
+    (lines, y_range, panel)
+}
+
 /// Writes the velocity task's plot of one episode to `path`: the command over time, the
 /// step's reward (the task's), and every task term unscaled, each in a panel of its own (two to
 /// a row of [`REGULARIZER_PLOT_CELL`]'s height). An episode without the task's columns is an
@@ -671,40 +713,7 @@ pub fn plot_velocity_terms(
             )
             .map_err(|e| e.to_string())?;
         let areas = body.split_evenly((rows, 2));
-        // The command in thick lines, the trunk's measured velocity (when recorded) in thin
-        // ones of the same colour, so a follower's thin line runs along its thick one.
-        let labels = ["v_x (m/s)", "v_y (m/s)", "ω_z (rad/s)"];
-        let colours = [BLUE, ORANGE, GREEN];
-        let measured = &series.velocity_measured;
-        let command_lines: Vec<Line<'_>> = command
-            .iter()
-            .zip(labels)
-            .zip(colours)
-            .map(|((column, label), colour)| Line {
-                label: label.to_owned(),
-                colour,
-                ys: &column.1,
-                width: 2,
-            })
-            .chain(
-                measured
-                    .iter()
-                    .zip(labels)
-                    .zip(colours)
-                    .map(|((column, label), colour)| Line {
-                        label: format!("{label}, measured"),
-                        colour,
-                        ys: &column.1,
-                        width: 1,
-                    }),
-            )
-            .collect();
-        let y_range = padded_range(command.iter().chain(measured).flat_map(|c| &c.1), &[0.0]);
-        let panel = if measured.is_empty() {
-            "command"
-        } else {
-            "command (thick) and measured (thin)"
-        };
+        let (command_lines, y_range, panel) = command_and_measured(command, series);
         line_panel(
             &areas[0],
             panel,
