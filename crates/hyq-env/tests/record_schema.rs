@@ -343,8 +343,7 @@ fn regularizers_are_written_only_when_on_last_and_read_back() {
 }
 
 #[test]
-fn a_velocity_task_record_holds_the_tasks_reward_command_terms_and_measured_velocity_and_reads_back()
- {
+fn a_velocity_task_record_holds_its_command_terms_reward_and_measured_velocity() {
     // On rapier, standing: the scripted backend's still trunk earns a clipped 0, which the
     // spec's neutral reward would equal.
     let mut env = rapier(&[("task.kind", "velocity")]);

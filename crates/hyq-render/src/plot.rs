@@ -681,7 +681,8 @@ fn command_and_measured<'a>(
     (lines, y_range, panel)
 }
 
-/// Writes the velocity task's plot of one episode to `path`: the command over time, the
+/// Writes the velocity task's plot of one episode to `path`: the command over time (with the
+/// trunk's measured velocity when the records hold it), the
 /// step's reward (the task's), and every task term unscaled, each in a panel of its own (two to
 /// a row of [`REGULARIZER_PLOT_CELL`]'s height). An episode without the task's columns is an
 /// error.
