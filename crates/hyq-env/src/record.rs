@@ -295,7 +295,7 @@ impl<'a> StepRecord<'a> {
                 command: v.command,
                 terms: v.terms,
                 reward: v.reward,
-                measured: Some([v.lin_vel[0], v.lin_vel[1], v.ang_vel[2]]),
+                measured: Some(v.measured()),
             }),
             regularizers: info.regularizers.map(|r| r.terms),
         }

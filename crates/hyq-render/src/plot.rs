@@ -649,28 +649,20 @@ fn command_and_measured<'a>(
     let labels = ["v_x (m/s)", "v_y (m/s)", "ω_z (rad/s)"];
     let colours = [BLUE, ORANGE, GREEN];
     let measured = &series.velocity_measured;
-    let lines = command
-        .iter()
-        .zip(labels)
-        .zip(colours)
-        .map(|((column, label), colour)| Line {
-            label: label.to_owned(),
-            colour,
-            ys: &column.1,
-            width: 2,
-        })
-        .chain(
-            measured
-                .iter()
-                .zip(labels)
-                .zip(colours)
-                .map(|((column, label), colour)| Line {
-                    label: format!("{label}, measured"),
-                    colour,
-                    ys: &column.1,
-                    width: 1,
-                }),
-        )
+    let lines = |columns: &'a Columns, width: u32, suffix: &'static str| {
+        columns
+            .iter()
+            .zip(labels)
+            .zip(colours)
+            .map(move |((column, label), colour)| Line {
+                label: format!("{label}{suffix}"),
+                colour,
+                ys: &column.1,
+                width,
+            })
+    };
+    let lines = lines(command, 2, "")
+        .chain(lines(measured, 1, ", measured"))
         .collect();
     let y_range = padded_range(command.iter().chain(measured).flat_map(|c| &c.1), &[0.0]);
     let panel = if measured.is_empty() {

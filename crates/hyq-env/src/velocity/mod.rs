@@ -51,6 +51,14 @@ pub struct VelocityInfo {
     pub ang_vel: [f64; 3],
 }
 
+impl VelocityInfo {
+    /// What the command is compared with, in the command's order: the trunk's v_x, v_y (m/s)
+    /// and ω_z (rad/s) in its frame.
+    pub fn measured(&self) -> [f64; 3] {
+        [self.lin_vel[0], self.lin_vel[1], self.ang_vel[2]]
+    }
+}
+
 /// The layout `layout` with the task's group appended (see hyq-tasks' `observation`).
 pub fn extend_layout(
     layout: ObservationLayout,
