@@ -10,6 +10,8 @@ mod bench;
 mod cli;
 mod codegen;
 mod docs;
+#[cfg(test)]
+mod feature_sets;
 mod fuzz;
 mod mujoco;
 mod python;

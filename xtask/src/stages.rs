@@ -41,7 +41,7 @@ impl Part {
 }
 
 /// The engines a build may leave out (those with a cargo feature), in the table's order.
-fn optional_engines() -> impl Iterator<Item = &'static Engine> {
+pub(crate) fn optional_engines() -> impl Iterator<Item = &'static Engine> {
     ENGINES.iter().filter(|e| e.feature.is_some())
 }
 
@@ -179,12 +179,9 @@ pub fn test(args: &[String]) -> Result<(), String> {
 
     // Stage 1: every Rust crate that needs nothing but a Rust toolchain (rapier is the backend).
     stages.push(timed("rust workspace (rapier backend)", || {
-        let mut args: Vec<&str> = vec!["test", "--workspace", "--locked"];
-        let optional = optional_engines().map(|e| e.crate_name).chain(["hyq-py"]);
-        for optional in optional.filter(|name| has(name)) {
-            args.extend(["--exclude", optional]);
-        }
-        let tests = cargo_test(&root, &args)?;
+        let mut args = vec!["test".to_string(), "--locked".to_string()];
+        args.extend(workspace_selection(&members));
+        let tests = cargo_test(&root, &args.iter().map(String::as_str).collect::<Vec<_>>())?;
         Ok(Outcome::Passed { tests })
     })?);
 
@@ -236,6 +233,17 @@ pub fn test(args: &[String]) -> Result<(), String> {
     }
 
     summarize(&stages, &required, start.elapsed())
+}
+
+/// The first stage's packages: the workspace without the optional engines' crates and the
+/// Python package (those that need more than a Rust toolchain).
+pub(crate) fn workspace_selection(members: &[String]) -> Vec<String> {
+    let mut args = vec!["--workspace".to_string()];
+    let optional = optional_engines().map(|e| e.crate_name).chain(["hyq-py"]);
+    for optional in optional.filter(|name| members.iter().any(|m| m == name)) {
+        args.extend(["--exclude".to_string(), optional.to_string()]);
+    }
+    args
 }
 
 /// An optional engine's stage: its backend and everything that runs on it, or why it cannot run
@@ -555,19 +563,12 @@ fn engine_stage_args(
     root: &Path,
 ) -> Result<Vec<String>, String> {
     let feature = engine.feature.unwrap_or(engine.name);
-    let mut packages = vec![engine.crate_name.to_string()];
-    let mut features = Vec::new();
     let mut tests: Vec<String> = test_targets(&member_dir(root, engine.crate_name))?
         .0
         .into_iter()
         .map(|t| t.name)
         .collect();
-    for name in ENGINE_FEATURE_CRATES {
-        if !members.iter().any(|m| m == name) {
-            continue;
-        }
-        packages.push(name.to_string());
-        features.push(format!("{name}/{feature}"));
+    for name in engine_feature_crates(members) {
         for test in engine_tests(&member_dir(root, name), feature)? {
             if !tests.contains(&test) {
                 tests.push(test);
@@ -575,17 +576,35 @@ fn engine_stage_args(
         }
     }
     let mut args: Vec<String> = ["test", "--locked"].map(String::from).to_vec();
-    for package in packages {
-        args.extend(["-p".to_string(), package]);
-    }
-    if !features.is_empty() {
-        args.extend(["--features".to_string(), features.join(",")]);
-    }
+    args.extend(engine_selection(engine, members));
     args.push("--lib".to_string());
     for test in tests {
         args.extend(["--test".to_string(), test]);
     }
     Ok(args)
+}
+
+/// The members of ENGINE_FEATURE_CRATES that are in the workspace.
+fn engine_feature_crates(members: &[String]) -> impl Iterator<Item = &'static str> {
+    ENGINE_FEATURE_CRATES
+        .into_iter()
+        .filter(|name| members.iter().any(|m| m == name))
+}
+
+/// An engine stage's packages and features: the engine's backend crate, and each crate of
+/// ENGINE_FEATURE_CRATES with its feature of the engine's name.
+pub(crate) fn engine_selection(engine: &Engine, members: &[String]) -> Vec<String> {
+    let feature = engine.feature.unwrap_or(engine.name);
+    let mut args = vec!["-p".to_string(), engine.crate_name.to_string()];
+    let mut features = Vec::new();
+    for name in engine_feature_crates(members) {
+        args.extend(["-p".to_string(), name.to_string()]);
+        features.push(format!("{name}/{feature}"));
+    }
+    if !features.is_empty() {
+        args.extend(["--features".to_string(), features.join(",")]);
+    }
+    args
 }
 
 /// Prints the summary table, one line per stage with its wall time and a last line with the
