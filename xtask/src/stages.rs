@@ -11,7 +11,7 @@ use hyq_engines::{ENGINES, Engine, Needs, Probe};
 
 use crate::mujoco;
 use crate::python::{PYTHON_INSTALL, PYTHON_MIN, pytest_passed_count, venv_command, venv_python};
-use crate::workspace::{cargo, passed_count, workspace_members, workspace_root};
+use crate::workspace::{cargo, is_member, passed_count, workspace_members, workspace_root};
 
 /// A part of the test run that needs something a fresh machine may lack.
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
@@ -174,7 +174,7 @@ pub fn test(args: &[String]) -> Result<(), String> {
     let required = parse_required(&args)?;
     let root = workspace_root();
     let members = workspace_members(&root)?;
-    let has = |name: &str| members.iter().any(|m| m == name);
+    let has = |name: &str| is_member(&members, name);
     let mut stages = Vec::new();
 
     // Stage 1: every Rust crate that needs nothing but a Rust toolchain (rapier is the backend).
@@ -240,7 +240,7 @@ pub fn test(args: &[String]) -> Result<(), String> {
 pub(crate) fn workspace_selection(members: &[String]) -> Vec<String> {
     let mut args = vec!["--workspace".to_string()];
     let optional = optional_engines().map(|e| e.crate_name).chain(["hyq-py"]);
-    for optional in optional.filter(|name| members.iter().any(|m| m == name)) {
+    for optional in optional.filter(|name| is_member(members, name)) {
         args.extend(["--exclude".to_string(), optional.to_string()]);
     }
     args
@@ -250,7 +250,7 @@ pub(crate) fn workspace_selection(members: &[String]) -> Vec<String> {
 /// here (its crate is not a member, or its library is not installed, with the line that installs
 /// it).
 fn engine_stage(engine: &Engine, members: &[String], root: &Path) -> Result<Outcome, String> {
-    if !members.iter().any(|m| m == engine.crate_name) {
+    if !is_member(members, engine.crate_name) {
         return Ok(Outcome::Skipped {
             why: format!(
                 "the {} crate is not in the workspace yet",
@@ -588,7 +588,7 @@ fn engine_stage_args(
 fn engine_feature_crates(members: &[String]) -> impl Iterator<Item = &'static str> {
     ENGINE_FEATURE_CRATES
         .into_iter()
-        .filter(|name| members.iter().any(|m| m == name))
+        .filter(|name| is_member(members, name))
 }
 
 /// An engine stage's packages and features: the engine's backend crate, and each crate of

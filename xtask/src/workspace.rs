@@ -24,6 +24,11 @@ pub fn workspace_root() -> PathBuf {
         .unwrap_or_else(|| manifest.to_path_buf())
 }
 
+/// Whether `name` is one of `members` (as [`workspace_members`] lists them).
+pub fn is_member(members: &[String], name: &str) -> bool {
+    members.iter().any(|m| m == name)
+}
+
 /// The package names listed as workspace members that exist on disk.
 pub fn workspace_members(root: &Path) -> Result<Vec<String>, String> {
     let text = std::fs::read_to_string(root.join("Cargo.toml"))
