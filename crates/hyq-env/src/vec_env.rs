@@ -6,10 +6,11 @@
 //! seeds and actions, bit for bit, whatever the number of threads. Env i of a reset with seed s
 //! is seeded s + i (wrapping), as Gymnasium's vector envs do.
 //!
-//! Threads: every env is its own rayon task (`with_max_len(1)`), so an idle thread steals the
-//! next env rather than wait for a fixed half of the batch. Envs of one engine cost about the
-//! same per step, but envs on different engines (a `VecEnv<hyq_engines::AnyBackend>`) differ
-//! several-fold, and a coarse split would leave the thread with the cheap envs idle.
+//! Threads: the calling thread and T − 1 pool threads each step a contiguous block of the envs
+//! and then take envs left in the others' blocks (`Blocks`), so the calling thread steps envs
+//! instead of sleeping while a pool does (one thread fewer to wake per step, and none at all on
+//! one thread), each env stays on one thread while the work is even, and a thread that finishes
+//! early takes more rather than wait.
 //!
 //! Autoreset ([`AutoReset`]), for an env whose episode ended on step k:
 //! - `NextStep` (Gymnasium 1.x's default): step k reports the final observation, reward and
@@ -21,10 +22,10 @@
 //! - `Disabled`: nothing is reset; stepping an env whose episode ended is an error until
 //!   [`VecEnv::reset_env`].
 
-use std::sync::Arc;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex, PoisonError};
 
 use hyq_physics::{Backend, RobotModel};
-use rayon::prelude::*;
 use thiserror::Error;
 
 use crate::action::ActionScalar;
@@ -110,9 +111,19 @@ struct Slot<B: Backend> {
 pub struct VecEnv<B: Backend> {
     slots: Vec<Slot<B>>,
     autoreset: AutoReset,
-    pool: Option<rayon::ThreadPool>,
+    workers: Workers,
     obs_len: usize,
     action_len: usize,
+}
+
+/// The threads that step a vector env's envs, besides the calling thread.
+enum Workers {
+    /// rayon's global pool, all but one of its threads (the calling thread is the other).
+    Global,
+    /// None: one thread, the calling thread.
+    Caller,
+    /// A dedicated pool ([`VecEnv::with_threads`]).
+    Pool(rayon::ThreadPool),
 }
 
 impl<B: Backend> VecEnv<B> {
@@ -173,25 +184,31 @@ impl<B: Backend> VecEnv<B> {
         Ok(Self {
             slots,
             autoreset,
-            pool: None,
+            workers: Workers::Global,
             obs_len,
             action_len,
         })
     }
 
-    /// Runs the envs on a dedicated pool of `threads` threads (1 to [`MAX_THREADS`]) instead of
-    /// rayon's global pool (results are the same whatever the count).
+    /// Runs the envs on `threads` threads (1 to [`MAX_THREADS`]), the calling thread and a
+    /// dedicated pool of `threads` − 1, instead of rayon's global pool (results are the same
+    /// whatever the count).
     pub fn with_threads(mut self, threads: usize) -> Result<Self, VecEnvError> {
         if !(1..=MAX_THREADS).contains(&threads) {
             return Err(VecEnvError::Setup(format!(
                 "threads = {threads}: must be from 1 to {MAX_THREADS}"
             )));
         }
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .map_err(|e| VecEnvError::Setup(format!("thread pool of {threads}: {e}")))?;
-        self.pool = Some(pool);
+        self.workers = if threads == 1 {
+            Workers::Caller
+        } else {
+            let helpers = threads - 1;
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(helpers)
+                .build()
+                .map_err(|e| VecEnvError::Setup(format!("thread pool of {helpers}: {e}")))?;
+            Workers::Pool(pool)
+        };
         Ok(self)
     }
 
@@ -260,10 +277,58 @@ impl<B: Backend> VecEnv<B> {
         s.has_final.then_some(&s.final_info)
     }
 
-    fn run<F: FnOnce() -> R + Send, R: Send>(&self, f: F) -> R {
-        match &self.pool {
-            Some(pool) => pool.install(f),
-            None => f(),
+    /// Runs `work(index, item)` on each of `items` on the calling thread and the workers'
+    /// threads ([`Blocks`]). On errors, the lowest index's.
+    fn share_out<T: Send>(
+        &self,
+        items: impl Iterator<Item = T>,
+        work: impl Fn(usize, T) -> Result<(), VecEnvError> + Sync,
+    ) -> Result<(), VecEnvError> {
+        let items: Vec<Mutex<Option<T>>> = items.map(|t| Mutex::new(Some(t))).collect();
+        let helpers = match &self.workers {
+            Workers::Caller => 0,
+            Workers::Pool(pool) => pool.current_num_threads(),
+            Workers::Global => rayon::current_num_threads().saturating_sub(1),
+        };
+        let blocks = Blocks::new(items.len(), helpers + 1);
+        let finished = AtomicUsize::new(0);
+        let first_error: Mutex<Option<(usize, VecEnvError)>> = Mutex::new(None);
+        let drain = |part: usize| {
+            while let Some(index) = blocks.next(part) {
+                let item = lock(&items[index]).take();
+                if let Some(Err(e)) = item.map(|item| work(index, item)) {
+                    let mut first = lock(&first_error);
+                    if first.as_ref().is_none_or(|(i, _)| index < *i) {
+                        *first = Some((index, e));
+                    }
+                }
+                finished.fetch_add(1, Ordering::Release);
+            }
+        };
+        // The calling thread, once nothing is left to take, yields until the items others took
+        // are finished rather than sleep at the scope's end and be woken (tens of microseconds
+        // on a virtual machine's idle core, at every step).
+        let drain_and_wait = || {
+            drain(0);
+            while finished.load(Ordering::Acquire) < items.len() {
+                std::thread::yield_now();
+            }
+        };
+        let drain = &drain;
+        match &self.workers {
+            Workers::Caller => drain(0),
+            Workers::Pool(pool) => pool.in_place_scope(|s| {
+                (1..=helpers).for_each(|part| s.spawn(move |_| drain(part)));
+                drain_and_wait();
+            }),
+            Workers::Global => rayon::in_place_scope(|s| {
+                (1..=helpers).for_each(|part| s.spawn(move |_| drain(part)));
+                drain_and_wait();
+            }),
+        }
+        match lock(&first_error).take() {
+            Some((_, e)) => Err(e),
+            None => Ok(()),
         }
     }
 
@@ -281,23 +346,17 @@ impl<B: Backend> VecEnv<B> {
         )?;
         let obs_len = self.obs_len;
         let mut slots = std::mem::take(&mut self.slots);
-        let result = self.run(|| {
-            slots
-                .par_iter_mut()
-                .zip(observations.par_chunks_mut(obs_len))
-                .enumerate()
-                .with_max_len(1)
-                .try_for_each(|(index, (slot, out))| {
-                    let seed = seed.map(|s| s.wrapping_add(index as u64));
-                    let r = slot
-                        .env
-                        .reset(seed, &ResetOptions::default())
-                        .map_err(|source| VecEnvError::Env { index, source })?;
-                    out.copy_from_slice(r.observation_f32);
-                    slot.pending_reset = false;
-                    slot.has_final = false;
-                    Ok(())
-                })
+        let items = slots.iter_mut().zip(observations.chunks_mut(obs_len));
+        let result = self.share_out(items, |index, (slot, out)| {
+            let seed = seed.map(|s| s.wrapping_add(index as u64));
+            let r = slot
+                .env
+                .reset(seed, &ResetOptions::default())
+                .map_err(|source| VecEnvError::Env { index, source })?;
+            out.copy_from_slice(r.observation_f32);
+            slot.pending_reset = false;
+            slot.has_final = false;
+            Ok(())
         });
         self.slots = slots;
         result
@@ -370,26 +429,58 @@ impl<B: Backend> VecEnv<B> {
             truncated,
         } = out;
         let mut slots = std::mem::take(&mut self.slots);
-        let result = self.run(|| {
-            (
-                slots.par_iter_mut(),
-                actions.par_chunks(action_len),
-                observations.par_chunks_mut(obs_len),
-                rewards.par_iter_mut(),
-                terminated.par_iter_mut(),
-                truncated.par_iter_mut(),
-            )
-                .into_par_iter()
-                .enumerate()
-                .with_max_len(1)
-                .try_for_each(|(index, (slot, action, obs, reward, term, trunc))| {
-                    step_slot(slot, mode, action, obs, reward, term, trunc)
-                        .map_err(|source| VecEnvError::Env { index, source })
-                })
-        });
+        let items = slots
+            .iter_mut()
+            .zip(actions.chunks(action_len))
+            .zip(observations.chunks_mut(obs_len))
+            .zip(rewards.iter_mut().zip(terminated.iter_mut().zip(truncated)));
+        let result = self.share_out(
+            items,
+            |index, (((slot, action), obs), (reward, (term, trunc)))| {
+                step_slot(slot, mode, action, obs, reward, term, trunc)
+                    .map_err(|source| VecEnvError::Env { index, source })
+            },
+        );
         self.slots = slots;
         result
     }
+}
+
+/// The indices 0..n split into one contiguous block per thread: a thread takes its own block's
+/// indices from the front and, when it is empty, the last index of the block with the most left.
+/// Each env thus stays on the same thread from step to step (its state in that core's caches)
+/// unless the threads' work is uneven, and a thread that finishes early takes more rather than
+/// wait (envs of one engine cost about the same per step, but envs on different engines, a
+/// `VecEnv<hyq_engines::AnyBackend>`, differ several-fold).
+struct Blocks(Mutex<Vec<(usize, usize)>>);
+
+impl Blocks {
+    fn new(n: usize, parts: usize) -> Self {
+        let bound = |k: usize| k * n / parts;
+        Self(Mutex::new(
+            (0..parts).map(|k| (bound(k), bound(k + 1))).collect(),
+        ))
+    }
+
+    /// The next index for thread `part`, if any is left.
+    fn next(&self, part: usize) -> Option<usize> {
+        let mut blocks = lock(&self.0);
+        let own = &mut blocks[part];
+        if own.0 < own.1 {
+            own.0 += 1;
+            return Some(own.0 - 1);
+        }
+        let fullest = blocks.iter_mut().max_by_key(|(lo, hi)| *hi - *lo)?;
+        (fullest.0 < fullest.1).then(|| {
+            fullest.1 -= 1;
+            fullest.1
+        })
+    }
+}
+
+/// `m`'s guard, whether or not another thread panicked while holding it.
+fn lock<T>(m: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {
+    m.lock().unwrap_or_else(PoisonError::into_inner)
 }
 
 /// One env's part of a vector step.
@@ -442,5 +533,79 @@ fn check_len(what: &'static str, expected: usize, got: usize) -> Result<(), VecE
             expected,
             got,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Blocks;
+
+    /// The indices `Blocks` hands out when the parts ask in `order` (repeated until all are
+    /// empty), as (part, index) pairs.
+    fn hand_out(n: usize, parts: usize, order: &[usize]) -> Vec<(usize, usize)> {
+        let blocks = Blocks::new(n, parts);
+        let mut taken = vec![];
+        let mut done = vec![false; parts];
+        while !done.iter().all(|d| *d) {
+            for &part in order {
+                match blocks.next(part) {
+                    Some(i) => taken.push((part, i)),
+                    None => done[part] = true,
+                }
+            }
+        }
+        taken
+    }
+
+    #[test]
+    fn every_index_is_handed_out_once_whatever_the_order_of_asking() {
+        for n in 0..20 {
+            for parts in 1..7 {
+                let orders: [Vec<usize>; 3] = [
+                    (0..parts).collect(),
+                    (0..parts).rev().collect(),
+                    // One part asks three times as often as the others.
+                    (0..parts)
+                        .flat_map(|p| vec![p; if p == 0 { 3 } else { 1 }])
+                        .collect(),
+                ];
+                for order in &orders {
+                    let mut indices: Vec<usize> =
+                        hand_out(n, parts, order).iter().map(|(_, i)| *i).collect();
+                    indices.sort_unstable();
+                    assert_eq!(
+                        indices,
+                        (0..n).collect::<Vec<_>>(),
+                        "n {n}, order {order:?}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn each_part_takes_its_own_block_when_the_parts_keep_pace() {
+        // 10 envs on 3 threads asking in turn: blocks 0..3, 3..6, 6..10; the last index is
+        // taken from the fullest block by whoever runs out first.
+        let taken = hand_out(10, 3, &[0, 1, 2]);
+        for (part, i) in &taken[..9] {
+            let block = [0..3, 3..6, 6..10][*part].clone();
+            assert!(block.contains(i), "part {part} took {i} outside {block:?}");
+        }
+        assert_eq!(taken[9], (0, 9));
+    }
+
+    #[test]
+    fn a_part_that_runs_out_takes_from_the_back_of_the_fullest_block() {
+        let blocks = Blocks::new(8, 2);
+        assert_eq!(
+            (0..4).map(|_| blocks.next(0)).collect::<Vec<_>>(),
+            [Some(0), Some(1), Some(2), Some(3)]
+        );
+        assert_eq!(blocks.next(1), Some(4));
+        assert_eq!(blocks.next(0), Some(7));
+        assert_eq!(blocks.next(0), Some(6));
+        assert_eq!(blocks.next(1), Some(5));
+        assert_eq!((blocks.next(0), blocks.next(1)), (None, None));
     }
 }

@@ -50,11 +50,15 @@ fn bits32(v: &[f32]) -> Vec<u32> {
     v.iter().map(|x| x.to_bits()).collect()
 }
 
-fn vec_run(mode: AutoReset, threads: usize) -> Trace {
+/// `threads`: a dedicated pool's count, or `None` for rayon's global pool.
+fn vec_run(mode: AutoReset, threads: Option<usize>) -> Trace {
     let model = hyq_physics::bundled::hyq();
-    let mut venv = VecEnv::<RapierBackend>::new(model, config(OVERRIDES), N, mode)
-        .and_then(|v| v.with_threads(threads))
-        .unwrap_or_else(|e| panic!("{e}"));
+    let venv = VecEnv::<RapierBackend>::new(model, config(OVERRIDES), N, mode);
+    let mut venv = match threads {
+        Some(t) => venv.and_then(|v| v.with_threads(t)),
+        None => venv,
+    }
+    .unwrap_or_else(|e| panic!("{e}"));
     let mut obs = vec![0.0f32; N * venv.observation_len()];
     let (mut rew, mut term, mut trunc) = (vec![0.0; N], vec![false; N], vec![false; N]);
     venv.reset(Some(20), &mut obs)
@@ -151,19 +155,25 @@ fn single_run(mode: AutoReset) -> Trace {
 }
 
 #[test]
-fn next_step_autoreset_matches_single_envs_on_one_and_two_threads() {
+fn next_step_autoreset_matches_single_envs_on_any_thread_count() {
     let expected = single_run(AutoReset::NextStep);
     assert!(expected.truncated.iter().filter(|t| **t).count() >= N * 2);
-    assert_eq!(vec_run(AutoReset::NextStep, 1), expected);
-    assert_eq!(vec_run(AutoReset::NextStep, 2), expected);
+    // One thread (the caller alone), two and N + 1 (more threads than envs), and the global pool.
+    for threads in [Some(1), Some(2), Some(N + 1), None] {
+        assert_eq!(
+            vec_run(AutoReset::NextStep, threads),
+            expected,
+            "{threads:?} threads"
+        );
+    }
 }
 
 #[test]
 fn same_step_autoreset_matches_single_envs_and_keeps_the_final_observation() {
     let expected = single_run(AutoReset::SameStep);
     assert!(expected.finals.iter().any(Option::is_some));
-    assert_eq!(vec_run(AutoReset::SameStep, 2), expected);
-    assert_eq!(vec_run(AutoReset::SameStep, 1), expected);
+    assert_eq!(vec_run(AutoReset::SameStep, Some(2)), expected);
+    assert_eq!(vec_run(AutoReset::SameStep, Some(1)), expected);
 }
 
 #[test]
