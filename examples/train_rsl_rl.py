@@ -34,6 +34,7 @@ from __future__ import annotations
 import argparse
 import copy
 import json
+import math
 import random
 import sys
 import time
@@ -173,6 +174,11 @@ def parse_args() -> argparse.Namespace:
                              "the walk recipe's final one to fine-tune it with randomisation, or on "
                              "rough ground with the height scan added to its rows; --iterations then "
                              "counts the iterations added")
+    parser.add_argument("--action-noise", type=float, metavar="STD",
+                        help="set the policy's action noise (the Gaussian's standard deviation, every "
+                             "action) to STD before training, after --resume: a resumed policy whose "
+                             "noise lets training escape states its deterministic mean keeps, e.g. a "
+                             "stand at a walking command (docs/velocity.md, ANYmal C)")
     parser.add_argument("--cfg", type=json.loads, default={},
                         help='JSON object merged into rsl_rl\'s configuration, e.g. \'{"algorithm": {"entropy_coef": 0.005}}\'')
     return parser.parse_args()
@@ -224,6 +230,17 @@ def resume(runner: Runner, path: Path, names: list[str], per_iteration: int) -> 
     runner.current_learning_iteration = saved["iter"]
 
 
+def set_action_noise(runner: Runner, std: float) -> None:
+    """Sets every action's noise deviation of `runner`'s policy to `std` (`--action-noise`)."""
+    params = [(name, p) for name, p in runner.alg.actor.named_parameters() if name.endswith("std_param")]
+    if len(params) != 1:
+        raise SystemExit(f"error: --action-noise: the policy has {len(params)} noise parameters, not one")
+    name, param = params[0]
+    with torch.no_grad():
+        # rsl_rl keeps the deviation itself ("scalar") or its logarithm ("log").
+        param.fill_(math.log(std) if name.endswith("log_std_param") else std)
+
+
 def steps_behind(saved: dict[str, Any], path: Path) -> int:
     """The env steps behind checkpoint `saved` (read from `path`): its own count, else (a
     checkpoint written before checkpoints counted them) its run's whole budget."""
@@ -260,6 +277,8 @@ def main() -> None:
     }
     # The engines' names joined, for titles and config.json ("mujoco"; "rapier,dart,mujoco").
     run["backend"] = ",".join(run["backends"])
+    if args.action_noise is not None and not (math.isfinite(args.action_noise) and args.action_noise > 0):
+        raise SystemExit(f"error: --action-noise {args.action_noise}: must be a finite number above 0")
     if args.resume and not args.resume.is_file():
         # Before OUT is made, so a mistyped checkpoint leaves nothing behind.
         raise SystemExit(f"error: --resume {args.resume}: no such checkpoint file")
@@ -290,6 +309,8 @@ def main() -> None:
     per_iteration = cfg["num_steps_per_env"] * args.envs
     if args.resume:
         resume(runner, args.resume, env.observation_names, per_iteration)
+    if args.action_noise is not None:
+        set_action_noise(runner, args.action_noise)
     judge = recipes.Evaluation(recipe)
     evals = recipes.CurveFile(args.out / "evals.csv", judge.fields(run["backends"]))
     title = (f"PPO (rsl_rl) on {run['robot']}, {run['backend']}: "

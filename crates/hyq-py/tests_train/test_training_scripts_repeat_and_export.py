@@ -177,6 +177,48 @@ def test_resuming_from_a_missing_checkpoint_is_refused_in_one_line(tmp_path) -> 
     assert done.stderr.strip().splitlines()[-1] == f"error: --resume {tmp_path / 'none.pt'}: no such checkpoint file"
 
 
+def test_action_noise_sets_a_resumed_policys_noise_and_leaves_its_mean(rsl_runs) -> None:
+    """--action-noise after --resume: every action's deviation is the given one, in rsl_rl's
+    "scalar" and "log" forms, and the policy's mean actions are the checkpoint's."""
+    import copy
+
+    import train_rsl_rl
+    from hyq.rsl_rl import HyQRslRlVecEnv
+    from rsl_rl.runners import OnPolicyRunner
+    from tensordict import TensorDict
+
+    last = sorted(rsl_runs[0].glob("model_*.pt"), key=lambda p: int(p.stem[6:]))[-1]
+    obs = TensorDict({"policy": torch.as_tensor(observations(16))}, batch_size=[16])
+    for std_type in ("scalar", "log"):
+        cfg = copy.deepcopy(train_rsl_rl.TRAIN_CFG)
+        cfg["num_steps_per_env"] = 32
+        cfg["actor"]["distribution_cfg"]["std_type"] = std_type
+        env = HyQRslRlVecEnv(num_envs=2, seed=0, robot="hyq", backend="rapier", max_time_steps=40)
+        runner = OnPolicyRunner(env, cfg, log_dir=None, device="cpu")
+        if std_type == "scalar":
+            train_rsl_rl.resume(runner, last, env.observation_names, per_iteration=64)
+        policy = runner.alg.get_policy()
+        policy.eval()
+        with torch.inference_mode():
+            before = policy(obs).clone()
+        train_rsl_rl.set_action_noise(runner, 0.007)
+        with torch.inference_mode():
+            assert torch.equal(policy(obs), before)
+            runner.alg.actor(obs, stochastic_output=True)
+            std = runner.alg.actor.output_std
+        assert torch.allclose(std, torch.full_like(std, 0.007)), std_type
+        env.close()
+
+
+def test_a_bad_action_noise_is_refused_in_one_line(tmp_path) -> None:
+    for bad in ("0", "-0.1", "nan", "inf"):
+        done = script("train_rsl_rl.py", *RSL, "--action-noise", bad, "--out", tmp_path / bad)
+        assert done.returncode != 0
+        assert done.stderr.strip().splitlines()[-1] == (
+            f"error: --action-noise {float(bad)}: must be a finite number above 0")
+        assert not (tmp_path / bad).exists()
+
+
 def test_the_rough_recipe_trains_and_exports_its_height_scan_rows(tmp_path) -> None:
     run = train("train_rsl_rl.py", [*RSL, "--recipe", "walk_rough"], tmp_path / "rough")
     out = tmp_path / "rough.safetensors"
