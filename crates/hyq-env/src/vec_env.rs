@@ -295,6 +295,9 @@ impl<B: Backend> VecEnv<B> {
         let first_error: Mutex<Option<(usize, VecEnvError)>> = Mutex::new(None);
         let drain = |part: usize| {
             while let Some(index) = blocks.next(part) {
+                // Counted finished even if `work` panics, so that the caller's wait below ends
+                // and the scope passes the panic on instead of hanging.
+                let _counted = Finished(&finished);
                 let item = lock(&items[index]).take();
                 if let Some(Err(e)) = item.map(|item| work(index, item)) {
                     let mut first = lock(&first_error);
@@ -302,7 +305,6 @@ impl<B: Backend> VecEnv<B> {
                         *first = Some((index, e));
                     }
                 }
-                finished.fetch_add(1, Ordering::Release);
             }
         };
         // The calling thread, once nothing is left to take, yields until the items others took
@@ -475,6 +477,15 @@ impl Blocks {
             fullest.1 -= 1;
             fullest.1
         })
+    }
+}
+
+/// Adds one to its counter when dropped, also while unwinding.
+struct Finished<'a>(&'a AtomicUsize);
+
+impl Drop for Finished<'_> {
+    fn drop(&mut self) {
+        self.0.fetch_add(1, Ordering::Release);
     }
 }
 

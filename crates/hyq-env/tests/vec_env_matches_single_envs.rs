@@ -310,3 +310,64 @@ fn env_and_thread_counts_are_bounded_and_checked_before_anything_is_built() {
     }
     assert!(build(2).and_then(|v| v.with_threads(1)).is_ok());
 }
+
+/// A panic inside one env's step (a scripted backend's, standing for a bug in an engine) reaches
+/// the caller as that panic on any thread count, rather than leaving the threads that wait for
+/// the env's step waiting forever.
+#[test]
+fn a_panic_in_one_envs_step_reaches_the_caller_instead_of_hanging() {
+    use hyq_env::testing::ScriptedBackend;
+    use std::panic::{AssertUnwindSafe, catch_unwind};
+    use std::sync::mpsc;
+    use std::time::Duration;
+
+    for threads in [1, 2, 3] {
+        let (sent, received) = mpsc::channel();
+        std::thread::spawn(move || {
+            let model = hyq_physics::bundled::hyq();
+            let mut venv =
+                VecEnv::<ScriptedBackend>::new(model, config(&[]), 4, AutoReset::NextStep)
+                    .and_then(|v| v.with_threads(threads))
+                    .unwrap_or_else(|e| panic!("{e}"));
+            let mut obs = vec![0.0f32; 4 * venv.observation_len()];
+            venv.reset(Some(0), &mut obs)
+                .unwrap_or_else(|e| panic!("{e}"));
+            // Envs 0-2 take 2 ms a sub-step, so the calling thread is still busy with its own
+            // block when a pool thread reaches env 3 (on 2 and 3 threads the last block's).
+            for i in 0..3 {
+                venv.env_mut(i).backend_mut().set_script(|_| {
+                    std::thread::sleep(Duration::from_millis(2));
+                    Ok(())
+                });
+            }
+            venv.env_mut(3)
+                .backend_mut()
+                .set_script(|_| panic!("scripted failure"));
+            let actions = vec![0.0f32; 4 * venv.action_len()];
+            let (mut rew, mut term, mut trunc) = (vec![0.0; 4], vec![false; 4], vec![false; 4]);
+            let stepped = catch_unwind(AssertUnwindSafe(|| {
+                venv.step(
+                    &actions,
+                    VecStepOut {
+                        observations: &mut obs,
+                        rewards: &mut rew,
+                        terminated: &mut term,
+                        truncated: &mut trunc,
+                    },
+                )
+            }));
+            let message = stepped
+                .err()
+                .and_then(|p| p.downcast_ref::<&str>().map(|s| s.to_string()));
+            let _ = sent.send(message);
+        });
+        let message = received
+            .recv_timeout(Duration::from_secs(60))
+            .unwrap_or_else(|_| panic!("{threads} threads: the step hung for 60 s"));
+        assert_eq!(
+            message.as_deref(),
+            Some("scripted failure"),
+            "{threads} threads"
+        );
+    }
+}
