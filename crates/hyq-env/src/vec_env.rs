@@ -6,11 +6,13 @@
 //! seeds and actions, bit for bit, whatever the number of threads. Env i of a reset with seed s
 //! is seeded s + i (wrapping), as Gymnasium's vector envs do.
 //!
-//! Threads: the calling thread and T − 1 pool threads each step a contiguous block of the envs
-//! and then take envs left in the others' blocks (`Blocks`), so the calling thread steps envs
-//! instead of sleeping while a pool does (one thread fewer to wake per step, and none at all on
-//! one thread), each env stays on one thread while the work is even, and a thread that finishes
-//! early takes more rather than wait.
+//! Threads: the calling thread and T − 1 pool threads each step a contiguous block of the envs,
+//! the blocks of about equal cost by each env's last step time and each ordered most costly
+//! first, and then take the envs left at the back of the others' blocks (`Blocks`): the calling
+//! thread steps envs instead of sleeping while a pool does (one thread fewer to wake per step,
+//! and none at all on one thread), each env stays on one thread while the costs hold, and what
+//! is left to share at a step's end is the cheap envs (envs on different engines, a
+//! `VecEnv<hyq_engines::AnyBackend>`, differ several-fold in cost).
 //!
 //! Autoreset ([`AutoReset`]), for an env whose episode ended on step k:
 //! - `NextStep` (Gymnasium 1.x's default): step k reports the final observation, reward and
@@ -22,8 +24,9 @@
 //! - `Disabled`: nothing is reset; stepping an env whose episode ended is an error until
 //!   [`VecEnv::reset_env`].
 
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex, PoisonError};
+use std::time::Instant;
 
 use hyq_physics::{Backend, RobotModel};
 use thiserror::Error;
@@ -112,6 +115,8 @@ pub struct VecEnv<B: Backend> {
     slots: Vec<Slot<B>>,
     autoreset: AutoReset,
     workers: Workers,
+    /// Nanoseconds of each env's last step or reset, which the threads' blocks balance.
+    costs: Vec<AtomicU64>,
     obs_len: usize,
     action_len: usize,
 }
@@ -185,6 +190,7 @@ impl<B: Backend> VecEnv<B> {
             slots,
             autoreset,
             workers: Workers::Global,
+            costs: (0..num_envs).map(|_| AtomicU64::new(0)).collect(),
             obs_len,
             action_len,
         })
@@ -290,7 +296,12 @@ impl<B: Backend> VecEnv<B> {
             Workers::Pool(pool) => pool.current_num_threads(),
             Workers::Global => rayon::current_num_threads().saturating_sub(1),
         };
-        let blocks = Blocks::new(items.len(), helpers + 1);
+        let cost_cells = &self.costs;
+        let costs: Vec<u64> = cost_cells
+            .iter()
+            .map(|c| c.load(Ordering::Relaxed))
+            .collect();
+        let blocks = Blocks::new(&costs, helpers + 1);
         let finished = AtomicUsize::new(0);
         let first_error: Mutex<Option<(usize, VecEnvError)>> = Mutex::new(None);
         let drain = |part: usize| {
@@ -299,7 +310,11 @@ impl<B: Backend> VecEnv<B> {
                 // and the scope passes the panic on instead of hanging.
                 let _counted = Finished(&finished);
                 let item = lock(&items[index]).take();
-                if let Some(Err(e)) = item.map(|item| work(index, item)) {
+                let start = Instant::now();
+                let result = item.map(|item| work(index, item));
+                let nanos = u64::try_from(start.elapsed().as_nanos()).unwrap_or(u64::MAX);
+                cost_cells[index].store(nanos, Ordering::Relaxed);
+                if let Some(Err(e)) = result {
                     let mut first = lock(&first_error);
                     if first.as_ref().is_none_or(|(i, _)| index < *i) {
                         *first = Some((index, e));
@@ -448,34 +463,63 @@ impl<B: Backend> VecEnv<B> {
     }
 }
 
-/// The indices 0..n split into one contiguous block per thread: a thread takes its own block's
-/// indices from the front and, when it is empty, the last index of the block with the most left.
-/// Each env thus stays on the same thread from step to step (its state in that core's caches)
-/// unless the threads' work is uneven, and a thread that finishes early takes more rather than
-/// wait (envs of one engine cost about the same per step, but envs on different engines, a
-/// `VecEnv<hyq_engines::AnyBackend>`, differ several-fold).
-struct Blocks(Mutex<Vec<(usize, usize)>>);
+/// The indices 0..n split into one contiguous block per thread ([`Blocks::new`]): a thread takes
+/// its own block's indices from the front and, when it is empty, the last index of the block with
+/// the most left. Each env thus stays on the same thread from step to step (its state in that
+/// core's caches) while the costs hold, and a thread that finishes early takes the cheapest
+/// envs left rather than wait.
+struct Blocks(Mutex<Vec<Block>>);
+
+/// One thread's envs, most costly first, and how far they are taken from either end.
+struct Block {
+    order: Vec<usize>,
+    front: usize,
+    back: usize,
+}
 
 impl Blocks {
-    fn new(n: usize, parts: usize) -> Self {
-        let bound = |k: usize| k * n / parts;
-        Self(Mutex::new(
-            (0..parts).map(|k| (bound(k), bound(k + 1))).collect(),
-        ))
+    /// Blocks of about equal cost by `costs` (each env's last step, any unit; a cost of 0 counts
+    /// as 1, so that without figures the blocks are of about equal size), contiguous in index,
+    /// each ordered most costly first so that what is left to take at a step's end is cheap.
+    fn new(costs: &[u64], parts: usize) -> Self {
+        let costs: Vec<u128> = costs.iter().map(|c| u128::from((*c).max(1))).collect();
+        let total: u128 = costs.iter().sum::<u128>().max(1);
+        let parts_wide = parts as u128;
+        let mut blocks: Vec<Vec<usize>> = vec![Vec::new(); parts];
+        let mut before = 0u128;
+        for (i, c) in costs.iter().enumerate() {
+            // The part whose share of the total holds the middle of env i's cost.
+            let part = ((2 * before + c) * parts_wide / (2 * total)) as usize;
+            blocks[part.min(parts - 1)].push(i);
+            before += c;
+        }
+        let blocks = blocks
+            .into_iter()
+            .map(|mut order| {
+                order.sort_by_key(|i| std::cmp::Reverse(costs[*i]));
+                let back = order.len();
+                Block {
+                    order,
+                    front: 0,
+                    back,
+                }
+            })
+            .collect();
+        Self(Mutex::new(blocks))
     }
 
     /// The next index for thread `part`, if any is left.
     fn next(&self, part: usize) -> Option<usize> {
         let mut blocks = lock(&self.0);
         let own = &mut blocks[part];
-        if own.0 < own.1 {
-            own.0 += 1;
-            return Some(own.0 - 1);
+        if own.front < own.back {
+            own.front += 1;
+            return Some(own.order[own.front - 1]);
         }
-        let fullest = blocks.iter_mut().max_by_key(|(lo, hi)| *hi - *lo)?;
-        (fullest.0 < fullest.1).then(|| {
-            fullest.1 -= 1;
-            fullest.1
+        let fullest = blocks.iter_mut().max_by_key(|b| b.back - b.front)?;
+        (fullest.front < fullest.back).then(|| {
+            fullest.back -= 1;
+            fullest.order[fullest.back]
         })
     }
 }
@@ -553,8 +597,8 @@ mod tests {
 
     /// The indices `Blocks` hands out when the parts ask in `order` (repeated until all are
     /// empty), as (part, index) pairs.
-    fn hand_out(n: usize, parts: usize, order: &[usize]) -> Vec<(usize, usize)> {
-        let blocks = Blocks::new(n, parts);
+    fn hand_out(costs: &[u64], parts: usize, order: &[usize]) -> Vec<(usize, usize)> {
+        let blocks = Blocks::new(costs, parts);
         let mut taken = vec![];
         let mut done = vec![false; parts];
         while !done.iter().all(|d| *d) {
@@ -569,7 +613,7 @@ mod tests {
     }
 
     #[test]
-    fn every_index_is_handed_out_once_whatever_the_order_of_asking() {
+    fn every_index_is_handed_out_once_whatever_the_costs_and_the_order_of_asking() {
         for n in 0..20 {
             for parts in 1..7 {
                 let orders: [Vec<usize>; 3] = [
@@ -580,14 +624,29 @@ mod tests {
                         .flat_map(|p| vec![p; if p == 0 { 3 } else { 1 }])
                         .collect(),
                 ];
-                for order in &orders {
-                    let mut indices: Vec<usize> =
-                        hand_out(n, parts, order).iter().map(|(_, i)| *i).collect();
+                let costs: [Vec<u64>; 4] = [
+                    vec![0; n],
+                    vec![1; n],
+                    (0..n as u64)
+                        .map(|i| [700, 400, 100][i as usize % 3])
+                        .collect(),
+                    (0..n as u64)
+                        .map(|i| if i == 0 { u64::MAX } else { i })
+                        .collect(),
+                ];
+                for (order, costs) in orders
+                    .iter()
+                    .flat_map(|o| costs.iter().map(move |c| (o, c)))
+                {
+                    let mut indices: Vec<usize> = hand_out(costs, parts, order)
+                        .iter()
+                        .map(|(_, i)| *i)
+                        .collect();
                     indices.sort_unstable();
                     assert_eq!(
                         indices,
                         (0..n).collect::<Vec<_>>(),
-                        "n {n}, order {order:?}"
+                        "n {n}, {order:?}, {costs:?}"
                     );
                 }
             }
@@ -595,20 +654,37 @@ mod tests {
     }
 
     #[test]
-    fn each_part_takes_its_own_block_when_the_parts_keep_pace() {
-        // 10 envs on 3 threads asking in turn: blocks 0..3, 3..6, 6..10; the last index is
-        // taken from the fullest block by whoever runs out first.
-        let taken = hand_out(10, 3, &[0, 1, 2]);
+    fn equal_costs_give_contiguous_blocks_of_about_equal_size() {
+        // 10 envs on 3 threads asking in turn: blocks 0..3, 3..7, 7..10, each taken in index
+        // order; part 0, out of envs first, then takes the last of the fullest block.
+        let taken = hand_out(&[5; 10], 3, &[0, 1, 2]);
+        let blocks = [0..3, 3..7, 7..10];
         for (part, i) in &taken[..9] {
-            let block = [0..3, 3..6, 6..10][*part].clone();
-            assert!(block.contains(i), "part {part} took {i} outside {block:?}");
+            assert!(blocks[*part].contains(i), "part {part} took {i}");
         }
-        assert_eq!(taken[9], (0, 9));
+        assert_eq!(taken[9], (0, 6));
+        assert_eq!(taken.len(), 10);
+    }
+
+    #[test]
+    fn blocks_balance_cost_and_leave_the_cheap_envs_to_the_end() {
+        // Envs 0-3 cost 9 each, 4-11 cost 1: two threads get 0-1 (18) and 2-11 (36 - 18)...
+        let costs = [9, 9, 9, 9, 1, 1, 1, 1, 1, 1, 1, 1];
+        let blocks = Blocks::new(&costs, 2);
+        // ...part 0 the first two expensive envs, part 1 the other two, then its cheap ones.
+        assert_eq!((blocks.next(0), blocks.next(0)), (Some(0), Some(1)));
+        assert_eq!((blocks.next(1), blocks.next(1)), (Some(2), Some(3)));
+        // Part 0, out of envs, takes from the back of part 1's: the cheapest.
+        assert_eq!(blocks.next(0), Some(11));
+        // A block is ordered most costly first, whatever the indices' order.
+        let blocks = Blocks::new(&[1, 5, 3, 9], 1);
+        let order: Vec<_> = std::iter::from_fn(|| blocks.next(0)).collect();
+        assert_eq!(order, [3, 1, 2, 0]);
     }
 
     #[test]
     fn a_part_that_runs_out_takes_from_the_back_of_the_fullest_block() {
-        let blocks = Blocks::new(8, 2);
+        let blocks = Blocks::new(&[0; 8], 2);
         assert_eq!(
             (0..4).map(|_| blocks.next(0)).collect::<Vec<_>>(),
             [Some(0), Some(1), Some(2), Some(3)]
