@@ -290,9 +290,17 @@ impl<B: Backend> VecEnv<B> {
         items: impl Iterator<Item = T>,
         work: impl Fn(usize, T) -> Result<(), VecEnvError> + Sync,
     ) -> Result<(), VecEnvError> {
-        let items: Vec<Mutex<Option<T>>> = items.map(|t| Mutex::new(Some(t))).collect();
         let helpers = match &self.workers {
-            Workers::Caller => 0,
+            // One thread: the items in turn, with nothing to share or balance.
+            Workers::Caller => {
+                let mut first_error = None;
+                for (index, item) in items.enumerate() {
+                    if let Err(e) = work(index, item) {
+                        first_error.get_or_insert(e);
+                    }
+                }
+                return first_error.map_or(Ok(()), Err);
+            }
             Workers::Pool(pool) => pool.current_num_threads(),
             Workers::Global => rayon::current_num_threads().saturating_sub(1),
         };
@@ -301,6 +309,7 @@ impl<B: Backend> VecEnv<B> {
             .iter()
             .map(|c| c.load(Ordering::Relaxed))
             .collect();
+        let items: Vec<Mutex<Option<T>>> = items.map(|t| Mutex::new(Some(t))).collect();
         let blocks = Blocks::new(&costs, helpers + 1);
         let finished = AtomicUsize::new(0);
         let first_error: Mutex<Option<(usize, VecEnvError)>> = Mutex::new(None);
@@ -332,16 +341,16 @@ impl<B: Backend> VecEnv<B> {
             }
         };
         let drain = &drain;
-        match &self.workers {
-            Workers::Caller => drain(0),
-            Workers::Pool(pool) => pool.in_place_scope(|s| {
+        if let Workers::Pool(pool) = &self.workers {
+            pool.in_place_scope(|s| {
                 (1..=helpers).for_each(|part| s.spawn(move |_| drain(part)));
                 drain_and_wait();
-            }),
-            Workers::Global => rayon::in_place_scope(|s| {
+            });
+        } else {
+            rayon::in_place_scope(|s| {
                 (1..=helpers).for_each(|part| s.spawn(move |_| drain(part)));
                 drain_and_wait();
-            }),
+            });
         }
         match lock(&first_error).take() {
             Some((_, e)) => Err(e),
