@@ -35,6 +35,11 @@ def train(name: str, args: list[str], out: Path) -> Path:
     return out
 
 
+def last_model(run: Path) -> Path:
+    """The run's checkpoint model_N.pt with the highest N."""
+    return max(run.glob("model_*.pt"), key=lambda p: int(p.stem[6:]))
+
+
 def observations(n: int = 64) -> np.ndarray:
     import hyq
 
@@ -109,7 +114,7 @@ def test_the_rsl_rl_export_and_its_onnx_twin_act_as_rsl_rl(rsl_runs, tmp_path) -
     group = TensorDict({"policy": torch.as_tensor(obs)}, batch_size=[len(obs)])
     actor_cfg = {k: v for k, v in config["rsl_rl"]["actor"].items() if k != "class_name"}
     actor = MLPModel(group, config["rsl_rl"]["obs_groups"], "actor", 12, **actor_cfg)
-    saved = torch.load(sorted(run.glob("model_*.pt"), key=lambda p: int(p.stem[6:]))[-1], weights_only=False)
+    saved = torch.load(last_model(run), weights_only=False)
     actor.load_state_dict(saved["actor_state_dict"])
     actor.eval()
     with torch.inference_mode():
@@ -150,11 +155,10 @@ def test_another_robots_model_is_refused_in_one_line(which, tmp_path, sb3_runs, 
 
 def test_a_resumed_run_continues_the_checkpoint_and_names_both_commands(rsl_runs, tmp_path) -> None:
     source = rsl_runs[0]
-    last = sorted(source.glob("model_*.pt"), key=lambda p: int(p.stem[6:]))[-1]
+    last = last_model(source)
     out = train("train_rsl_rl.py", [*RSL[:3], "1", *RSL[4:], "--resume", last], tmp_path / "resumed")
     first = torch.load(last, weights_only=False)
-    models = sorted(out.glob("model_*.pt"), key=lambda p: int(p.stem[6:]))
-    resumed = torch.load(models[-1], weights_only=False)
+    resumed = torch.load(last_model(out), weights_only=False)
     # The observation statistics go on from the checkpoint's (a fresh start's one iteration
     # would have counted fewer samples than the checkpoint's two), and the networks moved on.
     count = "obs_normalizer.count"
@@ -187,7 +191,7 @@ def test_action_noise_sets_a_resumed_policys_noise_and_leaves_its_mean(rsl_runs)
     from rsl_rl.runners import OnPolicyRunner
     from tensordict import TensorDict
 
-    last = sorted(rsl_runs[0].glob("model_*.pt"), key=lambda p: int(p.stem[6:]))[-1]
+    last = last_model(rsl_runs[0])
     obs = TensorDict({"policy": torch.as_tensor(observations(16))}, batch_size=[16])
     for std_type in ("scalar", "log"):
         cfg = copy.deepcopy(train_rsl_rl.TRAIN_CFG)
@@ -247,7 +251,7 @@ def test_a_walk_checkpoint_widened_for_the_height_scan_acts_as_it_did(rsl_runs, 
     from rsl_rl.runners import OnPolicyRunner
     from tensordict import TensorDict
 
-    last = sorted(rsl_runs[0].glob("model_*.pt"), key=lambda p: int(p.stem[6:]))[-1]
+    last = last_model(rsl_runs[0])
     cfg = copy.deepcopy(train_rsl_rl.TRAIN_CFG)
     cfg["num_steps_per_env"] = 32
     env = HyQRslRlVecEnv(num_envs=2, seed=0, robot="hyq", backend="rapier",
