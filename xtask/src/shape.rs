@@ -83,7 +83,7 @@ mod tests {
 
     /// Lines of code in `block`: its span's lines minus blank and comment-only ones.
     fn body_lines(block: &syn::Block, text: &[&str]) -> usize {
-        let span = proc_macro2::Span::from(block.brace_token.span.join());
+        let span = block.brace_token.span.join();
         let (first, last) = (span.start().line, span.end().line);
         (first..=last)
             .filter(|&n| {
