@@ -146,18 +146,23 @@ def rsl_rl_actor(run: Path, args: argparse.Namespace, robot: str, names: list[st
     }
 
 
+#: Keys outside the reset, randomisation and terrain tables that are training conditions only.
+TRAINING_ONLY = ("task.max_time_steps",)
+
+
 def metadata_of(actor: dict[str, Any], config: dict[str, Any], robot: str, names: list[str],
                 joints: list[str]) -> dict[str, str]:
     env_kwargs: dict[str, Any] = config["env"]
     action = env_kwargs.get("action", {})
     mode = action.get("mode", "normalized")
     # What the policy needs of its environment: every task, action and observation key it
-    # trained with. The reset distribution, the randomisation and the ground (with its
-    # curriculum) are training or evaluation conditions, only recorded (training_env_config):
-    # replaying a rough-ground policy on its curriculum's first level would measure it on
-    # ground a tenth as rough as the one it learned to walk on.
+    # trained with. The reset distribution, the randomisation, the ground (with its
+    # curriculum) and the episode length are training or evaluation conditions, only recorded
+    # (training_env_config): replaying a rough-ground policy on its curriculum's first level
+    # would measure it on ground a tenth as rough as the one it learned to walk on, and a
+    # policy trained on short episodes (more starts from a reset) is judged on the task's own.
     applied = {k: v for k, v in config_pairs(env_kwargs)
-               if not k.startswith(("reset.", "randomize.", "terrain."))}
+               if not k.startswith(("reset.", "randomize.", "terrain.")) and k not in TRAINING_ONLY}
     metadata = {
         "format": "hyq-mlp-policy",
         "format_version": "1",

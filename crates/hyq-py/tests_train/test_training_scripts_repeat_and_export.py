@@ -123,6 +123,19 @@ def test_the_rsl_rl_export_and_its_onnx_twin_act_as_rsl_rl(rsl_runs, tmp_path) -
     assert np.max(np.abs(ours - np.clip(theirs, -1, 1))) <= 1e-5
 
 
+def test_the_training_episode_length_is_recorded_and_not_applied(rsl_runs, tmp_path) -> None:
+    """The runs train on 40-step episodes (ENV): the file's training_env_config says so, and
+    its env_config, which replay applies, leaves the task's own episode length."""
+    out = tmp_path / "rsl.safetensors"
+    done = script("export_policy.py", "--run", rsl_runs[0], "--out", out)
+    assert done.returncode == 0, done.stderr
+    metadata = read_policy(out).metadata
+    assert json.loads(metadata["training_env_config"])["task.max_time_steps"] == "40"
+    applied = json.loads(metadata["env_config"])
+    assert "task.max_time_steps" not in applied, applied
+    assert applied["action.mode"] == '"offset"', applied
+
+
 def one_line_error(done: subprocess.CompletedProcess) -> str:
     assert done.returncode == 2, done.stderr
     lines = done.stderr.strip().splitlines()
