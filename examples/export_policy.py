@@ -146,8 +146,9 @@ def rsl_rl_actor(run: Path, args: argparse.Namespace, robot: str, names: list[st
     }
 
 
-#: Keys outside the reset, randomisation and terrain tables that are training conditions only.
-TRAINING_ONLY = ("task.max_time_steps",)
+#: The configuration keys (by prefix) that are training or evaluation conditions, recorded in a
+#: policy file but not applied on replay (metadata_of).
+TRAINING_CONDITIONS = ("reset.", "randomize.", "terrain.", "task.max_time_steps")
 
 
 def metadata_of(actor: dict[str, Any], config: dict[str, Any], robot: str, names: list[str],
@@ -161,8 +162,7 @@ def metadata_of(actor: dict[str, Any], config: dict[str, Any], robot: str, names
     # (training_env_config): replaying a rough-ground policy on its curriculum's first level
     # would measure it on ground a tenth as rough as the one it learned to walk on, and a
     # policy trained on short episodes (more starts from a reset) is judged on the task's own.
-    applied = {k: v for k, v in config_pairs(env_kwargs)
-               if not k.startswith(("reset.", "randomize.", "terrain.")) and k not in TRAINING_ONLY}
+    applied = {k: v for k, v in config_pairs(env_kwargs) if not k.startswith(TRAINING_CONDITIONS)}
     metadata = {
         "format": "hyq-mlp-policy",
         "format_version": "1",
