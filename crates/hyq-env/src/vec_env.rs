@@ -677,7 +677,8 @@ mod tests {
 
     #[test]
     fn blocks_balance_cost_and_leave_the_cheap_envs_to_the_end() {
-        // Envs 0-3 cost 9 each, 4-11 cost 1: two threads get 0-1 (18) and 2-11 (36 - 18)...
+        // Envs 0-3 cost 9 each, 4-11 cost 1 (44 in all): two threads get 0-1 (18) and 2-11
+        // (26), each env going to the half that holds the middle of its cost...
         let costs = [9, 9, 9, 9, 1, 1, 1, 1, 1, 1, 1, 1];
         let blocks = Blocks::new(&costs, 2);
         // ...part 0 the first two expensive envs, part 1 the other two, then its cheap ones.
