@@ -825,16 +825,7 @@ impl<B: Backend> Env<B> {
                 self.latching[self.trunk_tracked],
             );
         }
-        if let Some(r) = self.regularizers.as_deref_mut() {
-            self.backend.link_poses(r.gait.poses_mut());
-            r.evaluate_step(
-                crate::regularizers::base_height(&self.state.trunk, self.ground.terrain()),
-                &self.state.qd,
-                self.scratch.torques(),
-                &self.latching[..self.num_feet],
-                &self.latching[self.num_feet..],
-            )?;
-        }
+        self.judge_regularizers(&rules.goal())?;
         watch.lap(&mut self.timing.spec);
         let accel = trunk_acceleration(&previous.linvel, &self.state.trunk.linvel, self.env_dt)?;
         self.write_observation(accel, &rules.goal())?;
@@ -855,6 +846,23 @@ impl<B: Backend> Env<B> {
         self.observe();
         watch.lap(&mut self.timing.observation);
         Ok(outcome)
+    }
+
+    /// The regularisers' judgement of the step just read, when they are on (`goal`: the
+    /// episode's G).
+    fn judge_regularizers(&mut self, goal: &Point3<f64>) -> Result<(), Divergence> {
+        let Some(r) = self.regularizers.as_deref_mut() else {
+            return Ok(());
+        };
+        self.backend.link_poses(r.gait.poses_mut());
+        r.evaluate_step(
+            crate::regularizers::base_height(&self.state.trunk, self.ground.terrain()),
+            &self.state.qd,
+            self.scratch.torques(),
+            &self.latching[..self.num_feet],
+            &self.latching[self.num_feet..],
+            crate::regularizers::goal_geometry(&self.state.trunk, self.info.initial_position, goal),
+        )
     }
 
     /// Reports a step the rules evaluated (`k`: the episode's K).

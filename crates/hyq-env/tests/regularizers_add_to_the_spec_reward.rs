@@ -5,7 +5,7 @@
 //! and MuJoCo with `--features dart` / `mujoco`, a trotting episode's every step has the reward
 //! of the same episode without them plus the terms its record holds, scaled, and the terms the
 //! record's own rows determine (action rate, joint acceleration, base height, collision, feet
-//! air time) are recomputed from those rows bit for bit.
+//! air time, goal heading and line) are recomputed from those rows bit for bit.
 
 mod common;
 
@@ -14,17 +14,20 @@ use std::sync::Arc;
 use common::{reset, scripted};
 use hyq_env::policy::{Policy, Trot, TrotParams};
 use hyq_env::{Env, EnvConfig, Reason, ResetOptions, StepRecord, regularizer_info_keys};
+use hyq_physics::na::{Quaternion, UnitQuaternion, Vector3};
 use hyq_physics::{Backend, RobotModel, bundled};
 use hyq_rapier::RapierBackend;
 use hyq_spec::ObservationLayout;
 use hyq_tasks::step::AirTime;
 use hyq_tasks::{REGULARIZER_NAMES, RegularizerTerms, terms};
 
-/// Every regulariser on: legged_gym's preset plus the two it leaves at 0.
+/// Every regulariser on: legged_gym's preset plus the four it leaves at 0.
 const ALL_ON: &[(&str, &str)] = &[
     ("regularizers.preset", "legged_gym"),
     ("regularizers.foot_slip", "-0.1"),
     ("regularizers.base_height", "-1.0"),
+    ("regularizers.goal_heading", "-0.5"),
+    ("regularizers.goal_line", "-10.0"),
 ];
 
 fn config(pairs: &[(&str, &str)]) -> EnvConfig {
@@ -46,19 +49,25 @@ fn scaled_sum(scales: &RegularizerTerms, record: &StepRecord<'_>, dt: f64) -> f6
 }
 
 /// The terms a record's own rows determine (action rate, joint acceleration, base height,
-/// collision, feet air time), recomputed from those rows and the previous records'.
+/// collision, feet air time, and with the episode's start and goal the goal heading and line),
+/// recomputed from those rows and the previous records'.
 struct FromRows {
     layout: ObservationLayout,
+    /// The episode's start and goal (world x and y).
+    start: [f64; 2],
+    goal: [f64; 2],
     previous_action: Vec<f64>,
     previous_qd: Vec<f64>,
     air: AirTime,
 }
 
 impl FromRows {
-    fn new(model: &RobotModel, layout: ObservationLayout) -> Self {
+    fn new(model: &RobotModel, layout: ObservationLayout, start: [f64; 2], goal: [f64; 2]) -> Self {
         let n = model.num_joints();
         Self {
             layout,
+            start,
+            goal,
             previous_action: vec![0.0; n],
             previous_qd: vec![0.0; n],
             air: AirTime::new(model.num_feet()),
@@ -82,7 +91,14 @@ impl FromRows {
             .map(|f| *f == 1.0)
             .collect();
         let touchdown = self.air.update(&feet, dt);
-        let z = obs[self.layout.trunk_position()][2];
+        let position = &obs[self.layout.trunk_position()];
+        let z = position[2];
+        let trunk = [position[0], position[1]];
+        let [qw, qx, qy, qz] = obs[self.layout.trunk_rotation()] else {
+            panic!("{at}: four rotation rows")
+        };
+        let rotation = UnitQuaternion::new_unchecked(Quaternion::new(qw, qx, qy, qz));
+        let heading = rotation * Vector3::x();
         let expected = [
             (
                 "action_rate",
@@ -95,6 +111,11 @@ impl FromRows {
             ),
             ("collision", obs[self.layout.trunk_contact()]),
             ("feet_air_time", terms::feet_air_time(touchdown, 0.5, true)),
+            (
+                "goal_heading",
+                terms::goal_heading(trunk, [heading.x, heading.y], self.goal),
+            ),
+            ("goal_line", terms::goal_line(self.start, self.goal, trunk)),
         ];
         for (name, value) in expected {
             let got = w
@@ -128,13 +149,15 @@ fn reward_is_the_spec_reward_plus_the_recorded_terms<B: Backend>(steps: usize) {
         .reset(Some(0), &ResetOptions::default())
         .unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(r0.info.regularizers.map(|r| r.reward), Some(0.0));
+    let xy = |p: [f64; 3]| [p[0], p[1]];
+    let (start, goal) = (xy(r0.info.initial_position), xy(r0.info.goal));
     let scales = reg.config().regularizers.resolve(model.standing_height());
     assert!(scales.on().iter().all(|on| *on));
     let dt = reg.env_dt();
     let layout = reg.observation_layout().clone();
     let mut policy = Trot::new(&model, TrotParams::default()).unwrap_or_else(|e| panic!("{e}"));
     let mut a = vec![0.0; model.num_joints()];
-    let mut rows = FromRows::new(&model, layout);
+    let mut rows = FromRows::new(&model, layout, start, goal);
     let (mut slipped, mut pushed) = (false, false);
     for t in 1..=steps {
         policy.act(&reg.policy_input(), &mut a);

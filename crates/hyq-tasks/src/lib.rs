@@ -32,8 +32,8 @@ pub mod terms;
 pub use command::{Command, CommandConfig, CommandSampler, ResamplingRule, ResamplingTiming};
 pub use error::ConfigError;
 pub use regularizers::{
-    REGULARIZER_NAMES, RegularizerConfig, RegularizerPreset, RegularizerScales, RegularizerTerms,
-    ReportedRegularizers,
+    GoalGeometry, REGULARIZER_NAMES, RegularizerConfig, RegularizerPreset, RegularizerScales,
+    RegularizerTerms, ReportedRegularizers,
 };
 pub use scales::{Preset, RewardScales, TERM_NAMES, TermScales, TermValues, VelocityConfig};
 pub use step::{AirTime, FootVelocity, VelocityOutcome, VelocitySnapshot, evaluate};

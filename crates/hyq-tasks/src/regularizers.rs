@@ -16,6 +16,8 @@
 //! | `foot_slip` | Σ ‖v_foot,xy‖² over feet in contact | 0 (Playground's −0.1) | (none) |
 //! | `base_height` | (h − h_target)² | 0 | `base_height` |
 //! | `collision` | penalised bodies touching the ground | −1.0 | `collision` |
+//! | `goal_heading` | \|∠(heading, bearing to the goal)\| | 0 | (none: the reach's shaping) |
+//! | `goal_line` | distance off the start–goal line | 0 | (none: the reach's shaping) |
 //! | `feet_air_time_threshold_s` | t_min | 0.5 | `feet_air_time`'s 0.5 |
 //! | `base_height_target_m` | h_target | the robot's standing height | `base_height_target` |
 //!
@@ -126,6 +128,10 @@ regularizers! {
     base_height = 0.0;
     /// Penalised bodies touching the ground.
     collision = -1.0;
+    /// |∠(trunk heading, bearing to the goal)| (rad).
+    goal_heading = 0.0;
+    /// The trunk's horizontal distance from the start–goal line (m).
+    goal_line = 0.0;
 }
 
 /// The scales a `[regularizers]` starts from.
@@ -235,8 +241,25 @@ pub struct RegularizerSnapshot<'a> {
     pub base_height: f64,
     /// Which penalised bodies touched the ground during the step.
     pub penalised_contacts: &'a [bool],
+    /// The goal task's geometry at the end of the step.
+    pub goal: GoalGeometry,
     /// Δt_env (s).
     pub env_dt: f64,
+}
+
+/// Where the trunk is and faces, and where its episode started and its goal is: the goal terms'
+/// inputs, horizontal (world x and y, m).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct GoalGeometry {
+    /// The trunk frame origin (C^t).
+    pub trunk: [f64; 2],
+    /// The trunk's x axis, horizontal part (not normalised; zero when it points straight up or
+    /// down).
+    pub heading: [f64; 2],
+    /// The episode's start (C^0).
+    pub start: [f64; 2],
+    /// The goal (G).
+    pub goal: [f64; 2],
 }
 
 /// Every regulariser's value on the step `s` (off terms too; the sum leaves them out).
@@ -253,6 +276,8 @@ pub fn values(scales: &RegularizerScales, s: &RegularizerSnapshot<'_>) -> Regula
         foot_slip: terms::foot_slip(s.foot_velocity_xy, s.foot_contacts, true),
         base_height: terms::base_height(s.base_height, scales.base_height_target_m),
         collision: terms::collision(s.penalised_contacts),
+        goal_heading: terms::goal_heading(s.goal.trunk, s.goal.heading, s.goal.goal),
+        goal_line: terms::goal_line(s.goal.start, s.goal.goal, s.goal.trunk),
     }
 }
 

@@ -19,6 +19,8 @@
 //! | `termination` | 1 on a terminating step | both |
 //! | `base_height` | (h − h_target)², h the trunk's height above the ground | legged_gym |
 //! | `collision` | the number of penalised bodies touching the ground | legged_gym |
+//! | `goal_heading` | the angle between the trunk's heading and the bearing to the goal | (the reach's) |
+//! | `goal_line` | the trunk's distance from the line through the start and the goal | (the reach's) |
 //!
 //! "Moving" and "standing" compare the command's norm with the preset's gate.
 
@@ -150,4 +152,31 @@ pub fn base_height(height: f64, target: f64) -> f64 {
 /// the bodies whose contact force exceeds 0.1 N; here a body's contact flag).
 pub fn collision(contacts: &[bool]) -> f64 {
     contacts.iter().map(|c| f64::from(u8::from(*c))).sum()
+}
+
+/// The angle (rad, in [0, π]) between the trunk's `heading` and the direction from the trunk
+/// at `trunk` to `goal`, all horizontal (world x and y): 0 when the trunk faces the goal. A zero
+/// heading (the trunk's x axis vertical) or a trunk on the goal leaves no angle: 0.
+pub fn goal_heading(trunk: [f64; 2], heading: [f64; 2], goal: [f64; 2]) -> f64 {
+    let to_goal = [goal[0] - trunk[0], goal[1] - trunk[1]];
+    let cross = heading[0] * to_goal[1] - heading[1] * to_goal[0];
+    let dot = heading[0] * to_goal[0] + heading[1] * to_goal[1];
+    if cross == 0.0 && dot == 0.0 {
+        // atan2 of two signed zeros may be ±π.
+        return 0.0;
+    }
+    cross.atan2(dot).abs()
+}
+
+/// The horizontal distance (m) from `trunk` to the line through `start` and `goal` (world x and
+/// y): how far the trunk is off the straight walk from its start to the goal. A goal straight
+/// above the start leaves no line: the horizontal distance from the start.
+pub fn goal_line(start: [f64; 2], goal: [f64; 2], trunk: [f64; 2]) -> f64 {
+    let line = [goal[0] - start[0], goal[1] - start[1]];
+    let off = [trunk[0] - start[0], trunk[1] - start[1]];
+    let length = line[0].hypot(line[1]);
+    if length == 0.0 {
+        return off[0].hypot(off[1]);
+    }
+    ((line[0] * off[1] - line[1] * off[0]) / length).abs()
 }

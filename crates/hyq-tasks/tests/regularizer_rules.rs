@@ -1,5 +1,5 @@
-//! The gait regularisers of `[regularizers]`: each is the velocity task's own function of
-//! numbers, their sum is Σ s·r·Δt over the terms that are on and nothing else, off is exactly
+//! The regularisers of `[regularizers]`: each gait term is the velocity task's own function of
+//! numbers, the goal terms measure the heading and the line to the goal, their sum is Σ s·r·Δt over the terms that are on and nothing else, off is exactly
 //! nothing, the preset is legged_gym's, bad keys are named, and a report writes the terms that
 //! are on and reads them back.
 
@@ -7,7 +7,8 @@ use hyq_tasks::regularizers::{REGULARIZER_COUNT, RegularizerSnapshot, reward, va
 use hyq_tasks::step::AirTime;
 use hyq_tasks::terms;
 use hyq_tasks::{
-    REGULARIZER_NAMES, RegularizerConfig, RegularizerPreset, RegularizerTerms, ReportedRegularizers,
+    GoalGeometry, REGULARIZER_NAMES, RegularizerConfig, RegularizerPreset, RegularizerTerms,
+    ReportedRegularizers,
 };
 use proptest::prelude::*;
 
@@ -16,7 +17,7 @@ fn finite() -> impl Strategy<Value = f64> {
 }
 
 fn scales() -> impl Strategy<Value = [f64; REGULARIZER_COUNT]> {
-    proptest::array::uniform7(prop_oneof![Just(0.0), -10.0..10.0f64])
+    proptest::array::uniform9(prop_oneof![Just(0.0), -10.0..10.0f64])
 }
 
 proptest! {
@@ -31,6 +32,59 @@ proptest! {
         prop_assert_eq!(terms::base_height(target, target), 0.0);
     }
 
+    /// The heading term is the angle the trunk must turn through to face the goal: 0 facing
+    /// it, π facing away, the same either side, unchanged by how far the goal is along the
+    /// bearing or how long the heading vector is.
+    #[test]
+    fn goal_heading_is_the_angle_to_the_bearing(
+        trunk in proptest::array::uniform2(-100.0..100.0f64),
+        bearing in -3.1..3.1f64,
+        off in -3.1..3.1f64,
+        distance in 0.01..100.0f64,
+        length in 0.01..1.0f64,
+    ) {
+        let goal = [trunk[0] + distance * bearing.cos(), trunk[1] + distance * bearing.sin()];
+        let facing = [length * bearing.cos(), length * bearing.sin()];
+        let turned = [length * (bearing + off).cos(), length * (bearing + off).sin()];
+        let mirrored = [length * (bearing - off).cos(), length * (bearing - off).sin()];
+        let v = terms::goal_heading(trunk, turned, goal);
+        prop_assert!((0.0..=std::f64::consts::PI).contains(&v));
+        prop_assert!((v - off.abs()).abs() < 1e-9, "{v} vs {off}");
+        prop_assert!((v - terms::goal_heading(trunk, mirrored, goal)).abs() < 1e-9);
+        prop_assert!(terms::goal_heading(trunk, facing, goal) < 1e-9);
+        let away = [-facing[0], -facing[1]];
+        prop_assert!((terms::goal_heading(trunk, away, goal) - std::f64::consts::PI).abs() < 1e-9);
+        // No direction to miss: a trunk on the goal, or a heading with no horizontal part.
+        prop_assert_eq!(terms::goal_heading(trunk, turned, trunk), 0.0);
+        prop_assert_eq!(terms::goal_heading(trunk, [0.0, 0.0], goal), 0.0);
+    }
+
+    /// The line term is the distance off the start–goal line: 0 on it (before the goal, past
+    /// it or behind the start), the sideways offset for a line along x, the same on either side,
+    /// and unchanged by sliding the trunk along the line.
+    #[test]
+    fn goal_line_is_the_distance_off_the_line(
+        start in proptest::array::uniform2(-50.0..50.0f64),
+        direction in -3.2..3.2f64,
+        k in 0.1..50.0f64,
+        along in -60.0..60.0f64,
+        side in -5.0..5.0f64,
+    ) {
+        let (c, s) = (direction.cos(), direction.sin());
+        let goal = [start[0] + k * c, start[1] + k * s];
+        let at = |a: f64, d: f64| [start[0] + a * c - d * s, start[1] + a * s + d * c];
+        let v = terms::goal_line(start, goal, at(along, side));
+        prop_assert!((v - side.abs()).abs() < 1e-9, "{v} vs {side}");
+        prop_assert!((terms::goal_line(start, goal, at(along, -side)) - v).abs() < 1e-9);
+        prop_assert!((terms::goal_line(start, goal, at(along + 7.0, side)) - v).abs() < 1e-9);
+        prop_assert!(terms::goal_line(start, goal, at(along, 0.0)) < 1e-9);
+        let along_x = terms::goal_line([0.0, 0.0], [k, 0.0], [along, side]);
+        prop_assert!((along_x - side.abs()).abs() <= 1e-12, "{along_x} vs {side}");
+        // A goal straight above the start: the horizontal distance from the start.
+        let p = at(along, side);
+        prop_assert_eq!(terms::goal_line(start, start, p), (p[0] - start[0]).hypot(p[1] - start[1]));
+    }
+
     /// The collision term counts the bodies in contact.
     #[test]
     fn collision_counts_the_bodies_in_contact(flags in proptest::collection::vec(any::<bool>(), 0..8)) {
@@ -43,7 +97,7 @@ proptest! {
     #[test]
     fn the_sum_is_the_scaled_terms_that_are_on(
         s in scales(),
-        v in proptest::array::uniform7(finite()),
+        v in proptest::array::uniform9(finite()),
         dt in 0.001..0.1f64,
     ) {
         let scales = RegularizerTerms::from_array(s);
@@ -78,7 +132,15 @@ proptest! {
         feet in proptest::array::uniform4(any::<bool>()),
         h in 0.0..1.5f64,
         trunk in any::<bool>(),
+        xy in proptest::array::uniform4(-100.0..100.0f64),
+        yaw in -4.0..4.0f64,
     ) {
+        let goal = GoalGeometry {
+            trunk: [xy[0], xy[1]],
+            heading: [yaw.cos(), yaw.sin()],
+            start: [0.0, 0.0],
+            goal: [xy[2], xy[3]],
+        };
         let config = RegularizerConfig { preset: RegularizerPreset::LeggedGym, ..Default::default() };
         let scales = config.resolve(0.6);
         let dt = 0.01;
@@ -93,6 +155,7 @@ proptest! {
             foot_contacts: &feet,
             base_height: h,
             penalised_contacts: &[trunk],
+            goal,
             env_dt: dt,
         });
         prop_assert!(v.to_array().iter().all(|x| x.is_finite()));
@@ -103,14 +166,16 @@ proptest! {
         prop_assert_eq!(v.foot_slip, terms::foot_slip(&vel, &feet, true));
         prop_assert_eq!(v.base_height, terms::base_height(h, 0.6));
         prop_assert_eq!(v.collision, f64::from(u8::from(trunk)));
+        prop_assert_eq!(v.goal_heading, terms::goal_heading(goal.trunk, goal.heading, goal.goal));
+        prop_assert_eq!(v.goal_line, terms::goal_line(goal.start, goal.goal, goal.trunk));
         prop_assert!(reward(&scales.terms, &v, dt).is_finite());
     }
 
     /// A report writes the terms that are on, in order, and reads back to itself.
     #[test]
     fn a_report_writes_the_terms_that_are_on(
-        v in proptest::array::uniform7(finite()),
-        on in proptest::array::uniform7(any::<bool>()),
+        v in proptest::array::uniform9(finite()),
+        on in proptest::array::uniform9(any::<bool>()),
     ) {
         let mut values = v;
         for k in 0..REGULARIZER_COUNT {

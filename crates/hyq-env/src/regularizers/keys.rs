@@ -47,6 +47,8 @@ regularizer_keys! {
     4 => "foot_slip",
     5 => "base_height",
     6 => "collision",
+    7 => "goal_heading",
+    8 => "goal_line",
 }
 
 /// The keys of [`REGULARIZER_INFO_KEYS`] `info` holds: none with the regularisers off, else

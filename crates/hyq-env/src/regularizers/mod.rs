@@ -7,9 +7,10 @@
 //! `Σ s·r·Δt_env` (docs/spec.md §7.12). Off (every scale 0), the environment holds none of
 //! this state and reports nothing of it.
 
+use hyq_physics::na::{Point3, Vector3};
 use hyq_physics::{RobotModel, TrunkState};
 use hyq_tasks::regularizers::{RegularizerSnapshot, reward, values};
-use hyq_tasks::{REGULARIZER_NAMES, RegularizerScales, ReportedRegularizers};
+use hyq_tasks::{GoalGeometry, REGULARIZER_NAMES, RegularizerScales, ReportedRegularizers};
 use serde::Serialize;
 
 use crate::config::{EnvConfig, TaskKind};
@@ -79,7 +80,8 @@ impl Regularizers {
 
     /// Judges the step that ended in `trunk` (its height above the ground `base_height`) and
     /// `qd`, with the last sub-step's `torques`, the latched `feet` flags and the `penalised`
-    /// bodies' latched flags (the body poses were just read into the gait history).
+    /// bodies' latched flags, and the goal task's `goal` geometry (the body poses were just read
+    /// into the gait history).
     /// A term that is on and not finite (a joint speed's change over a Δt_env of 10⁻²⁰⁰ s, say)
     /// is the step's divergence: nothing non-finite is reported.
     pub(crate) fn evaluate_step(
@@ -89,6 +91,7 @@ impl Regularizers {
         torques: &[f64],
         feet: &[bool],
         penalised: &[bool],
+        goal: GoalGeometry,
     ) -> Result<(), Divergence> {
         let g = self.gait.advance(feet);
         let v = values(
@@ -104,6 +107,7 @@ impl Regularizers {
                 foot_contacts: feet,
                 base_height,
                 penalised_contacts: penalised,
+                goal,
                 env_dt: g.env_dt,
             },
         );
@@ -140,6 +144,23 @@ impl Regularizers {
     /// Reports a diverged step: reward and terms 0.
     pub(crate) fn diverged(&mut self) {
         self.info = self.neutral();
+    }
+}
+
+/// The goal terms' geometry: the `trunk`'s position and heading, the episode's `start` and
+/// `goal` (world x and y).
+pub(crate) fn goal_geometry(
+    trunk: &TrunkState,
+    start: [f64; 3],
+    goal: &Point3<f64>,
+) -> GoalGeometry {
+    let p = trunk.pose.translation.vector;
+    let heading = trunk.pose.rotation * Vector3::x();
+    GoalGeometry {
+        trunk: [p.x, p.y],
+        heading: [heading.x, heading.y],
+        start: [start[0], start[1]],
+        goal: [goal.x, goal.y],
     }
 }
 
