@@ -16,7 +16,9 @@ environment settings; --backends rapier,dart,mujoco trains on several engines at
 envs assigned round-robin to them), evaluates every checkpoint on each and keeps the one whose
 worst engine reaches most often (eval.json and evals.csv then hold each engine's figures);
 --eps-curriculum START:END:STEPS[:STAGES] trains with a reach cube shrinking in stages (eval.json
-then lists each change) while the checkpoints are judged on the environment's own cube. N envs stepped in Rust (hyq.sb3.HyQVecEnv, same-step resets with SB3's
+then lists each change) while the checkpoints are judged on the environment's own cube;
+--resume CHECKPOINT continues a run's model with its observation and reward statistics (a
+second stage with other environment keys or PPO settings). N envs stepped in Rust (hyq.sb3.HyQVecEnv, same-step resets with SB3's
 terminal_observation and TimeLimit.truncated, so PPO bootstraps timeouts), VecNormalize on
 observations and rewards, a fixed budget of env steps. Same seed and --torch-threads: the same
 run, bit for bit. It writes into OUT:
@@ -255,12 +257,37 @@ def parse_args() -> argparse.Namespace:
                              "END m in STAGES stages (default 5), the last from STEPS env steps "
                              "on; the checkpoints are judged on the environment's own cube "
                              "(default: off, the cube fixed)")
+    parser.add_argument("--resume", type=Path, metavar="MODEL",
+                        help="start from a saved model (RUN/model.zip or RUN/checkpoints/model_N.zip) "
+                             "and the VecNormalize statistics saved with it, instead of from scratch; "
+                             "--ppo's settings and the learning rate's schedule apply from its first "
+                             "step, --steps counts the steps added")
     parser.add_argument("--env", type=json.loads, default={},
                         help='JSON object of environment keys to change, e.g. \'{"fall_penalty": 0}\'')
     parser.add_argument("--ppo", type=json.loads, default={}, help="JSON object of PPO settings to change")
     parser.add_argument("--net", type=json.loads, default={},
                         help='JSON object of network settings to change: pi, vf, log_std_init, activation')
     return parser.parse_args()
+
+
+def statistics_of(model: Path) -> Path:
+    """The VecNormalize statistics saved with `model`: checkpoints/vecnormalize_N.pkl beside a
+    checkpoint, RUN/vecnormalize.pkl beside a run's final model."""
+    if model.stem.startswith("model_"):
+        return model.with_name(f"vecnormalize_{model.stem[len('model_'):]}.pkl")
+    return model.with_name("vecnormalize.pkl")
+
+
+def command_of(args: argparse.Namespace) -> str:
+    """This run's command; a resumed run's is preceded by the command of the run it resumes, so
+    the exported file names every stage."""
+    command = " ".join(sys.argv)
+    if args.resume is not None:
+        run = args.resume.parent
+        prior = (run.parent if run.name == "checkpoints" else run) / "config.json"
+        if prior.is_file():
+            command = f"{json.loads(prior.read_text())['command']} && {command}"
+    return command
 
 
 def main() -> None:
@@ -283,12 +310,18 @@ def main() -> None:
     if net["activation"] not in ACTIVATIONS:
         raise SystemExit(f"error: --net activation {net['activation']!r}: expected one of {sorted(ACTIVATIONS)}")
     curriculum = None if args.eps_curriculum is None else recipes.eps_curriculum(args.eps_curriculum)
+    if args.resume is not None:
+        # Before OUT is made, so a mistyped model leaves nothing behind.
+        for path in (args.resume, statistics_of(args.resume)):
+            if not path.is_file():
+                raise SystemExit(f"error: --resume {args.resume}: no such file {path}")
     args.out.mkdir(parents=True, exist_ok=True)
     config = {
         **run, "trainer": "sb3", "ppo": ppo_kwargs, "net": net, "steps": args.steps or steps,
         "envs": args.envs, "seed": args.seed, "torch_threads": args.torch_threads,
         **({} if curriculum is None else {"eps_curriculum": curriculum}),
-        "commit": recipes.git_commit(), "command": " ".join(sys.argv),
+        "commit": recipes.git_commit(), "command": command_of(args),
+        "resume": None if args.resume is None else str(args.resume),
     }
     recipes.write_json(args.out / "config.json", config)
 
@@ -311,8 +344,13 @@ def main() -> None:
 
         callbacks.append(EpsCurriculum(curriculum, make_stage_env, args.seed))
         venv = make_stage_env(callbacks[0].changes[0][1], args.seed)
-    venv = VecNormalize(VecMonitor(venv), norm_obs=True, norm_reward=True, clip_obs=10.0,
-                        gamma=ppo_kwargs["gamma"])
+    if args.resume is None:
+        venv = VecNormalize(VecMonitor(venv), norm_obs=True, norm_reward=True, clip_obs=10.0,
+                            gamma=ppo_kwargs["gamma"])
+    else:
+        # The statistics go on learning, as they did in the run resumed.
+        venv = VecNormalize.load(str(statistics_of(args.resume)), VecMonitor(venv))
+        venv.training, venv.norm_reward, venv.gamma = True, True, ppo_kwargs["gamma"]
     # Saved with the statistics, so an export can tell them from another robot's.
     venv.hyq_robot = run["robot"]
     sb3_kwargs = {k: v for k, v in ppo_kwargs.items() if k != "lr_schedule"}
@@ -323,19 +361,24 @@ def main() -> None:
         sb3_kwargs["learning_rate"] = lambda remaining: start_lr * remaining
     elif schedule != "constant":
         raise SystemExit(f"error: --ppo lr_schedule {schedule!r}: expected constant or linear")
-    model = PPO(
-        "MlpPolicy",
-        venv,
-        policy_kwargs={
-            "net_arch": {"pi": net["pi"], "vf": net["vf"]},
-            "activation_fn": ACTIVATIONS[net["activation"]],
-            "log_std_init": net["log_std_init"],
-        },
-        seed=args.seed,
-        device="cpu",
-        verbose=0,
-        **sb3_kwargs,
-    )
+    if args.resume is None:
+        model = PPO(
+            "MlpPolicy",
+            venv,
+            policy_kwargs={
+                "net_arch": {"pi": net["pi"], "vf": net["vf"]},
+                "activation_fn": ACTIVATIONS[net["activation"]],
+                "log_std_init": net["log_std_init"],
+            },
+            seed=args.seed,
+            device="cpu",
+            verbose=0,
+            **sb3_kwargs,
+        )
+    else:
+        # The saved networks (--net does not apply), with this run's PPO settings and schedule.
+        model = PPO.load(args.resume, env=venv, device="cpu", custom_objects=sb3_kwargs)
+        model.set_random_seed(args.seed)
     curve = Curve(args.out, args.curve_episodes, args.checkpoint_every or every, run, clock)
     model.learn(total_timesteps=config["steps"], callback=CallbackList([curve, *callbacks]),
                 progress_bar=True)

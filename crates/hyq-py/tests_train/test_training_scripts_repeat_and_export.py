@@ -375,3 +375,34 @@ def test_a_recipe_of_the_other_trainer_is_refused_in_one_line(tmp_path: Path) ->
         done = script(name, "--recipe", recipe, "--out", tmp_path / "never")
         assert done.returncode == 2 and "invalid choice" in done.stderr and "Traceback" not in done.stderr
     assert not (tmp_path / "never").exists()
+
+
+def test_an_sb3_run_resumes_a_checkpoint_with_its_statistics(sb3_runs, tmp_path) -> None:
+    """--resume starts from the checkpoint's networks and VecNormalize statistics: at a learning
+    rate of 0 the policy stays the checkpoint's to the bit while the statistics go on counting,
+    and the run records the command of the run it resumed before its own."""
+    import pickle
+
+    from stable_baselines3 import PPO
+
+    source = sb3_runs[0] / "checkpoints" / "model_512.zip"
+    args = [a if a != json.dumps({"n_steps": 128, "batch_size": 256})
+            else json.dumps({"n_steps": 128, "batch_size": 256, "learning_rate": 0.0}) for a in SB3]
+    args[args.index("--steps") + 1] = "512"
+    run = train("train_sb3_ppo.py", [*args, "--resume", source], tmp_path / "resumed")
+    before = PPO.load(source, device="cpu").policy.state_dict()
+    after = PPO.load(run / "model.zip", device="cpu").policy.state_dict()
+    assert before.keys() == after.keys()
+    for key in before:
+        assert torch.equal(before[key], after[key]), key
+    old = pickle.loads((sb3_runs[0] / "checkpoints" / "vecnormalize_512.pkl").read_bytes())
+    new = pickle.loads((run / "vecnormalize.pkl").read_bytes())
+    # Both counted 512 steps and a reset of the 4 envs on top of SB3's 1e-4.
+    assert new.obs_rms.count == pytest.approx(2 * old.obs_rms.count - 1e-4), new.obs_rms.count
+    config = json.loads((run / "config.json").read_text())
+    first = json.loads((sb3_runs[0] / "config.json").read_text())["command"]
+    assert config["resume"] == str(source)
+    assert config["command"].startswith(first + " && ")
+    missing = script("train_sb3_ppo.py", *args, "--resume", tmp_path / "none.zip", "--out", tmp_path / "x")
+    assert missing.returncode != 0 and "--resume" in missing.stderr.splitlines()[-1]
+    assert not (tmp_path / "x").exists()
