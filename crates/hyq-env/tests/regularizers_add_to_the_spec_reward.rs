@@ -5,7 +5,7 @@
 //! and MuJoCo with `--features dart` / `mujoco`, a trotting episode's every step has the reward
 //! of the same episode without them plus the terms its record holds, scaled, and the terms the
 //! record's own rows determine (action rate, joint acceleration, base height, collision, feet
-//! air time, goal heading and line) are recomputed from those rows bit for bit.
+//! air time, goal heading, line and approach) are recomputed from those rows bit for bit.
 
 mod common;
 
@@ -21,13 +21,14 @@ use hyq_spec::ObservationLayout;
 use hyq_tasks::step::AirTime;
 use hyq_tasks::{REGULARIZER_NAMES, RegularizerTerms, terms};
 
-/// Every regulariser on: legged_gym's preset plus the four it leaves at 0.
+/// Every regulariser on: legged_gym's preset plus the five it leaves at 0.
 const ALL_ON: &[(&str, &str)] = &[
     ("regularizers.preset", "legged_gym"),
     ("regularizers.foot_slip", "-0.1"),
     ("regularizers.base_height", "-1.0"),
     ("regularizers.goal_heading", "-0.5"),
     ("regularizers.goal_line", "-10.0"),
+    ("regularizers.goal_line_approach", "60.0"),
 ];
 
 fn config(pairs: &[(&str, &str)]) -> EnvConfig {
@@ -56,6 +57,8 @@ struct FromRows {
     /// The episode's start and goal (world x and y).
     start: [f64; 2],
     goal: [f64; 2],
+    /// The previous record's distance off the start–goal line (0 after reset).
+    previous_line: f64,
     previous_action: Vec<f64>,
     previous_qd: Vec<f64>,
     air: AirTime,
@@ -68,6 +71,7 @@ impl FromRows {
             layout,
             start,
             goal,
+            previous_line: 0.0,
             previous_action: vec![0.0; n],
             previous_qd: vec![0.0; n],
             air: AirTime::new(model.num_feet()),
@@ -99,6 +103,7 @@ impl FromRows {
         };
         let rotation = UnitQuaternion::new_unchecked(Quaternion::new(qw, qx, qy, qz));
         let heading = rotation * Vector3::x();
+        let line = terms::goal_line(self.start, self.goal, trunk);
         let expected = [
             (
                 "action_rate",
@@ -115,7 +120,11 @@ impl FromRows {
                 "goal_heading",
                 terms::goal_heading(trunk, [heading.x, heading.y], self.goal),
             ),
-            ("goal_line", terms::goal_line(self.start, self.goal, trunk)),
+            ("goal_line", line),
+            (
+                "goal_line_approach",
+                terms::goal_line_approach(self.previous_line, line, dt),
+            ),
         ];
         for (name, value) in expected {
             let got = w
@@ -125,6 +134,7 @@ impl FromRows {
         }
         self.previous_action.copy_from_slice(&record.action);
         self.previous_qd.copy_from_slice(qd);
+        self.previous_line = line;
         let torques = w.get("torques").unwrap_or(f64::NAN);
         let slip = w.get("foot_slip").unwrap_or(f64::NAN);
         assert!(

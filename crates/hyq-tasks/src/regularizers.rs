@@ -18,6 +18,7 @@
 //! | `collision` | penalised bodies touching the ground | −1.0 | `collision` |
 //! | `goal_heading` | \|∠(heading, bearing to the goal)\| | 0 | (none: the reach's shaping) |
 //! | `goal_line` | distance off the start–goal line | 0 | (none: the reach's shaping) |
+//! | `goal_line_approach` | (d_prev − d) / Δt, d the distance off that line | 0 | (none: the reach's shaping) |
 //! | `feet_air_time_threshold_s` | t_min | 0.5 | `feet_air_time`'s 0.5 |
 //! | `base_height_target_m` | h_target | the robot's standing height | `base_height_target` |
 //!
@@ -132,6 +133,8 @@ regularizers! {
     goal_heading = 0.0;
     /// The trunk's horizontal distance from the start–goal line (m).
     goal_line = 0.0;
+    /// How fast that distance falls (m/s).
+    goal_line_approach = 0.0;
 }
 
 /// The scales a `[regularizers]` starts from.
@@ -243,6 +246,9 @@ pub struct RegularizerSnapshot<'a> {
     pub penalised_contacts: &'a [bool],
     /// The goal task's geometry at the end of the step.
     pub goal: GoalGeometry,
+    /// The trunk's distance off the start–goal line at the end of the previous step (m; 0
+    /// after reset).
+    pub previous_goal_line: f64,
     /// Δt_env (s).
     pub env_dt: f64,
 }
@@ -264,6 +270,7 @@ pub struct GoalGeometry {
 
 /// Every regulariser's value on the step `s` (off terms too; the sum leaves them out).
 pub fn values(scales: &RegularizerScales, s: &RegularizerSnapshot<'_>) -> RegularizerTerms {
+    let goal_line = terms::goal_line(s.goal.start, s.goal.goal, s.goal.trunk);
     RegularizerTerms {
         action_rate: terms::action_rate(s.action, s.previous_action),
         torques: terms::torques(s.torques),
@@ -277,7 +284,8 @@ pub fn values(scales: &RegularizerScales, s: &RegularizerSnapshot<'_>) -> Regula
         base_height: terms::base_height(s.base_height, scales.base_height_target_m),
         collision: terms::collision(s.penalised_contacts),
         goal_heading: terms::goal_heading(s.goal.trunk, s.goal.heading, s.goal.goal),
-        goal_line: terms::goal_line(s.goal.start, s.goal.goal, s.goal.trunk),
+        goal_line,
+        goal_line_approach: terms::goal_line_approach(s.previous_goal_line, goal_line, s.env_dt),
     }
 }
 

@@ -21,6 +21,7 @@
 //! | `collision` | the number of penalised bodies touching the ground | legged_gym |
 //! | `goal_heading` | the angle between the trunk's heading and the bearing to the goal | (the reach's) |
 //! | `goal_line` | the trunk's distance from the line through the start and the goal | (the reach's) |
+//! | `goal_line_approach` | how fast that distance falls: (d_prev − d) / Δt | (the reach's) |
 //!
 //! "Moving" and "standing" compare the command's norm with the preset's gate.
 
@@ -179,4 +180,12 @@ pub fn goal_line(start: [f64; 2], goal: [f64; 2], trunk: [f64; 2]) -> f64 {
         return off[0].hypot(off[1]);
     }
     ((line[0] * off[1] - line[1] * off[0]) / length).abs()
+}
+
+/// How fast the trunk closes on the start–goal line (m/s): the step's fall of the distance
+/// [`goal_line`] gives, `previous` (the previous step's, 0 after reset: the trunk starts on the
+/// line) minus `now`, over `dt`. Positive towards the line, negative away; over an episode it
+/// sums, times Δt, to −(the final distance), whatever the path.
+pub fn goal_line_approach(previous: f64, now: f64, dt: f64) -> f64 {
+    (previous - now) / dt
 }

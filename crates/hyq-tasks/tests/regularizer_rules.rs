@@ -17,7 +17,7 @@ fn finite() -> impl Strategy<Value = f64> {
 }
 
 fn scales() -> impl Strategy<Value = [f64; REGULARIZER_COUNT]> {
-    proptest::array::uniform9(prop_oneof![Just(0.0), -10.0..10.0f64])
+    proptest::array::uniform10(prop_oneof![Just(0.0), -10.0..10.0f64])
 }
 
 proptest! {
@@ -85,6 +85,27 @@ proptest! {
         prop_assert_eq!(terms::goal_line(start, start, p), (p[0] - start[0]).hypot(p[1] - start[1]));
     }
 
+    /// The approach is the line distance's fall over the step: along any path from the start
+    /// (on the line) its sum times Δt is minus the final distance, and it is positive exactly
+    /// on the steps that close on the line.
+    #[test]
+    fn goal_line_approach_sums_to_the_final_distance(
+        path in proptest::collection::vec(proptest::array::uniform2(-2.0..2.0f64), 1..50),
+        dt in 0.001..0.1f64,
+    ) {
+        let (start, goal) = ([0.0, 0.0], [5.0, 0.0]);
+        let mut previous = 0.0;
+        let mut sum = 0.0;
+        for p in &path {
+            let now = terms::goal_line(start, goal, *p);
+            let r = terms::goal_line_approach(previous, now, dt);
+            prop_assert_eq!(r > 0.0, now < previous);
+            sum += r * dt;
+            previous = now;
+        }
+        prop_assert!((sum + previous).abs() < 1e-9, "{sum} vs {previous}");
+    }
+
     /// The collision term counts the bodies in contact.
     #[test]
     fn collision_counts_the_bodies_in_contact(flags in proptest::collection::vec(any::<bool>(), 0..8)) {
@@ -97,7 +118,7 @@ proptest! {
     #[test]
     fn the_sum_is_the_scaled_terms_that_are_on(
         s in scales(),
-        v in proptest::array::uniform9(finite()),
+        v in proptest::array::uniform10(finite()),
         dt in 0.001..0.1f64,
     ) {
         let scales = RegularizerTerms::from_array(s);
@@ -134,6 +155,7 @@ proptest! {
         trunk in any::<bool>(),
         xy in proptest::array::uniform4(-100.0..100.0f64),
         yaw in -4.0..4.0f64,
+        previous_line in 0.0..100.0f64,
     ) {
         let goal = GoalGeometry {
             trunk: [xy[0], xy[1]],
@@ -156,6 +178,7 @@ proptest! {
             base_height: h,
             penalised_contacts: &[trunk],
             goal,
+            previous_goal_line: previous_line,
             env_dt: dt,
         });
         prop_assert!(v.to_array().iter().all(|x| x.is_finite()));
@@ -168,14 +191,15 @@ proptest! {
         prop_assert_eq!(v.collision, f64::from(u8::from(trunk)));
         prop_assert_eq!(v.goal_heading, terms::goal_heading(goal.trunk, goal.heading, goal.goal));
         prop_assert_eq!(v.goal_line, terms::goal_line(goal.start, goal.goal, goal.trunk));
+        prop_assert_eq!(v.goal_line_approach, terms::goal_line_approach(previous_line, v.goal_line, dt));
         prop_assert!(reward(&scales.terms, &v, dt).is_finite());
     }
 
     /// A report writes the terms that are on, in order, and reads back to itself.
     #[test]
     fn a_report_writes_the_terms_that_are_on(
-        v in proptest::array::uniform9(finite()),
-        on in proptest::array::uniform9(any::<bool>()),
+        v in proptest::array::uniform10(finite()),
+        on in proptest::array::uniform10(any::<bool>()),
     ) {
         let mut values = v;
         for k in 0..REGULARIZER_COUNT {

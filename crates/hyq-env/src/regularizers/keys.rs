@@ -49,6 +49,7 @@ regularizer_keys! {
     6 => "collision",
     7 => "goal_heading",
     8 => "goal_line",
+    9 => "goal_line_approach",
 }
 
 /// The keys of [`REGULARIZER_INFO_KEYS`] `info` holds: none with the regularisers off, else

@@ -38,6 +38,8 @@ pub(crate) struct Regularizers {
     /// The previous action and joint speeds, the feet's air times and velocities.
     pub(crate) gait: GaitHistory,
     env_dt: f64,
+    /// The trunk's distance off the start–goal line after the last reset or step (m).
+    goal_line: f64,
     /// What the last reset or step reported.
     pub(crate) info: RegularizerInfo,
 }
@@ -56,6 +58,7 @@ impl Regularizers {
             scales,
             gait: GaitHistory::new(model, config.env_dt()),
             env_dt: config.env_dt(),
+            goal_line: 0.0,
             info: RegularizerInfo::default(),
         }))
     }
@@ -75,6 +78,8 @@ impl Regularizers {
     /// the gait history).
     pub(crate) fn reset(&mut self) {
         self.gait.reset();
+        // The trunk starts at C^0, on the line.
+        self.goal_line = 0.0;
         self.info = self.neutral();
     }
 
@@ -108,10 +113,12 @@ impl Regularizers {
                 base_height,
                 penalised_contacts: penalised,
                 goal,
+                previous_goal_line: self.goal_line,
                 env_dt: g.env_dt,
             },
         );
         self.gait.end_step(qd);
+        self.goal_line = v.goal_line;
         let mut masked = v.to_array();
         for (x, on) in masked.iter_mut().zip(self.on) {
             if !on {
