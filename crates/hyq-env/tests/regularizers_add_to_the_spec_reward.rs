@@ -50,7 +50,8 @@ fn scaled_sum(scales: &RegularizerTerms, record: &StepRecord<'_>, dt: f64) -> f6
 }
 
 /// The terms a record's own rows determine (action rate, joint acceleration, base height,
-/// collision, feet air time, and with the episode's start and goal the goal heading and line),
+/// collision, feet air time, and with the episode's start and goal the goal heading, line and
+/// approach),
 /// recomputed from those rows and the previous records'.
 struct FromRows {
     layout: ObservationLayout,

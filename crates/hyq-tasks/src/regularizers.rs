@@ -1,8 +1,9 @@
-//! `[regularizers]`: the legged-RL field's gait regularisers as optional reward terms of the
-//! spec's goal task, every one off unless given a scale (docs/regularizers.md).
+//! `[regularizers]`: the legged-RL field's gait regularisers, and three goal terms for the
+//! reach, as optional reward terms of the spec's goal task, every one off unless given a scale
+//! (docs/regularizers.md).
 //!
-//! Each term is one of [`crate::terms`]' functions, the velocity task's own; this module only
-//! names them, holds their scales and adds them up. A step's regulariser reward is
+//! Each term is one of [`crate::terms`]' functions (a gait term the velocity task's own, a goal
+//! term the heading or the start–goal line's geometry); this module only names them, holds their scales and adds them up. A step's regulariser reward is
 //! `Σ s_i · r_i · Δt_env` over the terms whose scale is not 0 (legged_gym multiplies every
 //! scale by the policy period), never clipped; docs/spec.md §7.12 rules how it joins the spec's
 //! reward.
