@@ -416,6 +416,19 @@ def git_commit() -> str:
         return "unknown"
 
 
+def command_with_prior(argv: list[str], resume: Path | None) -> str:
+    """The run's command (`argv` joined); a resumed run's is preceded by the command of the run
+    it resumes, read from that run's config.json (beside `resume`, or one folder up from a
+    `checkpoints/` folder), so the exported file names every stage."""
+    command = " ".join(argv)
+    if resume is not None:
+        run = resume.parent.parent if resume.parent.name == "checkpoints" else resume.parent
+        prior = run / "config.json"
+        if prior.is_file():
+            command = f"{json.loads(prior.read_text())['command']} && {command}"
+    return command
+
+
 def load_average() -> list[float]:
     """The 1, 5 and 15 minute load averages (what `uptime` prints)."""
     return [round(x, 2) for x in os.getloadavg()]

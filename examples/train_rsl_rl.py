@@ -250,16 +250,6 @@ def steps_behind(saved: dict[str, Any], path: Path) -> int:
     return int(steps or 0)
 
 
-def command_of(args: argparse.Namespace) -> str:
-    """This run's command; a resumed run's is preceded by the command of the run it resumes
-    (its config.json beside the checkpoint), so the exported file names every step."""
-    command = " ".join(sys.argv)
-    prior = args.resume.parent / "config.json" if args.resume else None
-    if prior is not None and prior.is_file():
-        command = f"{json.loads(prior.read_text())['command']} && {command}"
-    return command
-
-
 def main() -> None:
     args = parse_args()
     recipe = recipes.RECIPES[args.recipe]
@@ -292,7 +282,7 @@ def main() -> None:
         "steps": iterations * cfg["num_steps_per_env"] * args.envs, "seed": args.seed,
         "torch_threads": args.torch_threads, "commit": recipes.git_commit(),
         "resume": str(args.resume) if args.resume else None,
-        "command": command_of(args),
+        "command": recipes.command_with_prior(sys.argv, args.resume),
     }
     recipes.write_json(args.out / "config.json", config)
 

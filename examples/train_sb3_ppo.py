@@ -278,18 +278,6 @@ def statistics_of(model: Path) -> Path:
     return model.with_name("vecnormalize.pkl")
 
 
-def command_of(args: argparse.Namespace) -> str:
-    """This run's command; a resumed run's is preceded by the command of the run it resumes, so
-    the exported file names every stage."""
-    command = " ".join(sys.argv)
-    if args.resume is not None:
-        run = args.resume.parent
-        prior = (run.parent if run.name == "checkpoints" else run) / "config.json"
-        if prior.is_file():
-            command = f"{json.loads(prior.read_text())['command']} && {command}"
-    return command
-
-
 def main() -> None:
     args = parse_args()
     recipe = recipes.RECIPES[args.recipe]
@@ -320,7 +308,8 @@ def main() -> None:
         **run, "trainer": "sb3", "ppo": ppo_kwargs, "net": net, "steps": args.steps or steps,
         "envs": args.envs, "seed": args.seed, "torch_threads": args.torch_threads,
         **({} if curriculum is None else {"eps_curriculum": curriculum}),
-        "commit": recipes.git_commit(), "command": command_of(args),
+        "commit": recipes.git_commit(),
+        "command": recipes.command_with_prior(sys.argv, args.resume),
         "resume": None if args.resume is None else str(args.resume),
     }
     recipes.write_json(args.out / "config.json", config)
