@@ -856,7 +856,7 @@ impl<B: Backend> Env<B> {
         };
         self.backend.link_poses(r.gait.poses_mut());
         r.evaluate_step(
-            crate::regularizers::base_height(&self.state.trunk, self.ground.terrain()),
+            crate::regularizers::TrunkReading::new(&self.state.trunk, self.ground.terrain()),
             &self.state.qd,
             self.scratch.torques(),
             &self.latching[..self.num_feet],

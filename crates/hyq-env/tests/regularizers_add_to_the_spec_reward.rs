@@ -4,8 +4,9 @@
 //! the environment is the spec's bit for bit and reports nothing of them. On rapier, and on DART
 //! and MuJoCo with `--features dart` / `mujoco`, a trotting episode's every step has the reward
 //! of the same episode without them plus the terms its record holds, scaled, and the terms the
-//! record's own rows determine (action rate, joint acceleration, base height, collision, feet
-//! air time, goal heading, line and approach) are recomputed from those rows bit for bit.
+//! record's own rows determine (action rate, joint acceleration, base height, orientation,
+//! collision, feet air time, goal heading, line and approach) are recomputed from those rows bit
+//! for bit.
 
 mod common;
 
@@ -18,10 +19,11 @@ use hyq_physics::na::{Quaternion, UnitQuaternion, Vector3};
 use hyq_physics::{Backend, RobotModel, bundled};
 use hyq_rapier::RapierBackend;
 use hyq_spec::ObservationLayout;
+use hyq_tasks::observation::projected_gravity;
 use hyq_tasks::step::AirTime;
 use hyq_tasks::{REGULARIZER_NAMES, RegularizerTerms, terms};
 
-/// Every regulariser on: legged_gym's preset plus the five it leaves at 0.
+/// Every regulariser on: legged_gym's preset plus the six it leaves at 0.
 const ALL_ON: &[(&str, &str)] = &[
     ("regularizers.preset", "legged_gym"),
     ("regularizers.foot_slip", "-0.1"),
@@ -29,6 +31,7 @@ const ALL_ON: &[(&str, &str)] = &[
     ("regularizers.goal_heading", "-0.5"),
     ("regularizers.goal_line", "-10.0"),
     ("regularizers.goal_line_approach", "60.0"),
+    ("regularizers.orientation", "-5.0"),
 ];
 
 fn config(pairs: &[(&str, &str)]) -> EnvConfig {
@@ -50,9 +53,8 @@ fn scaled_sum(scales: &RegularizerTerms, record: &StepRecord<'_>, dt: f64) -> f6
 }
 
 /// The terms a record's own rows determine (action rate, joint acceleration, base height,
-/// collision, feet air time, and with the episode's start and goal the goal heading, line and
-/// approach),
-/// recomputed from those rows and the previous records'.
+/// orientation, collision, feet air time, and with the episode's start and goal the goal
+/// heading, line and approach), recomputed from those rows and the previous records'.
 struct FromRows {
     layout: ObservationLayout,
     /// The episode's start and goal (world x and y).
@@ -114,6 +116,10 @@ impl FromRows {
             (
                 "base_height",
                 terms::base_height(z, model.standing_height()),
+            ),
+            (
+                "orientation",
+                terms::orientation(projected_gravity(&rotation)),
             ),
             ("collision", obs[self.layout.trunk_contact()]),
             ("feet_air_time", terms::feet_air_time(touchdown, 0.5, true)),

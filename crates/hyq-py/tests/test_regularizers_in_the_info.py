@@ -28,7 +28,7 @@ def test_off_by_default_the_info_has_no_regularizer_key():
 def test_the_reward_is_the_spec_reward_plus_the_terms_that_are_on():
     assert hyq.REGULARIZER_TERMS == (
         "action_rate", "torques", "joint_acc", "feet_air_time", "foot_slip", "base_height", "collision",
-        "goal_heading", "goal_line", "goal_line_approach")
+        "goal_heading", "goal_line", "goal_line_approach", "orientation")
     plain = gym.make("HyQ-v0").unwrapped
     reg = gym.make("HyQ-v0", regularizers=ON).unwrapped
     plain.reset(seed=0)

@@ -20,6 +20,7 @@
 //! | `goal_heading` | \|∠(heading, bearing to the goal)\| | 0 | (none: the reach's shaping) |
 //! | `goal_line` | distance off the start–goal line | 0 | (none: the reach's shaping) |
 //! | `goal_line_approach` | (d_prev − d) / Δt, d the distance off that line | 0 | (none: the reach's shaping) |
+//! | `orientation` | g_x² + g_y², g gravity in the trunk's frame | 0 | `orientation` |
 //! | `feet_air_time_threshold_s` | t_min | 0.5 | `feet_air_time`'s 0.5 |
 //! | `base_height_target_m` | h_target | the robot's standing height | `base_height_target` |
 //!
@@ -136,6 +137,8 @@ regularizers! {
     goal_line = 0.0;
     /// How fast that distance falls (m/s).
     goal_line_approach = 0.0;
+    /// g_x² + g_y², gravity's direction in the trunk's frame: how far the trunk is from level.
+    orientation = 0.0;
 }
 
 /// The scales a `[regularizers]` starts from.
@@ -243,6 +246,8 @@ pub struct RegularizerSnapshot<'a> {
     pub foot_contacts: &'a [bool],
     /// The trunk's height above the ground under it (m).
     pub base_height: f64,
+    /// Gravity's direction in the trunk's frame, Rᵀ (0, 0, −1).
+    pub projected_gravity: [f64; 3],
     /// Which penalised bodies touched the ground during the step.
     pub penalised_contacts: &'a [bool],
     /// The goal task's geometry at the end of the step.
@@ -287,6 +292,7 @@ pub fn values(scales: &RegularizerScales, s: &RegularizerSnapshot<'_>) -> Regula
         goal_heading: terms::goal_heading(s.goal.trunk, s.goal.heading, s.goal.goal),
         goal_line,
         goal_line_approach: terms::goal_line_approach(s.previous_goal_line, goal_line, s.env_dt),
+        orientation: terms::orientation(s.projected_gravity),
     }
 }
 

@@ -1,8 +1,10 @@
 //! The regularisers of `[regularizers]`: each gait term is the velocity task's own function of
-//! numbers, the goal terms measure the heading and the line to the goal, their sum is Σ s·r·Δt over the terms that are on and nothing else, off is exactly
+//! numbers, `orientation` is the trunk's tilt, the goal terms measure the heading and the line to
+//! the goal, their sum is Σ s·r·Δt over the terms that are on and nothing else, off is exactly
 //! nothing, the preset is legged_gym's, bad keys are named, and a report writes the terms that
 //! are on and reads them back.
 
+use hyq_tasks::observation::projected_gravity;
 use hyq_tasks::regularizers::{REGULARIZER_COUNT, RegularizerSnapshot, reward, values};
 use hyq_tasks::step::AirTime;
 use hyq_tasks::terms;
@@ -10,6 +12,7 @@ use hyq_tasks::{
     GoalGeometry, REGULARIZER_NAMES, RegularizerConfig, RegularizerPreset, RegularizerTerms,
     ReportedRegularizers,
 };
+use nalgebra::{UnitQuaternion, Vector3};
 use proptest::prelude::*;
 
 fn finite() -> impl Strategy<Value = f64> {
@@ -17,10 +20,28 @@ fn finite() -> impl Strategy<Value = f64> {
 }
 
 fn scales() -> impl Strategy<Value = [f64; REGULARIZER_COUNT]> {
-    proptest::array::uniform10(prop_oneof![Just(0.0), -10.0..10.0f64])
+    proptest::array::uniform11(prop_oneof![Just(0.0), -10.0..10.0f64])
 }
 
 proptest! {
+    /// g_x² + g_y² of the trunk's gravity is 1 − cos² of its tilt (the angle between its z axis
+    /// and the world's): 0 level, 1 on its side, in [0, 1], and blind to yaw.
+    #[test]
+    fn orientation_is_the_squared_sine_of_the_tilt(
+        roll in -4.0..4.0f64, pitch in -4.0..4.0f64, yaw in -4.0..4.0f64, turn in -4.0..4.0f64,
+    ) {
+        let r = UnitQuaternion::from_euler_angles(roll, pitch, yaw);
+        let v = terms::orientation(projected_gravity(&r));
+        let up = (r * Vector3::z()).z;
+        prop_assert!((-1e-12..=1.0 + 1e-12).contains(&v));
+        prop_assert!((v - (1.0 - up * up)).abs() < 1e-12);
+        let turned = UnitQuaternion::from_axis_angle(&Vector3::z_axis(), turn) * r;
+        prop_assert!((terms::orientation(projected_gravity(&turned)) - v).abs() < 1e-12);
+        prop_assert_eq!(terms::orientation(projected_gravity(&UnitQuaternion::from_euler_angles(0.0, 0.0, yaw))), 0.0);
+        let side = UnitQuaternion::from_euler_angles(std::f64::consts::FRAC_PI_2, 0.0, yaw);
+        prop_assert!((terms::orientation(projected_gravity(&side)) - 1.0).abs() < 1e-12);
+    }
+
     /// (h − h₀)² is 0 exactly at the target, positive elsewhere, symmetric about it.
     #[test]
     fn base_height_is_the_squared_distance_to_the_target(h in 0.0..2.0f64, target in 0.01..2.0f64) {
@@ -118,7 +139,7 @@ proptest! {
     #[test]
     fn the_sum_is_the_scaled_terms_that_are_on(
         s in scales(),
-        v in proptest::array::uniform10(finite()),
+        v in proptest::array::uniform11(finite()),
         dt in 0.001..0.1f64,
     ) {
         let scales = RegularizerTerms::from_array(s);
@@ -156,7 +177,9 @@ proptest! {
         xy in proptest::array::uniform4(-100.0..100.0f64),
         yaw in -4.0..4.0f64,
         previous_line in 0.0..100.0f64,
+        tilt in proptest::array::uniform3(-4.0..4.0f64),
     ) {
+        let gravity = projected_gravity(&UnitQuaternion::from_euler_angles(tilt[0], tilt[1], tilt[2]));
         let goal = GoalGeometry {
             trunk: [xy[0], xy[1]],
             heading: [yaw.cos(), yaw.sin()],
@@ -176,6 +199,7 @@ proptest! {
             foot_velocity_xy: &vel,
             foot_contacts: &feet,
             base_height: h,
+            projected_gravity: gravity,
             penalised_contacts: &[trunk],
             goal,
             previous_goal_line: previous_line,
@@ -192,14 +216,15 @@ proptest! {
         prop_assert_eq!(v.goal_heading, terms::goal_heading(goal.trunk, goal.heading, goal.goal));
         prop_assert_eq!(v.goal_line, terms::goal_line(goal.start, goal.goal, goal.trunk));
         prop_assert_eq!(v.goal_line_approach, terms::goal_line_approach(previous_line, v.goal_line, dt));
+        prop_assert_eq!(v.orientation, terms::orientation(gravity));
         prop_assert!(reward(&scales.terms, &v, dt).is_finite());
     }
 
     /// A report writes the terms that are on, in order, and reads back to itself.
     #[test]
     fn a_report_writes_the_terms_that_are_on(
-        v in proptest::array::uniform10(finite()),
-        on in proptest::array::uniform10(any::<bool>()),
+        v in proptest::array::uniform11(finite()),
+        on in proptest::array::uniform11(any::<bool>()),
     ) {
         let mut values = v;
         for k in 0..REGULARIZER_COUNT {

@@ -50,6 +50,7 @@ regularizer_keys! {
     7 => "goal_heading",
     8 => "goal_line",
     9 => "goal_line_approach",
+    10 => "orientation",
 }
 
 /// The keys of [`REGULARIZER_INFO_KEYS`] `info` holds: none with the regularisers off, else

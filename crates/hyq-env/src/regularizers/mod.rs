@@ -9,6 +9,7 @@
 
 use hyq_physics::na::{Point3, Vector3};
 use hyq_physics::{RobotModel, TrunkState};
+use hyq_tasks::observation::projected_gravity;
 use hyq_tasks::regularizers::{RegularizerSnapshot, reward, values};
 use hyq_tasks::{GoalGeometry, REGULARIZER_NAMES, RegularizerScales, ReportedRegularizers};
 use serde::Serialize;
@@ -83,15 +84,14 @@ impl Regularizers {
         self.info = self.neutral();
     }
 
-    /// Judges the step that ended in `trunk` (its height above the ground `base_height`) and
-    /// `qd`, with the last sub-step's `torques`, the latched `feet` flags and the `penalised`
+    /// Judges the step that ended in the `trunk` reading and `qd`, with the last sub-step's `torques`, the latched `feet` flags and the `penalised`
     /// bodies' latched flags, and the goal task's `goal` geometry (the body poses were just read
     /// into the gait history).
     /// A term that is on and not finite (a joint speed's change over a Δt_env of 10⁻²⁰⁰ s, say)
     /// is the step's divergence: nothing non-finite is reported.
     pub(crate) fn evaluate_step(
         &mut self,
-        base_height: f64,
+        trunk: TrunkReading,
         qd: &[f64],
         torques: &[f64],
         feet: &[bool],
@@ -110,7 +110,8 @@ impl Regularizers {
                 air_at_touchdown: g.air_at_touchdown,
                 foot_velocity_xy: g.foot_velocity_xy,
                 foot_contacts: feet,
-                base_height,
+                base_height: trunk.base_height,
+                projected_gravity: trunk.projected_gravity,
                 penalised_contacts: penalised,
                 goal,
                 previous_goal_line: self.goal_line,
@@ -171,8 +172,22 @@ pub(crate) fn goal_geometry(
     }
 }
 
-/// The trunk's height above the ground under its frame origin (m).
-pub(crate) fn base_height(trunk: &TrunkState, terrain: &hyq_physics::Terrain) -> f64 {
-    let p = trunk.pose.translation.vector;
-    p.z - terrain.height_at(p.x, p.y)
+/// What the trunk terms read of the trunk at the end of a step.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct TrunkReading {
+    /// The trunk's height above the ground under its frame origin (m).
+    pub(crate) base_height: f64,
+    /// Gravity's direction in the trunk's frame.
+    pub(crate) projected_gravity: [f64; 3],
+}
+
+impl TrunkReading {
+    /// The reading of `trunk` over `terrain`.
+    pub(crate) fn new(trunk: &TrunkState, terrain: &hyq_physics::Terrain) -> Self {
+        let p = trunk.pose.translation.vector;
+        Self {
+            base_height: p.z - terrain.height_at(p.x, p.y),
+            projected_gravity: projected_gravity(&trunk.pose.rotation),
+        }
+    }
 }
