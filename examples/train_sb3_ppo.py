@@ -43,6 +43,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import sys
 import time
 from pathlib import Path
@@ -261,7 +262,13 @@ def parse_args() -> argparse.Namespace:
                         help="start from a saved model (RUN/model.zip or RUN/checkpoints/model_N.zip) "
                              "and the VecNormalize statistics saved with it, instead of from scratch; "
                              "--ppo's settings and the learning rate's schedule apply from its first "
-                             "step, --steps counts the steps added")
+                             "step, --steps counts the steps added (--net is refused: the networks "
+                             "are the model's)")
+    parser.add_argument("--action-noise", type=float, metavar="STD",
+                        help="set the policy's action noise (the Gaussian's standard deviation, every "
+                             "action) to STD before training, after --resume: e.g. lower, so that "
+                             "training meets the states the deterministic policy it will be judged as "
+                             "falls from (docs/training.md, the reach on three engines)")
     parser.add_argument("--env", type=json.loads, default={},
                         help='JSON object of environment keys to change, e.g. \'{"fall_penalty": 0}\'')
     parser.add_argument("--ppo", type=json.loads, default={}, help="JSON object of PPO settings to change")
@@ -298,11 +305,16 @@ def main() -> None:
     if net["activation"] not in ACTIVATIONS:
         raise SystemExit(f"error: --net activation {net['activation']!r}: expected one of {sorted(ACTIVATIONS)}")
     curriculum = None if args.eps_curriculum is None else recipes.eps_curriculum(args.eps_curriculum)
+    if args.action_noise is not None and not (math.isfinite(args.action_noise) and args.action_noise > 0):
+        raise SystemExit(f"error: --action-noise {args.action_noise}: must be a finite number above 0")
     if args.resume is not None:
         # Before OUT is made, so a mistyped model leaves nothing behind.
         for path in (args.resume, statistics_of(args.resume)):
             if not path.is_file():
                 raise SystemExit(f"error: --resume {args.resume}: no such file {path}")
+        if args.net:
+            raise SystemExit(f"error: --net {', '.join(sorted(args.net))}: a resumed model keeps its "
+                             "networks (--action-noise sets its noise)")
     args.out.mkdir(parents=True, exist_ok=True)
     config = {
         **run, "trainer": "sb3", "ppo": ppo_kwargs, "net": net, "steps": args.steps or steps,
@@ -365,9 +377,12 @@ def main() -> None:
             **sb3_kwargs,
         )
     else:
-        # The saved networks (--net does not apply), with this run's PPO settings and schedule.
+        # The saved networks, with this run's PPO settings and schedule.
         model = PPO.load(args.resume, env=venv, device="cpu", custom_objects=sb3_kwargs)
         model.set_random_seed(args.seed)
+    if args.action_noise is not None:
+        with torch.no_grad():
+            model.policy.log_std.fill_(math.log(args.action_noise))
     curve = Curve(args.out, args.curve_episodes, args.checkpoint_every or every, run, clock)
     model.learn(total_timesteps=config["steps"], callback=CallbackList([curve, *callbacks]),
                 progress_bar=True)

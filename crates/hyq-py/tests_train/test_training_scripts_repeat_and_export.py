@@ -406,3 +406,31 @@ def test_an_sb3_run_resumes_a_checkpoint_with_its_statistics(sb3_runs, tmp_path)
     missing = script("train_sb3_ppo.py", *args, "--resume", tmp_path / "none.zip", "--out", tmp_path / "x")
     assert missing.returncode != 0 and "--resume" in missing.stderr.splitlines()[-1]
     assert not (tmp_path / "x").exists()
+
+
+def test_an_sb3_resume_takes_a_new_action_noise_and_refuses_new_networks(sb3_runs, tmp_path) -> None:
+    """--action-noise after --resume: at a learning rate of 0 every action's log deviation is
+    log(STD) and the rest of the policy is the checkpoint's to the bit; --net with --resume, and a
+    noise that is not a finite number above 0, are refused with one line before OUT is made."""
+    import math
+
+    from stable_baselines3 import PPO
+
+    source = sb3_runs[0] / "checkpoints" / "model_512.zip"
+    args = [a if a != json.dumps({"n_steps": 128, "batch_size": 256})
+            else json.dumps({"n_steps": 128, "batch_size": 256, "learning_rate": 0.0}) for a in SB3]
+    args[args.index("--steps") + 1] = "512"
+    run = train("train_sb3_ppo.py", [*args, "--resume", source, "--action-noise", "0.05"], tmp_path / "quiet")
+    before = PPO.load(source, device="cpu").policy.state_dict()
+    after = PPO.load(run / "model.zip", device="cpu").policy.state_dict()
+    assert not torch.equal(before["log_std"], after["log_std"])
+    assert torch.equal(after["log_std"], torch.full_like(after["log_std"], math.log(0.05)))
+    for key in before.keys() - {"log_std"}:
+        assert torch.equal(before[key], after[key]), key
+    for extra, named in ((["--net", json.dumps({"pi": [64]})], "--net pi"),
+                         (["--action-noise", "0"], "--action-noise 0.0"),
+                         (["--action-noise", "nan"], "--action-noise nan")):
+        done = script("train_sb3_ppo.py", *args, "--resume", source, *extra, "--out", tmp_path / "x")
+        last = done.stderr.strip().splitlines()[-1]
+        assert done.returncode != 0 and last.startswith(f"error: {named}"), done.stderr[-500:]
+    assert not (tmp_path / "x").exists()
