@@ -84,9 +84,9 @@ impl Regularizers {
         self.info = self.neutral();
     }
 
-    /// Judges the step that ended in the `trunk` reading and `qd`, with the last sub-step's `torques`, the latched `feet` flags and the `penalised`
-    /// bodies' latched flags, and the goal task's `goal` geometry (the body poses were just read
-    /// into the gait history).
+    /// Judges the step that ended in the `trunk` reading and `qd`, with the last sub-step's
+    /// `torques`, the latched `feet` flags and the `penalised` bodies' latched flags, and the goal
+    /// task's `goal` geometry (the body poses were just read into the gait history).
     /// A term that is on and not finite (a joint speed's change over a Δt_env of 10⁻²⁰⁰ s, say)
     /// is the step's divergence: nothing non-finite is reported.
     pub(crate) fn evaluate_step(
