@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import csv
 import json
+import math
 import os
 import subprocess
 import time
@@ -172,6 +173,13 @@ RECIPES: dict[str, dict[str, Any]] = {
 #: (seed 1000 and its continued streams).
 EVAL_EPISODES = 20
 EVAL_SEED = 2000
+
+
+def check_action_noise(std: float | None) -> None:
+    """Exits with one line unless `std` (`--action-noise`, None when not given) is a finite
+    number above 0."""
+    if std is not None and not (math.isfinite(std) and std > 0):
+        raise SystemExit(f"error: --action-noise {std}: must be a finite number above 0")
 
 
 def check_backend(backend: str, option: str | None = None) -> None:

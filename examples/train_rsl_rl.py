@@ -267,8 +267,7 @@ def main() -> None:
     }
     # The engines' names joined, for titles and config.json ("mujoco"; "rapier,dart,mujoco").
     run["backend"] = ",".join(run["backends"])
-    if args.action_noise is not None and not (math.isfinite(args.action_noise) and args.action_noise > 0):
-        raise SystemExit(f"error: --action-noise {args.action_noise}: must be a finite number above 0")
+    recipes.check_action_noise(args.action_noise)
     if args.resume and not args.resume.is_file():
         # Before OUT is made, so a mistyped checkpoint leaves nothing behind.
         raise SystemExit(f"error: --resume {args.resume}: no such checkpoint file")

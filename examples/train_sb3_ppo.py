@@ -305,8 +305,7 @@ def main() -> None:
     if net["activation"] not in ACTIVATIONS:
         raise SystemExit(f"error: --net activation {net['activation']!r}: expected one of {sorted(ACTIVATIONS)}")
     curriculum = None if args.eps_curriculum is None else recipes.eps_curriculum(args.eps_curriculum)
-    if args.action_noise is not None and not (math.isfinite(args.action_noise) and args.action_noise > 0):
-        raise SystemExit(f"error: --action-noise {args.action_noise}: must be a finite number above 0")
+    recipes.check_action_noise(args.action_noise)
     if args.resume is not None:
         # Before OUT is made, so a mistyped model leaves nothing behind.
         for path in (args.resume, statistics_of(args.resume)):
