@@ -1,7 +1,7 @@
 """Export a trained policy for the Rust replay (`hyq run --policy mlp:FILE`) and as ONNX.
 
     target/train-venv/bin/python examples/export_policy.py --run runs/reach \\
-        --out assets/policies/hyq_reach.safetensors --onnx
+        --out assets/policies/hyq_reach_mujoco.safetensors --onnx
     target/train-venv/bin/python examples/export_policy.py \\
         --policy assets/policies/hyq_walk.safetensors --onnx      # ONNX of an existing file
 
