@@ -101,3 +101,14 @@ def test_adapter_gives_what_sb3s_dummy_vec_env_gives(sb3: types.SimpleNamespace)
                 np.testing.assert_array_equal(
                     info["terminal_observation"], d_info["terminal_observation"]
                 )
+
+
+def test_the_same_seed_pickles_the_same_spaces(sb3: types.SimpleNamespace) -> None:
+    """Two adapters of one seed pickle their spaces (as VecNormalize's statistics file holds
+    them) to the same bytes; gymnasium alone seeds their samplers from the OS's entropy."""
+    import pickle
+
+    a, b = (sb3.HyQVecEnv(num_envs=N, seed=3, **CONFIG) for _ in range(2))
+    for space in ("observation_space", "action_space"):
+        assert pickle.dumps(getattr(a, space)) == pickle.dumps(getattr(b, space)), space
+    assert np.array_equal(a.action_space.sample(), b.action_space.sample())

@@ -68,6 +68,11 @@ class HyQVecEnv(VecEnv):
             self.venv.single_action_space,
         )
         if seed is not None:
+            # gymnasium seeds a space's sampler from the OS's entropy when a vector env batches
+            # it; seeded here, what a run pickles with the spaces (VecNormalize's statistics
+            # file) repeats byte for byte.
+            self.observation_space.seed(seed)
+            self.action_space.seed(seed)
             self.seed(seed)
 
     def reset(self) -> np.ndarray:
