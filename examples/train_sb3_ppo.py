@@ -130,8 +130,13 @@ class Curve(BaseCallback):
     both."""
 
     def __init__(self, out: Path, min_episodes: int, every: int, run: dict[str, Any],
-                 clock: recipes.Clock) -> None:
+                 clock: recipes.Clock, eval_mode: str = "checkpoints",
+                 stop_at: int | None = None) -> None:
         super().__init__()
+        #: What is evaluated (--eval): "checkpoints" (each, and the final model), "final", "none".
+        self.eval_mode = eval_mode
+        #: Training stops at the first step at or past this many env steps (--stop-at).
+        self.stop_at = stop_at
         self.clock = clock
         self.out = out
         self.episodes = recipes.EpisodeLog(min_episodes)
@@ -152,12 +157,18 @@ class Curve(BaseCallback):
         if self.num_timesteps >= self.next:
             self.next += self.every
             self.checkpoint()
-        return True
+        # False ends model.learn at once, before the rollout's update: the model then is the
+        # one a checkpoint written at this step holds.
+        return self.stop_at is None or self.num_timesteps < self.stop_at
 
     def checkpoint(self) -> None:
         norm = self.model.get_vec_normalize_env()
         self.model.save(self.out / "checkpoints" / f"model_{self.num_timesteps}.zip")
         norm.save(str(self.out / "checkpoints" / f"vecnormalize_{self.num_timesteps}.pkl"))
+        if self.eval_mode != "checkpoints":
+            print(f"[{self.num_timesteps} env steps] checkpoint written, not evaluated "
+                  f"(--eval {self.eval_mode})", flush=True)
+            return
         start = time.monotonic()
         result = evaluate(self.model, norm, self.run)
         self.clock.eval_s += time.monotonic() - start
@@ -269,6 +280,15 @@ def parse_args() -> argparse.Namespace:
                              "action) to STD before training, after --resume: e.g. lower, so that "
                              "training meets the states the deterministic policy it will be judged as "
                              "falls from (docs/training.md, the reach on three engines)")
+    parser.add_argument("--stop-at", type=int, metavar="N",
+                        help="stop at the first step at or past N env steps and save the model there "
+                             "(model.zip: the model a checkpoint written at that step holds); the "
+                             "learning rate's schedule stays that of --steps")
+    parser.add_argument("--eval", choices=("checkpoints", "final", "none"), default="checkpoints",
+                        help="what the deterministic policy is evaluated on: every checkpoint and the "
+                             "final model (the default), the final model alone, or nothing (for the "
+                             "stages of a staged recipe whose stopping points are fixed; evaluations "
+                             "are about 45 %% of a reach stage's time)")
     parser.add_argument("--env", type=json.loads, default={},
                         help='JSON object of environment keys to change, e.g. \'{"fall_penalty": 0}\'')
     parser.add_argument("--ppo", type=json.loads, default={}, help="JSON object of PPO settings to change")
@@ -306,6 +326,9 @@ def main() -> None:
         raise SystemExit(f"error: --net activation {net['activation']!r}: expected one of {sorted(ACTIVATIONS)}")
     curriculum = None if args.eps_curriculum is None else recipes.eps_curriculum(args.eps_curriculum)
     recipes.check_action_noise(args.action_noise)
+    budget = args.steps or steps
+    if args.stop_at is not None and not 0 < args.stop_at <= budget:
+        raise SystemExit(f"error: --stop-at {args.stop_at}: expected 1 to the run's {budget} env steps")
     if args.resume is not None:
         # Before OUT is made, so a mistyped model leaves nothing behind.
         for path in (args.resume, statistics_of(args.resume)):
@@ -316,7 +339,8 @@ def main() -> None:
                              "networks (--action-noise sets its noise)")
     args.out.mkdir(parents=True, exist_ok=True)
     config = {
-        **run, "trainer": "sb3", "ppo": ppo_kwargs, "net": net, "steps": args.steps or steps,
+        **run, "trainer": "sb3", "ppo": ppo_kwargs, "net": net, "steps": budget,
+        **({} if args.stop_at is None else {"stop_at": args.stop_at}),
         "envs": args.envs, "seed": args.seed, "torch_threads": args.torch_threads,
         **({} if curriculum is None else {"eps_curriculum": curriculum}),
         "commit": recipes.git_commit(),
@@ -382,7 +406,8 @@ def main() -> None:
     if args.action_noise is not None:
         with torch.no_grad():
             model.policy.log_std.fill_(math.log(args.action_noise))
-    curve = Curve(args.out, args.curve_episodes, args.checkpoint_every or every, run, clock)
+    curve = Curve(args.out, args.curve_episodes, args.checkpoint_every or every, run, clock,
+                  args.eval, args.stop_at)
     model.learn(total_timesteps=config["steps"], callback=CallbackList([curve, *callbacks]),
                 progress_bar=True)
     timing = clock.summary(model.num_timesteps)
@@ -390,7 +415,8 @@ def main() -> None:
     venv.save(str(args.out / "vecnormalize.pkl"))
     venv.close()
 
-    result = evaluate(model, venv, run)
+    # --eval none: the run's timing alone (a stage whose model the next one resumes).
+    result = {} if args.eval == "none" else evaluate(model, venv, run)
     result["timing"] = timing
     if curve.best is not None:
         # The checkpoint that reached the goal most often (then: the highest mean return) on the
@@ -401,8 +427,9 @@ def main() -> None:
         result["eps_curriculum_changes"] = [list(c) for c in callbacks[0].changes]
     recipes.write_json(args.out / "eval.json", result)
     print(recipes.timing_line(timing))
-    per = " per engine" if len(set(run["backends"])) > 1 else ""
-    print(f"eval over {recipes.EVAL_EPISODES} episodes{per}: {recipes.eval_summary(result)}")
+    if args.eval != "none":
+        per = " per engine" if len(set(run["backends"])) > 1 else ""
+        print(f"eval over {recipes.EVAL_EPISODES} episodes{per}: {recipes.eval_summary(result)}")
 
 
 if __name__ == "__main__":

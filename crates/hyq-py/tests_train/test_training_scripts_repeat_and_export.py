@@ -434,3 +434,39 @@ def test_an_sb3_resume_takes_a_new_action_noise_and_refuses_new_networks(sb3_run
         last = done.stderr.strip().splitlines()[-1]
         assert done.returncode != 0 and last.startswith(f"error: {named}"), done.stderr[-500:]
     assert not (tmp_path / "x").exists()
+
+
+def test_stop_at_ends_at_the_checkpoints_model_and_eval_chooses_what_is_evaluated(sb3_runs, tmp_path) -> None:
+    """--stop-at N ends the run at the step its checkpoint N is written, so model.zip and its
+    statistics are that checkpoint's to the bit; --eval none evaluates nothing (eval.json keeps the
+    timing alone), --eval final the final model alone; a stop outside the budget is refused in
+    one line before OUT is made."""
+    import pickle
+    import zipfile
+
+    stopped = train("train_sb3_ppo.py", [*SB3, "--stop-at", "512", "--eval", "none"], tmp_path / "stopped")
+    checkpoint = sb3_runs[0] / "checkpoints" / "model_512.zip"
+    for part in ("policy.pth", "policy.optimizer.pth", "pytorch_variables.pth"):
+        assert (zipfile.ZipFile(stopped / "model.zip").read(part)
+                == zipfile.ZipFile(checkpoint).read(part)), part
+    old = pickle.loads((sb3_runs[0] / "checkpoints" / "vecnormalize_512.pkl").read_bytes())
+    new = pickle.loads((stopped / "vecnormalize.pkl").read_bytes())
+    for rms in ("obs_rms", "ret_rms"):
+        a, b = getattr(old, rms), getattr(new, rms)
+        assert a.count == b.count and np.array_equal(a.mean, b.mean) and np.array_equal(a.var, b.var), rms
+    assert not (stopped / "checkpoints" / "model_1024.zip").exists()
+    assert list(json.loads((stopped / "eval.json").read_text())) == ["timing"]
+    assert json.loads((stopped / "config.json").read_text())["stop_at"] == 512
+    assert len((stopped / "evals.csv").read_text().splitlines()) == 1  # the header
+
+    final = train("train_sb3_ppo.py", [*SB3, "--eval", "final"], tmp_path / "final")
+    result = json.loads((final / "eval.json").read_text())
+    assert "estimates" in result and "best_checkpoint_env_steps" not in result
+    assert (final / "checkpoints" / "model_1024.zip").exists()
+    assert len((final / "evals.csv").read_text().splitlines()) == 1
+
+    for stop in ("0", "1025"):
+        done = script("train_sb3_ppo.py", *SB3, "--stop-at", stop, "--out", tmp_path / "x")
+        last = done.stderr.strip().splitlines()[-1]
+        assert done.returncode != 0 and last.startswith(f"error: --stop-at {stop}"), done.stderr[-500:]
+    assert not (tmp_path / "x").exists()
